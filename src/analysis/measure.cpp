@@ -1,0 +1,70 @@
+#include "analysis/measure.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace analysis {
+
+Measurements measure(const core::Events& ev, double duration) {
+  Measurements m;
+  m.duration = duration;
+  for (const auto& e : ev.exits) {
+    if (e.t > duration) continue;
+    ++m.exits;
+    ++(e.species == core::Species::Original ? m.exits_original : m.exits_added);
+  }
+  m.q = duration > 0 ? m.exits / duration : NAN;
+  m.q_tilde = duration > 0 ? m.exits_original / duration : NAN;
+  m.chi_eff = m.exits > 0 ? static_cast<double>(m.exits_added) / m.exits : NAN;
+  long added = 0, members = 0;
+  for (const auto& a : ev.arches) {
+    if (a.t > duration) continue;
+    ++m.long_arches;
+    members += static_cast<long>(a.ids.size());
+    added += std::count(a.species.begin(), a.species.end(), core::Species::Added);
+  }
+  m.long_arches_per_minute = duration > 0 ? 60.0 * m.long_arches / duration : NAN;
+  m.added_per_long_arch = m.long_arches > 0 ? static_cast<double>(added) / m.long_arches : NAN;
+  m.members_per_long_arch = m.long_arches > 0 ? static_cast<double>(members) / m.long_arches : NAN;
+  for (const auto& c : ev.clogs) {
+    if (c.start > duration) continue;
+    ++m.clogs;
+    switch (c.ended_by) {
+      case core::ClogEnd::Spontaneous: ++m.clogs_spontaneous; break;
+      case core::ClogEnd::Vibration: ++m.clogs_vibration; break;
+      case core::ClogEnd::Rule: ++m.clogs_rule; break;
+      case core::ClogEnd::RunEnd: ++m.clogs_run_end; break;
+    }
+  }
+  long decided = m.clogs_vibration + m.clogs_rule;
+  m.fraction_broken_by_vibration = decided > 0 ? static_cast<double>(m.clogs_vibration) / decided : NAN;
+  return m;
+}
+
+std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits) {
+  std::vector<double> gaps;
+  double last = NAN;
+  for (const auto& e : exits) {
+    if (e.species != core::Species::Original) continue;
+    if (!std::isnan(last)) gaps.push_back(e.t - last);
+    last = e.t;
+  }
+  return gaps;
+}
+
+std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus) {
+  std::sort(gaps.begin(), gaps.end());
+  std::vector<double> out;
+  out.reserve(taus.size());
+  for (double tau : taus) {
+    if (gaps.empty()) {
+      out.push_back(NAN);
+      continue;
+    }
+    auto it = std::lower_bound(gaps.begin(), gaps.end(), tau);  // first gap >= tau
+    out.push_back(static_cast<double>(gaps.end() - it) / static_cast<double>(gaps.size()));
+  }
+  return out;
+}
+
+}  // namespace analysis

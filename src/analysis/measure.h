@@ -1,0 +1,33 @@
+// The paper's measurements of one realization, from its event streams.
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+
+namespace analysis {
+
+struct Measurements {
+  double duration = 0;              // s of discharge analysed
+  long exits = 0, exits_original = 0, exits_added = 0;
+  double q = 0;                     // exits per second (all species)
+  double q_tilde = 0;               // exits of original disks per second
+  double chi_eff = 0;               // fraction of added disks among the exits (NaN without exits)
+  long long_arches = 0;             // clog_timeout rule firings
+  double long_arches_per_minute = 0;
+  double added_per_long_arch = 0;   // mean number of added disks per long-lasting arch (NaN without arches)
+  double members_per_long_arch = 0; // mean arch size (NaN without arches)
+  long clogs = 0;                   // exit gaps >= clog_min_gap, any ending
+  long clogs_spontaneous = 0, clogs_vibration = 0, clogs_rule = 0, clogs_run_end = 0;
+  double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
+};
+
+Measurements measure(const core::Events& ev, double duration);
+
+// Gaps between consecutive exits of original disks, s (added disks may exit in between).
+std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);
+
+// Survival function P(dt >= tau) of `gaps` at each tau.
+std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus);
+
+}  // namespace analysis

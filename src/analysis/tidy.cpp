@@ -1,0 +1,83 @@
+#include "analysis/tidy.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace analysis {
+
+namespace {
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+std::string point_values(const core::Scene& s) {
+  std::string out;
+  for (const auto& k : point_keys()) {
+    std::string v = core::field_text(s, *core::find_field(k));
+    if (!v.empty() && v.front() == '"') v = v.substr(1, v.size() - 2);
+    out += v + ",";
+  }
+  return out;
+}
+}  // namespace
+
+const std::vector<std::string>& point_keys() {
+  static const std::vector<std::string> keys = {"size_ratio", "chi", "mu", "kick_impulse_max", "seed"};
+  return keys;
+}
+
+std::string summary_header() {
+  std::string h;
+  for (const auto& k : point_keys()) h += k + ",";
+  return h +
+         "duration_s,exits,exits_original,exits_added,q_per_s,q_tilde_per_s,chi_eff,long_arches,"
+         "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_vibration,"
+         "clogs_rule,clogs_run_end,fraction_broken_by_vibration";
+}
+
+std::string summary_row(const core::Scene& s, const Measurements& m) {
+  return point_values(s) + num(m.duration) + "," + std::to_string(m.exits) + "," + std::to_string(m.exits_original) +
+         "," + std::to_string(m.exits_added) + "," + num(m.q) + "," + num(m.q_tilde) + "," + num(m.chi_eff) + "," +
+         std::to_string(m.long_arches) + "," + num(m.long_arches_per_minute) + "," + num(m.added_per_long_arch) + "," +
+         num(m.members_per_long_arch) + "," + std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) +
+         "," + std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
+         std::to_string(m.clogs_run_end) + "," + num(m.fraction_broken_by_vibration);
+}
+
+std::vector<double> survival_taus(const core::Scene& s) {
+  std::vector<double> taus;
+  const int n = static_cast<int>(std::ceil((s.clog_timeout + 1.0) / 0.05));
+  for (int i = 0; i <= n; ++i) taus.push_back(0.05 * i);
+  return taus;
+}
+
+std::string survival_csv(const core::Scene& s, const std::vector<core::ExitEvent>& exits) {
+  std::string out;
+  for (const auto& k : point_keys()) out += k + ",";
+  out += "tau_s,survival,gaps\n";
+  const auto gaps = original_gaps(exits);
+  const auto taus = survival_taus(s);
+  const auto p = survival(gaps, taus);
+  const std::string pv = point_values(s);
+  for (size_t i = 0; i < taus.size(); ++i)
+    out += pv + num(taus[i]) + "," + num(p[i]) + "," + std::to_string(gaps.size()) + "\n";
+  return out;
+}
+
+std::string summary_text(const Measurements& m) {
+  char b[1024];
+  std::snprintf(b, sizeof b,
+                "discharge   %.1f s: %ld exits (%ld original, %ld added)\n"
+                "Q           %.3f /s   Q~ (originals) %.3f /s   chi_eff %.3f\n"
+                "long arches %ld (%.2f per minute), %.2f added disks per arch, %.2f members per arch\n"
+                "clogs       %ld >= clog_min_gap: %ld spontaneous, %ld broken by vibration, %ld by the rule, "
+                "%ld open at the end\n",
+                m.duration, m.exits, m.exits_original, m.exits_added, m.q, m.q_tilde, m.chi_eff, m.long_arches,
+                m.long_arches_per_minute, m.added_per_long_arch, m.members_per_long_arch, m.clogs,
+                m.clogs_spontaneous, m.clogs_vibration, m.clogs_rule, m.clogs_run_end);
+  return b;
+}
+
+}  // namespace analysis

@@ -1,0 +1,83 @@
+#include "app/common.h"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace app {
+
+namespace {
+std::string g_command;
+std::atomic<int> g_signals{0};
+
+void on_signal(int sig) {
+  if (g_signals.fetch_add(1) >= 1) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
+}  // namespace
+
+void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
+  auto* opt = cmd.add_option("scene", path, "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
+  if (scene_required) opt->required();
+  cmd.add_option("--seed", seed, "random seed (overrides the scene's)");
+  cmd.add_option("--duration", duration, "seconds of discharge after the aperture opens (overrides the scene's)");
+  cmd.add_option("--set", overrides, "override a scene key, e.g. --set mu=1.0 (repeatable)")->take_all();
+  cmd.add_flag("--unsafe", unsafe, "let the health monitor warn instead of stopping (results may be garbage)");
+}
+
+core::Scene SceneOptions::load() const {
+  core::Scene s = path.empty() ? core::Scene{} : core::load_scene(path);
+  core::apply_overrides(s, overrides);
+  if (seed) s.seed = *seed;
+  if (duration) {
+    if (!(*duration >= 0)) throw core::InputError("--duration " + std::to_string(*duration) + ": must be >= 0 s");
+    s.duration = *duration;
+  }
+  if (unsafe) s.unsafe = true;
+  core::validate(s);
+  return s;
+}
+
+std::string command_line() { return g_command; }
+void set_command_line(int argc, char** argv) {
+  g_command.clear();
+  for (int i = 0; i < argc; ++i) g_command += (i ? " " : "") + std::string(argv[i]);
+}
+
+void install_interrupt_handler() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+bool interrupted() { return g_signals.load() > 0; }
+
+Progress::Progress(std::string label, double total, bool enabled)
+    : label_(std::move(label)), total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {
+  start_ = last_ = std::chrono::steady_clock::now();
+}
+
+void Progress::update(double done, const std::string& extra) {
+  if (!enabled_) return;
+  auto now = std::chrono::steady_clock::now();
+  if (now - last_ < std::chrono::milliseconds(200)) return;
+  last_ = now;
+  double elapsed = std::chrono::duration<double>(now - start_).count();
+  double frac = total_ > 0 ? std::min(1.0, done / total_) : 1.0;
+  double eta = frac > 0 ? elapsed * (1 - frac) / frac : 0;
+  constexpr int kWidth = 30;
+  std::string bar(static_cast<size_t>(frac * kWidth), '#');
+  bar.resize(kWidth, '.');
+  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %s  ETA %4.0f s ", label_.c_str(), bar.c_str(), 100 * frac, extra.c_str(),
+               eta);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (enabled_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace app

@@ -1,0 +1,56 @@
+// Shared pieces of the command-line subcommands: scene options, progress display, Ctrl-C handling.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace app {
+
+// SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
+struct SceneOptions {
+  std::string path;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> duration;
+  std::vector<std::string> overrides;
+  bool unsafe = false;
+
+  void add_to(CLI::App& cmd, bool scene_required = true);
+  // File, then --set, then --seed/--duration/--unsafe; validated. Throws core::InputError.
+  core::Scene load() const;
+};
+
+// The command line as one string, for metadata.
+std::string command_line();
+void set_command_line(int argc, char** argv);
+
+// Ctrl-C / SIGTERM: the first sets a flag the long loops poll; a second one terminates at once.
+void install_interrupt_handler();
+bool interrupted();
+
+// A one-line progress bar on stderr when it is a terminal; silent otherwise (CI logs stay clean).
+class Progress {
+ public:
+  Progress(std::string label, double total, bool enabled = true);
+  void update(double done, const std::string& extra = "");
+  void finish();
+
+ private:
+  std::string label_;
+  double total_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+using Action = std::function<int()>;
+void add_run_command(CLI::App& app, Action& action);
+void add_bench_command(CLI::App& app, Action& action);
+
+}  // namespace app

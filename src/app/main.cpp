@@ -1,0 +1,38 @@
+// siloscope: clogging in a vibrated 2D hopper (Carlevaro et al., Granular Matter 24, 2022).
+// Exit codes: 0 success, 1 a fault while running, 2 bad input (arguments, scene, files), 130 interrupted.
+#include <cstdio>
+
+#include "app/common.h"
+#include "core/error.h"
+#include "io/metadata.h"
+
+int main(int argc, char** argv) {
+  app::set_command_line(argc, argv);
+  CLI::App cli{"siloscope: simulate, film and measure clogging arches in a vibrated hopper"};
+  cli.set_version_flag("--version", io::version_string());
+  cli.require_subcommand(1);
+  app::Action action;
+  app::add_run_command(cli, action);
+  app::add_bench_command(cli, action);
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,bench} ... (see siloscope --help)\n", e.what());
+    return 2;
+  }
+  try {
+    return action();
+  } catch (const core::InputError& e) {
+    std::fprintf(stderr, "siloscope: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "siloscope: failed: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,56 @@
+// Arch detection (Goldberg, Carlevaro and Pugnaloni, J. Stat. Mech. 2018, 113201).
+//
+// On the contact graph of touching disks: the arch is the path with the fewest particles between a disk
+// touching the left hopper wall near the aperture and one touching the right hopper wall; ties go to the
+// path whose particles sit lowest (smallest sum of heights). It is then trimmed: starting from the member
+// nearest the aperture centre, members are kept while x keeps moving outwards on each side.
+//
+// Pure functions on plain data, no Box2D: the simulation feeds them Box2D's contacts, the inspector feeds
+// them contacts rebuilt from stored positions.
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+#include "core/geometry.h"
+
+namespace core {
+
+struct ContactGraph {
+  std::vector<std::vector<int>> neighbours;  // per particle id, ids of touching disks
+  std::vector<bool> touches_left;            // touches the left hopper wall
+  std::vector<bool> touches_right;           // touches the right hopper wall
+
+  explicit ContactGraph(int n = 0) : neighbours(n), touches_left(n, false), touches_right(n, false) {}
+  int size() const { return static_cast<int>(neighbours.size()); }
+  void add_bond(int a, int b) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+};
+
+// The untrimmed fewest-particles path from the left wall to the right wall, left to right, considering only
+// wall contacts of disks whose centre is below wall_reach (m). Empty if no such path exists.
+std::vector<int> shortest_wall_path(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach);
+
+// Trim a left-to-right path around the member nearest `centre` (see above).
+std::vector<int> trim_arch(const std::vector<int>& path, const std::vector<Vec2>& pos, Vec2 centre = {0, 0});
+
+// Both steps: the blocking arch, members left to right, or empty.
+std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach);
+
+// Span, height and largest angle of an arch (members left to right).
+ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
+                           const std::vector<double>& radius);
+
+// The alternative unclogging set: every disk within `range` of the aperture centre whose straight segment to
+// the centre crosses no other disk; sorted left to right.
+std::vector<int> visible_from_aperture(const std::vector<Vec2>& pos, const std::vector<double>& radius,
+                                       double range);
+
+// Contacts rebuilt from positions: disks closer than the sum of their radii plus `tolerance` (m) touch, and so
+// do disks within `tolerance` of a hopper wall. Only disks below `max_height` are considered.
+ContactGraph contacts_from_positions(const std::vector<Vec2>& pos, const std::vector<double>& radius,
+                                     const Geometry& geo, double tolerance, double max_height);
+
+}  // namespace core

@@ -1,0 +1,22 @@
+// Error types shared by every layer. The application maps them to exit codes:
+// InputError (a bad scene, argument or file from the user) exits 2, RuntimeFault exits 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace core {
+
+// Something the user gave us is wrong. The message names the field, the value and what is allowed.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Something went wrong while running (I/O failure, unstable integration, encoder error).
+class RuntimeFault : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace core

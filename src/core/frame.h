@@ -1,0 +1,76 @@
+// Frame: a snapshot of the simulation, the only thing the renderer, the trajectory writer and the
+// inspector see of it. Events: what happened (exits, clogs, long-lasting arches). Plain data, SI units.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace core {
+
+enum class Species : std::uint8_t { Original = 0, Added = 1 };
+inline const char* species_name(Species s) { return s == Species::Original ? "original" : "added"; }
+
+struct Particle {
+  float x, y;      // m, centre
+  float angle;     // rad
+  float vx, vy;    // m/s
+  float radius;    // m
+  float force;     // N, sum of contact normal force magnitudes on this disk over the last step
+  Species species;
+};
+
+struct Frame {
+  double t = 0;                        // s since the aperture opened (negative while settling)
+  std::uint64_t step = 0;              // time steps since the start of settling
+  std::vector<Particle> particles;     // indexed by particle id
+  std::vector<int> arch;               // ids of the current blocking arch, left to right; empty if none
+  double since_last_exit = 0;          // s, the clog timer
+  std::int64_t exits_original = 0;     // exits so far of each species
+  std::int64_t exits_added = 0;
+};
+
+struct ExitEvent {
+  double t;  // s
+  int id;
+  Species species;
+};
+
+enum class ClogEnd : std::uint8_t {
+  Spontaneous,  // flow resumed before the outlet came to rest (a transient jam)
+  Vibration,    // the outlet had come to rest; a kick broke the arch
+  Rule,         // nothing broke it: the clog_timeout rule removed the arch
+  RunEnd,       // still clogged when the run ended (censored)
+};
+const char* clog_end_name(ClogEnd e);
+
+struct ClogEvent {
+  double start;     // s, the last exit before the gap
+  double end;       // s, the next exit, the rule, or the end of the run
+  ClogEnd ended_by;
+  bool arrested;    // the outlet region fell below arrest_speed during the clog
+};
+
+struct ArchGeometry {
+  double span = 0;           // m, horizontal distance between the outer edges of the end members
+  double height = 0;         // m, highest member centre above the aperture line
+  double max_angle_deg = 0;  // largest angle at a member between its two neighbours, measured below the arch
+};
+
+// A long-lasting arch: the clog_timeout rule fired and removed these particles.
+struct ArchEvent {
+  double t;                      // s, when the rule fired
+  double clog_duration;          // s, time since the last exit
+  std::vector<int> ids;          // members, left to right
+  std::vector<Species> species;  // of each member
+  ArchGeometry geometry;
+  std::string method;            // how the members were found: contact_path, or the visible fallback
+};
+
+struct Events {
+  std::vector<ExitEvent> exits;
+  std::vector<ClogEvent> clogs;
+  std::vector<ArchEvent> arches;
+};
+
+}  // namespace core

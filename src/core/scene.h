@@ -1,0 +1,98 @@
+// The scene: every parameter of a siloscope run, in SI units, with its default.
+//
+// One struct, one table of fields (scene_fields()), one validation function (validate()).
+// The scene file parser, the command line (--set key=value), the metadata writer and the
+// inspector's panel all go through the same table, so a key means the same thing everywhere.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace core {
+
+// Defaults follow ../shared/model.md (Carlevaro et al., Granular Matter 24, 2022).
+struct Scene {
+  // --- particles ---
+  double radius_original = 0.065;  // m, r_o; (0.001, 1]
+  double size_ratio = 0.4;         // r = r_a / r_o; [0.2, 1]
+  std::int64_t n_total = 250;      // N_o + N_a; [1, 5000]
+  double chi = 0.4;                // N_a / (N_o + N_a), number fraction of added disks; [0, 1]
+  double density = 1.0;            // kg/m^2, areal, both species; (0, 1e4]
+  double friction = 0.5;           // particle-particle and particle-wall, static = dynamic; [0, 10]
+  double restitution = 0.1;        // [0, 1]
+  double restitution_threshold = 1.0;  // m/s; impacts slower than this are perfectly inelastic (Box2D rule)
+  double mu = 0.0;                 // A*m^2, dipole moment of added disks (perpendicular to the plane); [0, 100]
+  double dipole_cutoff = 0.0;      // m; dipole pairs farther apart are skipped; 0 = all pairs
+
+  // --- container ---
+  double silo_width = 1.00;     // m, W
+  double silo_height = 5.00;    // m, H_s: vertical part above the hopper
+  double hopper_height = 1.36;  // m, H_t
+  double aperture = 0.299;      // m, D = 2R = 4.6 r_o, centred at x = 0, y = 0
+  double gravity = 9.8;         // m/s^2, downward
+
+  // --- driving ---
+  double kick_period = 0.1;        // s, time between kicks
+  double kick_impulse_max = 5e-5;  // N*s; impulse magnitudes uniform in [0, this]
+  bool global_kick = true;         // one extra impulse, same law, applied to every particle at each kick
+
+  // --- protocol ---
+  double settle_time = 4.0;      // s, settling with the aperture closed before t = 0
+  double duration = 150.0;       // s of discharge after the aperture opens
+  double clog_timeout = 5.0;     // s without an exit before the blocking arch is removed (the 5 s rule)
+  double clog_min_gap = 0.5;     // s; an exit gap at least this long is recorded as a clog
+  double arrest_speed = 0.01;    // m/s; a clog whose outlet particles all fell below this is "arrested"
+  double arch_wall_reach = 1.36; // m; wall contacts below this height anchor arches (default: the hopper)
+  std::string arch_method = "contact_path";  // contact_path | visible; how the 5 s rule picks the arch
+  double reinject_gap = 0.05;    // m, clearance between a re-injected disk and the column top
+
+  // --- numerics (not in the paper; chosen by the speed-versus-accuracy study) ---
+  double dt = 1e-3;                    // s, fixed time step; (0, 0.02]
+  std::int64_t velocity_iterations = 8;  // Box2D velocity solver iterations; [1, 500]
+  std::int64_t position_iterations = 3;  // Box2D position solver iterations; [1, 500]
+  double length_scale = 10.0;          // Box2D length units per metre; [0.1, 1000]
+  bool continuous = false;             // Box2D continuous collision for the disks
+  bool unsafe = false;                 // let the health monitor warn instead of stopping
+
+  std::uint64_t seed = 1;  // one seed determines the whole run
+
+  // Derived counts (rounded N_a = chi * N).
+  std::int64_t n_added() const;
+  std::int64_t n_original() const { return n_total - n_added(); }
+  double radius_added() const { return size_ratio * radius_original; }
+};
+
+// A field of the scene, for parsing, printing and editing.
+struct Field {
+  using Ptr = std::variant<double Scene::*, std::int64_t Scene::*, bool Scene::*, std::string Scene::*,
+                           std::uint64_t Scene::*>;
+  const char* key;
+  Ptr ptr;
+  const char* unit;
+  double min, max;              // numeric range (inclusive), ignored for bool and text
+  const char* choices;          // for text fields: "a|b"
+  const char* doc;
+};
+
+const std::vector<Field>& scene_fields();
+const Field* find_field(const std::string& key);
+
+// Set one field from text ("0.4", "true", "visible"). Throws core::InputError naming key, value and range.
+void set_field(Scene& s, const std::string& key, const std::string& value, const std::string& origin);
+// The value of a field as text (round-trips through set_field).
+std::string field_text(const Scene& s, const Field& f);
+
+// Check every field and the relations between them. Throws core::InputError naming the key.
+void validate(const Scene& s);
+
+// Read a scene file (TOML, flat keys). Unknown keys and wrong types are errors. Does not validate.
+Scene load_scene(const std::string& path);
+// Apply "key=value" overrides from the command line.
+void apply_overrides(Scene& s, const std::vector<std::string>& assignments);
+
+// The scene as TOML text, every field with its unit: the metadata files and `siloscope scene --print`.
+std::string scene_toml(const Scene& s);
+
+}  // namespace core

@@ -1,0 +1,76 @@
+#include "io/metadata.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include "core/geometry.h"
+#include "core/physics.h"
+#include "siloscope_version.h"
+
+namespace io {
+
+namespace {
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  std::string s = b;
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+std::string version_string() {
+  return std::string(SILOSCOPE_VERSION) + " (git " + SILOSCOPE_GIT + ", " + SILOSCOPE_BUILD_TYPE + ")";
+}
+
+std::vector<std::pair<std::string, std::string>> derived_facts(const core::Scene& s) {
+  using core::kPi;
+  const core::Geometry g = core::make_geometry(s);
+  const double ra = s.radius_added(), ma = core::mass_of(ra, s.density);
+  const double contact_force = core::dipole_contact_force(s);
+  const double safe_dt = core::dipole_safe_dt(s);
+  return {
+      {"n_original", std::to_string(s.n_original())},
+      {"n_added", std::to_string(s.n_added())},
+      {"radius_added_m", num(ra)},
+      {"mass_original_kg", num(core::mass_of(s.radius_original, s.density))},
+      {"mass_added_kg", num(ma)},
+      {"hopper_wall_angle_from_vertical_deg", num(g.wall_angle_from_vertical() * 180 / kPi)},
+      {"angle_between_hopper_walls_deg", num(2 * g.wall_angle_from_vertical() * 180 / kPi)},
+      {"aperture_over_original_diameter", num(s.aperture / (2 * s.radius_original))},
+      {"dipole_contact_force_over_weight", num(contact_force / (ma * s.gravity))},
+      {"dipole_safe_dt_s", std::isfinite(safe_dt) ? num(safe_dt) : "inf"},
+      {"steps_per_kick", std::to_string(std::llround(s.kick_period / s.dt))},
+      {"box2d_linear_slop_m", num(0.005 / s.length_scale)},
+  };
+}
+
+std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
+  std::string s = "# siloscope run metadata: `siloscope run THIS_FILE` repeats the run.\n[siloscope]\n";
+  s += "version = " + quoted(SILOSCOPE_VERSION) + "\n";
+  s += "git = " + quoted(SILOSCOPE_GIT) + "\n";
+  s += "build_type = " + quoted(SILOSCOPE_BUILD_TYPE) + "\n";
+  s += "box2d = \"2.4.1\"\n";
+  s += "command = " + quoted(info.command) + "\n";
+  char when[64];
+  std::time_t now = std::time(nullptr);
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  s += "written_utc = " + quoted(when) + "\n\n[scene]\n" + core::scene_toml(scene) + "\n[derived]\n";
+  for (const auto& [k, v] : derived_facts(scene)) s += k + " = " + v + "\n";
+  if (!info.facts.empty()) {
+    s += "\n[run]\n";
+    for (const auto& [k, v] : info.facts) s += k + " = " + v + "\n";
+  }
+  return s;
+}
+
+}  // namespace io

@@ -1,0 +1,38 @@
+// Clog bookkeeping, independent of the physics: exit gaps, clogs and how each ended, and when the
+// clog_timeout rule is due. Times in seconds since the aperture opened.
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+
+namespace sim {
+
+class ClogTracker {
+ public:
+  ClogTracker(double min_gap, double timeout) : min_gap_(min_gap), timeout_(timeout) {}
+
+  // A particle left through the aperture at time t.
+  void on_exit(double t);
+  // Called just before each kick: whether every disk near the outlet is slower than arrest_speed.
+  void on_rest_check(double t, bool outlet_at_rest);
+  // The rule is due when nothing has exited (and the rule has not fired) for `timeout`.
+  bool rule_due(double t) const { return t - last_ >= timeout_ - 1e-9; }
+  // The rule fired at t: the current clog ends, a new gap starts.
+  void on_rule(double t);
+  // The run ended at t: an open clog is recorded as censored.
+  void finish(double t);
+
+  double since_last(double t) const { return t - last_; }
+  bool arrested() const { return arrested_; }
+  const std::vector<core::ClogEvent>& clogs() const { return clogs_; }
+
+ private:
+  void close(double t, core::ClogEnd how);
+  double min_gap_, timeout_;
+  double last_ = 0;        // last exit, rule firing, or the opening
+  bool arrested_ = false;  // the outlet came to rest since last_
+  std::vector<core::ClogEvent> clogs_;
+};
+
+}  // namespace sim

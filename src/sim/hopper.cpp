@@ -1,0 +1,458 @@
+#include "sim/hopper.h"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/physics.h"
+#include "sim/dipole.h"
+#include "sim/kicks.h"
+
+namespace sim {
+
+namespace {
+// Fixture user data: particle id + 1, or kWallTag + wall index.
+constexpr std::uintptr_t kWallTag = 1u << 30;
+// Overlap (fraction of the smaller radius of a pair) past which the integration is considered broken.
+constexpr double kMaxOverlapFraction = 0.5;
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Decode a fixture: particle id (>= 0), or -1 - wall index.
+int decode(const b2Fixture* f) {
+  std::uintptr_t u = const_cast<b2Fixture*>(f)->GetUserData().pointer;
+  if (u >= kWallTag) return -1 - static_cast<int>(u - kWallTag);
+  return static_cast<int>(u) - 1;
+}
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+}  // namespace
+
+Hopper::Hopper(const core::Scene& scene)
+    : scene_(scene),
+      geo_(core::make_geometry(scene)),
+      L_(scene.length_scale),
+      rng_deposit_(scene.seed, 1),
+      rng_kick_(scene.seed, 2),
+      rng_reinject_(scene.seed, 3),
+      clogs_(scene.clog_min_gap, scene.clog_timeout) {
+  core::validate(scene_);
+  // The dipole repulsion is integrated explicitly: refuse a time step that cannot resolve it.
+  if (scene_.mu > 0 && scene_.n_added() >= 2) {
+    double safe = core::dipole_safe_dt(scene_);
+    if (scene_.dt > safe) {
+      std::string msg = "dt = " + fmt(scene_.dt) + " s is too large for the dipole repulsion at mu = " +
+                        fmt(scene_.mu) + " A*m^2 and r = " + fmt(scene_.size_ratio) +
+                        "; the largest safe time step is " + fmt(safe) + " s";
+      if (!scene_.unsafe) throw core::InputError("scene: " + msg + " (or pass --unsafe)");
+      std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
+    }
+  }
+  kick_every_ = static_cast<std::uint64_t>(std::llround(scene_.kick_period / scene_.dt));
+  open_step_ = static_cast<std::uint64_t>(std::llround(scene_.settle_time / scene_.dt));
+
+  world_ = std::make_unique<b2World>(b2Vec2(0.0f, static_cast<float>(-scene_.gravity * L_)));
+  world_->SetAllowSleeping(false);  // sleeping would freeze clogged arches between kicks
+  world_->SetContinuousPhysics(scene_.continuous);
+  deposit_height_ = deposit_height();
+  build_walls();
+  deposit();
+  settle();
+  open_aperture();
+}
+
+Hopper::~Hopper() = default;
+
+void Hopper::build_walls() {
+  b2BodyDef def;
+  walls_ = world_->CreateBody(&def);
+  for (int w = 0; w < static_cast<int>(core::Wall::Count); ++w) {
+    if (w != static_cast<int>(core::Wall::Top)) add_wall(w);
+  }
+}
+
+b2Fixture* Hopper::add_wall(int w) {
+  {
+    core::Segment s = geo_.walls[w];
+    if (w == static_cast<int>(core::Wall::SiloLeft)) s.a.y = deposit_height_;
+    if (w == static_cast<int>(core::Wall::SiloRight)) s.b.y = deposit_height_;
+    b2EdgeShape edge;
+    edge.SetTwoSided(b2Vec2(static_cast<float>(s.a.x * L_), static_cast<float>(s.a.y * L_)),
+                     b2Vec2(static_cast<float>(s.b.x * L_), static_cast<float>(s.b.y * L_)));
+    b2FixtureDef fd;
+    fd.shape = &edge;
+    fd.friction = static_cast<float>(scene_.friction);
+    fd.restitution = static_cast<float>(scene_.restitution);
+    fd.restitutionThreshold = static_cast<float>(scene_.restitution_threshold * L_);
+    fd.userData.pointer = kWallTag + static_cast<std::uintptr_t>(w);
+    b2Fixture* f = walls_->CreateFixture(&fd);
+    if (w == static_cast<int>(core::Wall::Lid)) lid_ = f;
+    return f;
+  }
+}
+
+double Hopper::deposit_height() const {
+  const int n_o = static_cast<int>(scene_.n_original()), n = static_cast<int>(scene_.n_total);
+  // Random sequential deposition jams near 55% coverage, so the disks are dropped from a column tall enough
+  // for 30% coverage, which may reach above the container: the side walls reach that high, and the top wall
+  // is only built when the aperture opens.
+  double area = 0;
+  for (int id = 0; id < n; ++id) {
+    double r = id < n_o ? scene_.radius_original : scene_.radius_added();
+    area += core::kPi * r * r;
+  }
+  const double hopper_area = (geo_.half_width + geo_.half_aperture) * geo_.hopper_height;
+  return std::max(geo_.total_height, geo_.hopper_height + (area / 0.3 - hopper_area) / (2.0 * geo_.half_width));
+}
+
+void Hopper::deposit() {
+  const int n_o = static_cast<int>(scene_.n_original()), n = static_cast<int>(scene_.n_total);
+  std::vector<core::Vec2> placed;
+  for (int id = 0; id < n; ++id) {
+    const core::Species sp = id < n_o ? core::Species::Original : core::Species::Added;
+    const double r = sp == core::Species::Original ? scene_.radius_original : scene_.radius_added();
+    // Random sequential deposition, larger disks first (ids are ordered so), no overlaps, aperture closed.
+    core::Vec2 p;
+    bool ok = false;
+    for (int attempt = 0; attempt < 200000 && !ok; ++attempt) {
+      p.y = rng_deposit_.uniform(r, deposit_height_ - r);
+      double hw = geo_.half_width_at(p.y) - r;
+      if (hw <= 0) continue;
+      p.x = rng_deposit_.uniform(-hw, hw);
+      if (p.y - r < 0 || geo_.side_clearance(p, r) < 0) continue;
+      ok = true;
+      for (int j = 0; j < id && ok; ++j) {
+        double rr = r + radius_[j];
+        core::Vec2 d = p - placed[j];
+        ok = core::dot(d, d) >= rr * rr;
+      }
+    }
+    if (!ok)
+      throw core::InputError("scene: could not deposit " + std::to_string(n) +
+                             " disks without overlap; lower n_total or raise silo_height");
+    placed.push_back(p);
+    radius_.push_back(r);
+    species_.push_back(sp);
+    if (sp == core::Species::Added) added_ids_.push_back(id);
+
+    b2BodyDef bd;
+    bd.type = b2_dynamicBody;
+    bd.position.Set(static_cast<float>(p.x * L_), static_cast<float>(p.y * L_));
+    bd.allowSleep = false;
+    b2Body* body = world_->CreateBody(&bd);
+    b2CircleShape circle;
+    circle.m_radius = static_cast<float>(r * L_);
+    b2FixtureDef fd;
+    fd.shape = &circle;
+    // Masses stay in kg: Box2D's area grows by L^2, so the density shrinks by L^2.
+    fd.density = static_cast<float>(scene_.density / (L_ * L_));
+    fd.friction = static_cast<float>(scene_.friction);
+    fd.restitution = static_cast<float>(scene_.restitution);
+    fd.restitutionThreshold = static_cast<float>(scene_.restitution_threshold * L_);
+    fd.userData.pointer = static_cast<std::uintptr_t>(id) + 1;
+    body->CreateFixture(&fd);
+    bodies_.push_back(body);
+  }
+  t_ = -static_cast<double>(open_step_) * scene_.dt;
+}
+
+void Hopper::settle() {
+  while (step_ < open_step_) step();
+  double vmax = 0;
+  for (int i = 0; i < particle_count(); ++i) vmax = std::max(vmax, core::length(vel(i)));
+  settle_max_speed_ = vmax;
+}
+
+void Hopper::open_aperture() {
+  for (int i = 0; i < particle_count(); ++i)
+    if (pos(i).y + radius_[i] > geo_.total_height)
+      throw core::InputError("scene: after settle_time = " + fmt(scene_.settle_time) + " s particle " +
+                             std::to_string(i) + " is still above the top of the container at y = " +
+                             fmt(pos(i).y) + " m; raise settle_time or silo_height");
+  add_wall(static_cast<int>(core::Wall::Top));
+  walls_->DestroyFixture(lid_);
+  lid_ = nullptr;
+  open_ = true;
+  t_ = 0;
+}
+
+core::Vec2 Hopper::pos(int id) const {
+  const b2Vec2& p = bodies_[id]->GetPosition();
+  return {p.x / L_, p.y / L_};
+}
+core::Vec2 Hopper::vel(int id) const {
+  const b2Vec2& v = bodies_[id]->GetLinearVelocity();
+  return {v.x / L_, v.y / L_};
+}
+std::vector<core::Vec2> Hopper::positions() const {
+  std::vector<core::Vec2> out(bodies_.size());
+  for (int i = 0; i < particle_count(); ++i) out[i] = pos(i);
+  return out;
+}
+
+void Hopper::place(int id, core::Vec2 p) {
+  bodies_[id]->SetTransform(b2Vec2(static_cast<float>(p.x * L_), static_cast<float>(p.y * L_)), 0.0f);
+  bodies_[id]->SetLinearVelocity(b2Vec2(0, 0));
+  bodies_[id]->SetAngularVelocity(0);
+}
+
+void Hopper::apply_kicks() {
+  draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
+  for (int i = 0; i < particle_count(); ++i) {
+    const core::Vec2& j = scratch_kick_[i];
+    bodies_[i]->ApplyLinearImpulseToCenter(b2Vec2(static_cast<float>(j.x * L_), static_cast<float>(j.y * L_)), true);
+  }
+}
+
+void Hopper::apply_dipoles() {
+  scratch_pos_.resize(added_ids_.size());
+  for (size_t k = 0; k < added_ids_.size(); ++k) scratch_pos_[k] = pos(added_ids_[k]);
+  dipole_forces(scratch_pos_, scene_.mu, scene_.dipole_cutoff, scratch_force_);
+  // Box2D clears forces after every step, so they are applied before each one.
+  for (size_t k = 0; k < added_ids_.size(); ++k) {
+    const core::Vec2& f = scratch_force_[k];
+    bodies_[added_ids_[k]]->ApplyForceToCenter(b2Vec2(static_cast<float>(f.x * L_), static_cast<float>(f.y * L_)),
+                                               true);
+  }
+}
+
+void Hopper::step() {
+  Clock::time_point t0;
+  if (profiling_) t0 = Clock::now();
+  const bool kick_due = ((static_cast<std::int64_t>(step_) - static_cast<std::int64_t>(open_step_)) %
+                         static_cast<std::int64_t>(kick_every_)) == 0;
+  if (kick_due) {
+    if (open_) {
+      clogs_.on_rest_check(t_, outlet_at_rest());
+      check_overlaps();
+    }
+    if (scene_.kick_impulse_max > 0) apply_kicks();
+  }
+  Clock::time_point t1;
+  if (profiling_) t1 = Clock::now(), times_.kicks += std::chrono::duration<double>(t1 - t0).count();
+  if (scene_.mu > 0 && added_ids_.size() >= 2) apply_dipoles();
+  Clock::time_point t2;
+  if (profiling_) t2 = Clock::now(), times_.dipoles += std::chrono::duration<double>(t2 - t1).count();
+
+  world_->Step(static_cast<float>(scene_.dt), static_cast<int>(scene_.velocity_iterations),
+               static_cast<int>(scene_.position_iterations));
+  ++step_;
+  // Time from the integer step count: no drift over millions of steps.
+  t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
+  Clock::time_point t3;
+  if (profiling_) t3 = Clock::now(), times_.box2d += std::chrono::duration<double>(t3 - t2).count();
+
+  handle_exits();
+  if (open_) apply_clog_rule();
+  if (clogs_.clogs().size() != events_.clogs.size()) events_.clogs = clogs_.clogs();
+  if (profiling_) times_.bookkeeping += seconds_since(t3), ++times_.steps;
+}
+
+void Hopper::advance_to(double t) {
+  while (t_ < t - 0.01 * scene_.dt) step();
+}
+
+void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
+  const char* cause = nullptr;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) || !std::isfinite(v.y))
+    cause = "a non-finite position or velocity";
+  else if (p.y > (open_ ? geo_.total_height : deposit_height_) + radius_[id] ||
+           (p.y > 0 && std::abs(p.x) > geo_.half_width_at(p.y) + radius_[id]))
+    cause = "a disk outside the container";
+  else if (core::length(v) > 10.0 * std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0)
+    cause = "a disk faster than 10x the free-fall speed from the top";
+  if (!cause) return;
+  std::ostringstream o;
+  o << "unstable integration at t = " << fmt(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt(p.x)
+    << " m, y = " << fmt(p.y) << " m, speed " << fmt(core::length(v)) << " m/s); try a smaller dt (now "
+    << fmt(scene_.dt) << " s) or more iterations";
+  if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
+    std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
+    return;
+  }
+  throw core::RuntimeFault(o.str());
+}
+
+void Hopper::check_overlaps() const {
+  double worst = 0;
+  int wa = -1, wb = -1;
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching()) continue;
+    int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
+    if (a < 0 || b < 0) continue;
+    core::Vec2 d = pos(a) - pos(b);
+    double overlap = (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]);
+    if (overlap > worst) worst = overlap, wa = a, wb = b;
+  }
+  if (worst <= kMaxOverlapFraction) return;
+  std::ostringstream o;
+  o << "unstable integration at t = " << fmt(t_) << " s: disks " << wa << " and " << wb << " overlap by "
+    << fmt(100 * worst) << "% of the smaller radius (bound " << fmt(100 * kMaxOverlapFraction)
+    << "%); try a smaller dt (now " << fmt(scene_.dt) << " s) or more iterations";
+  if (scene_.unsafe) {
+    std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
+    return;
+  }
+  throw core::RuntimeFault(o.str());
+}
+
+bool Hopper::outlet_at_rest() const {
+  // Disks within 3 aperture widths of the outlet centre are the ones whose motion could end a clog.
+  const double range2 = 9.0 * scene_.aperture * scene_.aperture;
+  const double v2 = scene_.arrest_speed * scene_.arrest_speed;
+  for (int i = 0; i < particle_count(); ++i) {
+    core::Vec2 p = pos(i);
+    if (core::dot(p, p) > range2) continue;
+    core::Vec2 v = vel(i);
+    if (core::dot(v, v) > v2) return false;
+  }
+  return true;
+}
+
+void Hopper::handle_exits() {
+  for (int i = 0; i < particle_count(); ++i) {
+    core::Vec2 p = pos(i);
+    check_health_fast(i, p, vel(i));
+    // A disk wholly below the aperture line has fallen clear of it: one exit, then back to the top.
+    if (open_ && p.y < -radius_[i]) {
+      events_.exits.push_back({t_, i, species_[i]});
+      ++(species_[i] == core::Species::Original ? exits_original_ : exits_added_);
+      clogs_.on_exit(t_);
+      reinject(i);
+    }
+  }
+}
+
+void Hopper::apply_clog_rule() {
+  if (!clogs_.rule_due(t_)) return;
+  const std::vector<core::Vec2> p = positions();
+  // The visible set is looked for from the disk nearest the outlet up to one aperture width farther.
+  double nearest = INFINITY;
+  for (const auto& q : p)
+    if (q.y > 0) nearest = std::min(nearest, core::length(q));
+  const double range = nearest + scene_.aperture;
+  core::ArchEvent ev;
+  ev.t = t_;
+  ev.clog_duration = clogs_.since_last(t_);
+  ev.method = scene_.arch_method;
+  ev.ids = scene_.arch_method == "visible" ? core::visible_from_aperture(p, radius_, range) : current_arch();
+  if (ev.ids.empty()) {
+    // Named fallback: the other method, counted and recorded with the event.
+    ++arch_fallbacks_;
+    ev.method = scene_.arch_method == "visible" ? "contact_path" : "visible";
+    ev.ids = ev.method == "visible" ? core::visible_from_aperture(p, radius_, range) : current_arch();
+  }
+  for (int id : ev.ids) ev.species.push_back(species_[id]);
+  ev.geometry = core::arch_geometry(ev.ids, p, radius_);
+  for (int id : ev.ids) reinject(id);
+  events_.arches.push_back(std::move(ev));
+  clogs_.on_rule(t_);
+}
+
+void Hopper::reinject(int id) {
+  const double r = radius_[id];
+  // The top of the column: the highest disk edge in the container, other than this one.
+  double top = 0;
+  for (int j = 0; j < particle_count(); ++j) {
+    if (j == id) continue;
+    top = std::max(top, pos(j).y + radius_[j]);
+  }
+  const double ceiling = geo_.total_height - r - 1e-4;
+  const double y0 = std::min(top + scene_.reinject_gap + r, ceiling);
+  // Bands one diameter apart: from just above the column up to the lid, then (rarely: disks flying high) below.
+  std::vector<double> bands;
+  for (double y = y0; y <= ceiling; y += 2 * r) bands.push_back(y);
+  for (double y = y0 - 2 * r; y >= r; y -= 2 * r) bands.push_back(y);
+  for (double y : bands) {
+    const double hw = geo_.half_width_at(y) - r - 1e-4;
+    if (hw <= 0) continue;
+    for (int attempt = 0; attempt < 40; ++attempt) {
+      core::Vec2 p{rng_reinject_.uniform(-hw, hw), y};
+      bool free = true;
+      for (int j = 0; j < particle_count() && free; ++j) {
+        if (j == id) continue;
+        core::Vec2 d = p - pos(j);
+        double rr = r + radius_[j];
+        free = core::dot(d, d) >= rr * rr;
+      }
+      if (!free) continue;
+      place(id, p);
+      return;
+    }
+  }
+  throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) + " at t = " + fmt(t_) + " s");
+}
+
+core::ContactGraph Hopper::contact_graph() const {
+  core::ContactGraph g(particle_count());
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching()) continue;
+    int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
+    if (a >= 0 && b >= 0) {
+      g.add_bond(a, b);
+      continue;
+    }
+    int particle = a >= 0 ? a : b, wall = -1 - (a >= 0 ? b : a);
+    if (particle < 0) continue;
+    if (wall == static_cast<int>(core::Wall::HopperLeft)) g.touches_left[particle] = true;
+    if (wall == static_cast<int>(core::Wall::HopperRight)) g.touches_right[particle] = true;
+  }
+  return g;
+}
+
+std::vector<int> Hopper::current_arch() const {
+  return core::find_arch(contact_graph(), positions(), scene_.arch_wall_reach);
+}
+
+core::Frame Hopper::frame(bool with_arch) const {
+  core::Frame f;
+  f.t = t_;
+  f.step = step_;
+  f.particles.resize(bodies_.size());
+  for (int i = 0; i < particle_count(); ++i) {
+    const b2Body* b = bodies_[i];
+    core::Particle& p = f.particles[i];
+    p.x = static_cast<float>(b->GetPosition().x / L_);
+    p.y = static_cast<float>(b->GetPosition().y / L_);
+    p.angle = b->GetAngle();
+    p.vx = static_cast<float>(b->GetLinearVelocity().x / L_);
+    p.vy = static_cast<float>(b->GetLinearVelocity().y / L_);
+    p.radius = static_cast<float>(radius_[i]);
+    p.force = 0;
+    p.species = species_[i];
+  }
+  // Contact forces from the last step's normal impulses (internal units: impulse * L).
+  const double to_newton = 1.0 / (L_ * scene_.dt);
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching()) continue;
+    const b2Manifold* m = c->GetManifold();
+    double impulse = 0;
+    for (int k = 0; k < m->pointCount; ++k) impulse += m->points[k].normalImpulse;
+    float force = static_cast<float>(impulse * to_newton);
+    int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
+    if (a >= 0) f.particles[a].force += force;
+    if (b >= 0) f.particles[b].force += force;
+  }
+  if (with_arch && open_) f.arch = current_arch();
+  f.since_last_exit = open_ ? clogs_.since_last(t_) : 0;
+  f.exits_original = exits_original_;
+  f.exits_added = exits_added_;
+  return f;
+}
+
+void Hopper::finish() {
+  clogs_.finish(t_);
+  events_.clogs = clogs_.clogs();
+}
+
+}  // namespace sim

@@ -1,0 +1,122 @@
+// The vibrated hopper of Carlevaro et al. (2022) in Box2D 2.4.
+//
+// Construction deposits the disks at random with the aperture closed, lets them settle for settle_time and
+// opens the aperture: time() is 0 afterwards. Each step() applies the kicks (when due) and the dipole forces,
+// steps Box2D by dt, re-injects the disks that fell through the aperture (one exit event each) and applies
+// the clog_timeout rule. Everything is SI outside this class; inside, Box2D runs with lengths multiplied by
+// scene.length_scale so its absolute tolerances (linear slop 0.005) suit disks of a few centimetres.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "core/arch.h"
+#include "core/frame.h"
+#include "core/geometry.h"
+#include "core/rng.h"
+#include "core/scene.h"
+#include "sim/clog.h"
+
+class b2World;
+class b2Body;
+class b2Fixture;
+
+namespace sim {
+
+// Cumulative wall time of each stage of step(), filled when profiling is on.
+struct StageTimes {
+  double kicks = 0, dipoles = 0, box2d = 0, bookkeeping = 0;  // s
+  long steps = 0;
+};
+
+class Hopper {
+ public:
+  explicit Hopper(const core::Scene& scene);
+  ~Hopper();
+  Hopper(const Hopper&) = delete;
+  Hopper& operator=(const Hopper&) = delete;
+
+  void step();
+  // Step until time() >= t (to within a hundredth of a step).
+  void advance_to(double t);
+  double time() const { return t_; }
+  std::uint64_t steps() const { return step_; }
+
+  // The snapshot the renderer and trajectory see. with_arch: run arch detection (cheap, see bench).
+  core::Frame frame(bool with_arch = true) const;
+  // The current blocking arch from Box2D's contacts, left to right (empty when none).
+  std::vector<int> current_arch() const;
+  core::ContactGraph contact_graph() const;
+
+  // Events so far; finish() closes an open clog as censored (call once at the end of a run).
+  const core::Events& events() const { return events_; }
+  void finish();
+
+  const core::Scene& scene() const { return scene_; }
+  const core::Geometry& geometry() const { return geo_; }
+  int particle_count() const { return static_cast<int>(bodies_.size()); }
+  std::vector<core::Vec2> positions() const;
+  std::vector<double> radii() const { return radius_; }
+  const std::vector<core::Species>& species() const { return species_; }
+
+  // Number of arch fallbacks (the primary arch method found nothing when the rule fired).
+  long arch_fallbacks() const { return arch_fallbacks_; }
+  // Settling outcome: the largest disk speed (m/s) when the aperture opened.
+  double settle_max_speed() const { return settle_max_speed_; }
+
+  void set_profiling(bool on) { profiling_ = on; }
+  const StageTimes& stage_times() const { return times_; }
+
+  // For benchmarks and tests that must reach under the hood (the bare Box2D loop, staged arches).
+  b2World& world() { return *world_; }
+  // Move disk `id` to p (m) at rest; tests use it to build arches by hand.
+  void place(int id, core::Vec2 p);
+
+ private:
+  void build_walls();
+  b2Fixture* add_wall(int wall);
+  double deposit_height() const;
+  void deposit();
+  void settle();
+  void open_aperture();
+  void apply_kicks();
+  void apply_dipoles();
+  void handle_exits();
+  void apply_clog_rule();
+  void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
+  void check_overlaps() const;
+  bool outlet_at_rest() const;
+  void reinject(int id);
+  core::Vec2 pos(int id) const;
+  core::Vec2 vel(int id) const;
+
+  core::Scene scene_;
+  core::Geometry geo_;
+  double L_;  // Box2D length units per metre
+  double deposit_height_ = 0;  // m, top of the deposition column
+  std::unique_ptr<b2World> world_;
+  b2Body* walls_ = nullptr;
+  b2Fixture* lid_ = nullptr;
+  std::vector<b2Body*> bodies_;
+  std::vector<double> radius_;
+  std::vector<core::Species> species_;
+  std::vector<int> added_ids_;
+  core::Rng rng_deposit_, rng_kick_, rng_reinject_;
+  std::vector<core::Vec2> scratch_pos_, scratch_force_, scratch_kick_;
+
+  double t_ = 0;
+  std::uint64_t step_ = 0;
+  std::uint64_t open_step_ = 0;  // step index of t = 0
+  std::uint64_t kick_every_ = 1;
+  bool open_ = false;
+  ClogTracker clogs_;
+  core::Events events_;
+  long arch_fallbacks_ = 0;
+  std::int64_t exits_original_ = 0, exits_added_ = 0;
+  double settle_max_speed_ = 0;
+  bool profiling_ = false;
+  StageTimes times_;
+};
+
+}  // namespace sim

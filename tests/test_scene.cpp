@@ -1,0 +1,109 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/scene.h"
+#include "io/metadata.h"
+
+using Catch::Matchers::Contains;
+
+namespace {
+std::string scene_dir() { return std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/"; }
+std::string write_temp(const std::string& name, const std::string& text) {
+  auto p = std::filesystem::temp_directory_path() / ("siloscope_test_" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+// The message of the InputError that `f` throws.
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+}  // namespace
+
+TEST_CASE("paper.toml holds exactly the built-in defaults of model.md", "[sim][scene]") {
+  core::Scene file = core::load_scene(scene_dir() + "paper.toml");
+  core::Scene def;
+  for (const auto& f : core::scene_fields()) CHECK(core::field_text(file, f) == core::field_text(def, f));
+  CHECK(def.n_added() == 100);
+  CHECK(def.n_original() == 150);
+  CHECK(def.radius_added() == Approx(0.026));
+  core::validate(file);
+}
+
+TEST_CASE("pure.toml is the chi = 0 system", "[sim][scene]") {
+  core::Scene s = core::load_scene(scene_dir() + "pure.toml");
+  CHECK(s.n_added() == 0);
+  CHECK(s.n_original() == 250);
+  core::validate(s);
+}
+
+TEST_CASE("validation names the key, the value and the allowed range", "[sim][scene]") {
+  core::Scene s;
+  s.size_ratio = 0.1;
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("size_ratio") && Contains("0.1") && Contains("[0.2, 1"));
+  s = {};
+  s.size_ratio = 1.5;
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("size_ratio"));
+  s = {};
+  s.chi = -0.1;
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("chi") && Contains("-0.1"));
+  s = {};
+  s.chi = 1.2;
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("chi"));
+  s = {};
+  s.duration = -1;
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("duration") && Contains("-1"));
+  s = {};
+  s.aperture = 0.04;  // narrower than an added disk (diameter 0.052 m)
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("aperture") && Contains("smallest disk"));
+  s = {};
+  s.kick_period = 0.1005;  // not a whole number of 1 ms steps
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("kick_period"));
+  s = {};
+  s.arch_method = "magic";
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("arch_method") && Contains("contact_path|visible"));
+  s = {};
+  s.n_total = 2000;  // cannot fit
+  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("n_total"));
+}
+
+TEST_CASE("scene files: unknown keys, wrong types and malformed TOML are errors with a line", "[sim][scene]") {
+  auto p = write_temp("unknown.toml", "chi = 0.4\nmagnetism = 3\n");
+  CHECK_THAT(error_of([&] { core::load_scene(p); }), Contains("unknown key 'magnetism'") && Contains(":2"));
+  p = write_temp("type.toml", "chi = \"lots\"\n");
+  CHECK_THAT(error_of([&] { core::load_scene(p); }), Contains("chi") && Contains("wrong type"));
+  p = write_temp("malformed.toml", "chi = = 0.4\n");
+  CHECK_THAT(error_of([&] { core::load_scene(p); }), Contains("malformed TOML") && Contains(":1:"));
+  CHECK_THAT(error_of([&] { core::load_scene("/nonexistent/scene.toml"); }), Contains("cannot open"));
+}
+
+TEST_CASE("command-line overrides edit the same fields", "[sim][scene]") {
+  core::Scene s;
+  core::apply_overrides(s, {"mu=1.5", "size_ratio=0.6", "global_kick=false", "arch_method=visible", "seed=42"});
+  CHECK(s.mu == 1.5);
+  CHECK(s.size_ratio == 0.6);
+  CHECK_FALSE(s.global_kick);
+  CHECK(s.arch_method == "visible");
+  CHECK(s.seed == 42);
+  CHECK_THAT(error_of([&] { core::apply_overrides(s, {"mu"}); }), Contains("key=value"));
+  CHECK_THAT(error_of([&] { core::apply_overrides(s, {"mu=abc"}); }), Contains("mu") && Contains("abc"));
+  CHECK_THAT(error_of([&] { core::apply_overrides(s, {"nope=1"}); }), Contains("unknown key 'nope'"));
+  CHECK_THAT(error_of([&] { core::apply_overrides(s, {"seed=-3"}); }), Contains("seed"));
+}
+
+TEST_CASE("a run's metadata file loads back as the same scene", "[sim][scene]") {
+  core::Scene s;
+  core::apply_overrides(s, {"mu=0.7", "size_ratio=0.25", "seed=99", "dt=0.0005", "arch_method=visible"});
+  io::RunInfo info{"siloscope run test", {{"steps", "10"}}};
+  auto p = write_temp("metadata.toml", io::metadata_toml(s, info));
+  core::Scene back = core::load_scene(p);
+  for (const auto& f : core::scene_fields()) CHECK(core::field_text(back, f) == core::field_text(s, f));
+}
