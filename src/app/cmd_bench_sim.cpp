@@ -110,6 +110,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--steps", opts->steps, "steps per repeat");
   cmd->add_option("--csv", opts->csv, "write the table as CSV here");
   cmd->callback([opts, &action] { action = [opts] { return bench_sim(*opts); }; });
+  add_bench_arch_command(*bench, action);
 }
 
 }  // namespace app

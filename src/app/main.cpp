@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app::Action action;
   app::add_run_command(cli, action);
   app::add_bench_command(cli, action);
+  app::add_analyze_command(cli, action);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,bench} ... (see siloscope --help)\n", e.what());
+    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,analyze,bench} ... (see siloscope --help)\n", e.what());
     return 2;
   }
   try {

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -24,7 +25,10 @@ std::string fmt_double(double v) {
   // Shortest text that reads back exactly.
   for (int prec = 1; prec < 17; ++prec) {
     std::snprintf(buf, sizeof buf, "%.*g", prec, v);
-    if (std::strtod(buf, nullptr) == v) {
+    // Exponents only for very small or large magnitudes: 20 prints as 20.0, not 2e+01.
+    bool exponent = std::strchr(buf, 'e') != nullptr;
+    bool tiny_or_huge = std::abs(v) < 1e-4 || std::abs(v) >= 1e16;
+    if (std::strtod(buf, nullptr) == v && (!exponent || tiny_or_huge)) {
       s = buf;
       break;
     }

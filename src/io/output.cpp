@@ -16,8 +16,13 @@ void check_destination(const fs::path& path, bool force, const std::string& what
   if (fs::exists(path, ec) && !force)
     throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
   fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent, ec))
-    throw core::InputError(what + " " + path.string() + ": directory " + parent.string() + " does not exist");
+  if (!fs::is_directory(parent, ec)) {
+    // Missing parents are created, as `mkdir -p` would; a file in the way or no permission is an error.
+    fs::create_directories(parent, ec);
+    if (ec || !fs::is_directory(parent))
+      throw core::InputError(what + " " + path.string() + ": cannot create directory " + parent.string() + ": " +
+                             (ec ? ec.message() : std::string("a file is in the way")));
+  }
   if (::access(parent.c_str(), W_OK) != 0)
     throw core::InputError(what + " " + path.string() + ": directory " + parent.string() + " is not writable");
 }

@@ -1,0 +1,146 @@
+#include "analysis/aggregate.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "analysis/tidy.h"
+#include "core/error.h"
+
+namespace analysis {
+
+namespace {
+const std::vector<std::string> kVaried = {"size_ratio", "chi", "mu", "kick_impulse_max"};
+
+bool is_point_key(const std::string& k) {
+  for (const auto& v : kVaried)
+    if (k == v) return true;
+  return k == "seed";
+}
+
+std::string point_label(const core::Scene& s) {
+  std::string out;
+  for (const auto& k : kVaried) out += (out.empty() ? "" : ",") + core::field_text(s, *core::find_field(k));
+  return out;
+}
+
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*field) {
+  std::vector<double> v;
+  for (const Run* r : runs) v.push_back(r->m.*field);
+  return estimate(v);
+}
+}  // namespace
+
+std::vector<Point> aggregate(const std::vector<Run>& runs) {
+  if (runs.empty()) throw core::InputError("analyze: no runs to aggregate");
+  // Every key a campaign does not vary must agree with the first run's.
+  const Run& first = runs.front();
+  for (const Run& r : runs) {
+    for (const auto& f : core::scene_fields()) {
+      if (is_point_key(f.key)) continue;
+      std::string a = core::field_text(first.scene, f), b = core::field_text(r.scene, f);
+      if (a != b)
+        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " + f.key +
+                               " = " + a + " but " + r.source + " has " + f.key + " = " + b);
+    }
+  }
+  std::map<std::string, Point> by_label;
+  std::vector<std::string> order;
+  std::map<std::string, std::set<std::uint64_t>> seeds;
+  for (const Run& r : runs) {
+    std::string label = point_label(r.scene);
+    if (!by_label.count(label)) {
+      order.push_back(label);
+      by_label[label].scene = r.scene;
+    }
+    if (!seeds[label].insert(r.scene.seed).second)
+      throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) + " appears twice at the point (" +
+                             label + "); " + r.source + " duplicates an earlier run");
+    by_label[label].runs.push_back(&r);
+  }
+  // Q_p: the mean Q of the pure system, if present.
+  const Point* pure = nullptr;
+  for (auto& [label, p] : by_label)
+    if (p.scene.n_added() == 0) pure = &p;
+  Estimate qp;
+  if (pure) qp = estimate_of(pure->runs, &Measurements::q);
+
+  std::vector<Point> out;
+  for (const auto& label : order) {
+    Point p = by_label[label];
+    p.q = estimate_of(p.runs, &Measurements::q);
+    p.q_tilde = estimate_of(p.runs, &Measurements::q_tilde);
+    p.chi_eff = estimate_of(p.runs, &Measurements::chi_eff);
+    p.long_arches_per_min = estimate_of(p.runs, &Measurements::long_arches_per_minute);
+    p.added_per_long_arch = estimate_of(p.runs, &Measurements::added_per_long_arch);
+    p.fraction_broken_by_vibration = estimate_of(p.runs, &Measurements::fraction_broken_by_vibration);
+    p.q_tilde_over_qp.mean = NAN;
+    if (pure && qp.mean > 0) {
+      // Ratio of two independent means; relative half-widths add in quadrature (first-order propagation).
+      p.q_tilde_over_qp.mean = p.q_tilde.mean / qp.mean;
+      double rel = std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
+      p.q_tilde_over_qp.half_width = p.q_tilde_over_qp.mean * rel;
+      p.q_tilde_over_qp.n = p.q_tilde.n;
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::string realizations_csv(const std::vector<Run>& runs) {
+  std::string s = summary_header() + ",source\n";
+  for (const Run& r : runs) s += summary_row(r.scene, r.m) + "," + r.source + "\n";
+  return s;
+}
+
+std::string points_csv(const std::vector<Point>& points) {
+  std::string s;
+  for (const auto& k : kVaried) s += k + ",";
+  s += "n_runs";
+  const char* names[] = {"q_per_s", "q_tilde_per_s", "chi_eff", "long_arches_per_min", "added_per_long_arch",
+                         "fraction_broken_by_vibration", "q_tilde_over_qp"};
+  for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
+  s += "\n";
+  for (const auto& p : points) {
+    for (const auto& k : kVaried) {
+      std::string v = core::field_text(p.scene, *core::find_field(k));
+      s += v + ",";
+    }
+    s += std::to_string(p.runs.size());
+    for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
+                              &p.fraction_broken_by_vibration, &p.q_tilde_over_qp})
+      s += "," + num(e->mean) + "," + num(e->half_width);
+    s += "\n";
+  }
+  return s;
+}
+
+std::string pooled_survival_csv(const std::vector<Point>& points) {
+  std::string s;
+  for (const auto& k : kVaried) s += k + ",";
+  s += "tau_s,survival,gaps\n";
+  for (const auto& p : points) {
+    std::vector<double> gaps;
+    for (const Run* r : p.runs) {
+      auto g = original_gaps(r->events.exits);
+      gaps.insert(gaps.end(), g.begin(), g.end());
+    }
+    auto taus = survival_taus(p.scene);
+    auto surv = survival(gaps, taus);
+    std::string prefix;
+    for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
+    for (size_t i = 0; i < taus.size(); ++i)
+      s += prefix + num(taus[i]) + "," + num(surv[i]) + "," + std::to_string(gaps.size()) + "\n";
+  }
+  return s;
+}
+
+}  // namespace analysis

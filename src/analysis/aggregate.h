@@ -1,0 +1,38 @@
+// Aggregation across realizations: runs are grouped into points by the scene keys that a campaign varies
+// (size_ratio, chi, mu, kick_impulse_max); every other key must agree across all runs, and a seed may appear
+// once per point. Each point gets means and 95% confidence intervals of the measurements, its pooled survival
+// function, and Q~/Q_p against the pure system (chi = 0) when one is present.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/measure.h"
+#include "analysis/stats.h"
+#include "core/frame.h"
+#include "core/scene.h"
+
+namespace analysis {
+
+struct Run {
+  std::string source;  // where it came from (a directory), for error messages
+  core::Scene scene;
+  core::Events events;
+  Measurements m;
+};
+
+struct Point {
+  core::Scene scene;  // seed of the first run
+  std::vector<const Run*> runs;
+  Estimate q, q_tilde, chi_eff, long_arches_per_min, added_per_long_arch, fraction_broken_by_vibration;
+  Estimate q_tilde_over_qp;  // NaN mean when no pure point exists
+};
+
+// Throws core::InputError when runs of different scenes are mixed or a seed repeats within a point.
+std::vector<Point> aggregate(const std::vector<Run>& runs);
+
+std::string realizations_csv(const std::vector<Run>& runs);
+std::string points_csv(const std::vector<Point>& points);
+std::string pooled_survival_csv(const std::vector<Point>& points);
+
+}  // namespace analysis

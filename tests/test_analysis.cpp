@@ -1,0 +1,131 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "analysis/measure.h"
+#include "analysis/stats.h"
+#include "core/error.h"
+#include "io/events_csv.h"
+
+using core::Species;
+
+TEST_CASE("Student t critical values match tables", "[analysis]") {
+  CHECK(analysis::student_t_critical(0.95, 4) == Approx(2.776445).epsilon(1e-6));
+  CHECK(analysis::student_t_critical(0.95, 49) == Approx(2.009575).epsilon(1e-6));
+  CHECK(analysis::student_t_critical(0.95, 1) == Approx(12.706205).epsilon(1e-6));
+  CHECK(analysis::student_t_critical(0.99, 10) == Approx(3.169273).epsilon(1e-6));
+}
+
+TEST_CASE("mean and 95% confidence interval of a small sample, by hand", "[analysis]") {
+  auto e = analysis::estimate({1, 2, 3, 4, 5});
+  CHECK(e.n == 5);
+  CHECK(e.mean == Approx(3.0));
+  CHECK(e.sd == Approx(std::sqrt(2.5)));
+  CHECK(e.half_width == Approx(2.776445 * std::sqrt(2.5) / std::sqrt(5.0)).epsilon(1e-6));
+  auto one = analysis::estimate({7, NAN});
+  CHECK(one.n == 1);
+  CHECK(one.half_width == 0.0);
+}
+
+TEST_CASE("survival of gaps between original exits, by hand", "[analysis]") {
+  std::vector<core::ExitEvent> exits = {{1.0, 0, Species::Original}, {1.5, 9, Species::Added},
+                                        {2.0, 1, Species::Original}, {4.0, 2, Species::Original},
+                                        {7.0, 3, Species::Original}, {7.2, 8, Species::Added},
+                                        {11.0, 4, Species::Original}};
+  auto gaps = analysis::original_gaps(exits);
+  REQUIRE(gaps == std::vector<double>{1.0, 2.0, 3.0, 4.0});  // added exits in between do not split gaps
+  auto p = analysis::survival(gaps, {0.0, 1.0, 2.0, 2.5, 4.0, 4.1});
+  CHECK(p == std::vector<double>{1.0, 1.0, 0.75, 0.5, 0.25, 0.0});
+}
+
+TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
+  core::Events ev;
+  for (int i = 0; i < 30; ++i) ev.exits.push_back({0.5 + i, i, i % 3 == 0 ? Species::Added : Species::Original});
+  ev.arches.push_back({10, 5, {1, 2, 3}, {Species::Original, Species::Added, Species::Original}, {}, "contact_path"});
+  ev.arches.push_back({20, 5, {4, 5, 6, 7}, {Species::Added, Species::Added, Species::Original, Species::Original}, {}, "contact_path"});
+  ev.clogs = {{5, 10, core::ClogEnd::Rule, true}, {12, 13, core::ClogEnd::Vibration, true},
+              {14, 15, core::ClogEnd::Spontaneous, false}, {15, 20, core::ClogEnd::Rule, true}};
+  auto m = analysis::measure(ev, 30.0);
+  CHECK(m.exits == 30);
+  CHECK(m.exits_added == 10);
+  CHECK(m.q == Approx(1.0));
+  CHECK(m.q_tilde == Approx(20.0 / 30.0));
+  CHECK(m.chi_eff == Approx(1.0 / 3.0));
+  CHECK(m.long_arches_per_minute == Approx(4.0));
+  CHECK(m.added_per_long_arch == Approx(1.5));
+  CHECK(m.members_per_long_arch == Approx(3.5));
+  CHECK(m.clogs_rule == 2);
+  CHECK(m.fraction_broken_by_vibration == Approx(1.0 / 3.0));
+}
+
+TEST_CASE("event files round-trip; truncated or corrupted ones are refused with file and line", "[analysis][io]") {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "siloscope_test_events";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  core::Events ev;
+  ev.exits = {{0.25, 3, Species::Original}, {0.5, 7, Species::Added}};
+  ev.clogs = {{0.5, 5.5, core::ClogEnd::Rule, true}};
+  ev.arches.push_back({5.5, 5.0, {4, 9}, {Species::Original, Species::Added}, {0.3, 0.15, 170.0}, "contact_path"});
+  io::write_events(dir, ev);
+  core::Events back = io::read_events(dir);
+  REQUIRE(back.exits.size() == 2);
+  CHECK(back.exits[1].species == Species::Added);
+  CHECK(back.clogs[0].ended_by == core::ClogEnd::Rule);
+  CHECK(back.arches[0].ids == std::vector<int>{4, 9});
+  CHECK(back.arches[0].geometry.max_angle_deg == Approx(170.0));
+
+  auto expect_error = [&](const std::string& file, const std::string& text, const std::string& needle) {
+    std::ofstream(dir / file, std::ios::trunc) << text;
+    try {
+      io::read_events(dir);
+      FAIL("no error for " << file);
+    } catch (const core::InputError& e) {
+      CHECK_THAT(e.what(), Catch::Matchers::Contains(needle));
+    }
+    io::write_events(dir, ev);
+  };
+  expect_error("exits.csv", "t_s,id,species\n0.25,3,original\n0.5,7,add", "exits.csv:3: truncated");
+  expect_error("exits.csv", "t_s,id,species\n0.25,3,original\n0.5,x,added\n", "exits.csv:3: id = 'x'");
+  expect_error("exits.csv", "time,id\n", "exits.csv:1: header");
+  expect_error("clogs.csv", "start_s,end_s,duration_s,ended_by,arrested\n1,2,1,magic,0\n", "ended_by = 'magic'");
+  fs::remove(dir / "arches.csv");
+  CHECK_THROWS_AS(io::read_events(dir), core::InputError);
+}
+
+#include "analysis/aggregate.h"
+
+namespace {
+analysis::Run synthetic_run(double chi, std::uint64_t seed, double q_tilde) {
+  analysis::Run r;
+  r.source = "run-chi" + std::to_string(chi) + "-s" + std::to_string(seed);
+  r.scene.chi = chi;
+  r.scene.seed = seed;
+  r.scene.duration = 10;
+  // q_tilde originals per second, plus (for chi > 0) one added exit per second.
+  for (int i = 0; i < static_cast<int>(q_tilde * 10); ++i) r.events.exits.push_back({i * 0.1, i, Species::Original});
+  r.m = analysis::measure(r.events, r.scene.duration);
+  return r;
+}
+}  // namespace
+
+TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes and duplicate seeds", "[analysis]") {
+  std::vector<analysis::Run> runs = {synthetic_run(0.0, 1, 2.0), synthetic_run(0.0, 2, 4.0), synthetic_run(0.4, 1, 3.0),
+                                     synthetic_run(0.4, 2, 3.0)};
+  auto points = analysis::aggregate(runs);
+  REQUIRE(points.size() == 2);
+  CHECK(points[0].q_tilde.mean == Approx(3.0));
+  CHECK(points[0].q_tilde_over_qp.mean == Approx(1.0));
+  CHECK(points[1].q_tilde_over_qp.mean == Approx(1.0));
+  CHECK(points[1].q_tilde.half_width == Approx(0.0));
+  CHECK(points[0].q_tilde.half_width == Approx(12.706205 * std::sqrt(2.0) / std::sqrt(2.0)).epsilon(1e-5));
+
+  auto dup = runs;
+  dup.push_back(synthetic_run(0.4, 2, 1.0));
+  CHECK_THROWS_WITH(analysis::aggregate(dup), Catch::Matchers::Contains("seed 2 appears twice"));
+  auto mixed = runs;
+  mixed[3].scene.dt = 5e-4;
+  CHECK_THROWS_WITH(analysis::aggregate(mixed), Catch::Matchers::Contains("dt = 0.0005"));
+  CHECK_THROWS_AS(analysis::aggregate({}), core::InputError);
+}

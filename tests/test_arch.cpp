@@ -1,0 +1,180 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/arch.h"
+#include "sim/hopper.h"
+
+namespace {
+// A hand-built contact graph: nodes at positions, bonds, wall contacts.
+struct Graph {
+  std::vector<core::Vec2> pos;
+  core::ContactGraph g{0};
+  int node(double x, double y, bool left = false, bool right = false) {
+    pos.push_back({x, y});
+    g.neighbours.emplace_back();
+    g.touches_left.push_back(left);
+    g.touches_right.push_back(right);
+    return static_cast<int>(pos.size()) - 1;
+  }
+  void chain(std::initializer_list<int> ids) {
+    const int* prev = nullptr;
+    for (const int& i : ids) {
+      if (prev) g.add_bond(*prev, i);
+      prev = &i;
+    }
+  }
+  std::vector<int> arch(double reach = 1.36) const { return core::find_arch(g, pos, reach); }
+};
+}  // namespace
+
+TEST_CASE("wall-to-wall arches of 3, 4 and 5 disks are found, left to right", "[arch]") {
+  for (int n : {3, 4, 5}) {
+    Graph t;
+    std::vector<int> ids;
+    for (int k = 0; k < n; ++k) {
+      double x = -0.12 + 0.24 * k / (n - 1);
+      ids.push_back(t.node(x, 0.1 + 0.04 * std::sin(M_PI * k / (n - 1)), k == 0, k == n - 1));
+    }
+    for (int k = 0; k + 1 < n; ++k) t.g.add_bond(ids[k], ids[k + 1]);
+    // Disks resting on the arch, bonded to it and to each other: they must not join it.
+    int a = t.node(-0.06, 0.25), b = t.node(0.06, 0.25);
+    t.chain({ids[1], a, b, ids[n - 2]});
+    CAPTURE(n);
+    CHECK(t.arch() == ids);
+  }
+}
+
+TEST_CASE("fewest particles first; ties go to the lowest path", "[arch]") {
+  Graph t;
+  int l = t.node(-0.12, 0.10, true), r = t.node(0.12, 0.10, false, true);
+  int high = t.node(0.0, 0.22), low = t.node(0.0, 0.16);
+  t.chain({l, high, r});
+  t.chain({l, low, r});
+  CHECK(t.arch() == std::vector<int>{l, low, r});
+  // A lower path with more particles loses to a higher one with fewer.
+  Graph u;
+  int l2 = u.node(-0.12, 0.10, true), r2 = u.node(0.12, 0.10, false, true);
+  int m1 = u.node(-0.05, 0.05), m2 = u.node(0.05, 0.05), top = u.node(0.0, 0.3);
+  u.chain({l2, m1, m2, r2});
+  u.chain({l2, top, r2});
+  CHECK(u.arch() == std::vector<int>{l2, top, r2});
+}
+
+TEST_CASE("mixed species: small added disks are arch members like any other", "[arch]") {
+  Graph t;
+  int l = t.node(-0.12, 0.1, true), small = t.node(-0.03, 0.14), mid = t.node(0.04, 0.15), r = t.node(0.12, 0.1, false, true);
+  t.chain({l, small, mid, r});
+  std::vector<double> radius = {0.065, 0.026, 0.065, 0.065};
+  auto arch = t.arch();
+  REQUIRE(arch == std::vector<int>{l, small, mid, r});
+  auto geo = core::arch_geometry(arch, t.pos, radius);
+  CHECK(geo.span == Approx(0.24 + 2 * 0.065));
+  CHECK(geo.height == Approx(0.15));
+}
+
+TEST_CASE("no spanning path, or wall contacts only above the reach: no arch", "[arch]") {
+  Graph t;
+  int l = t.node(-0.12, 0.1, true), a = t.node(-0.02, 0.12), b = t.node(0.05, 0.12), r = t.node(0.12, 0.1, false, true);
+  t.chain({l, a});
+  t.chain({b, r});
+  CHECK(t.arch().empty());
+  t.g.add_bond(a, b);
+  CHECK(t.arch().size() == 4);
+  CHECK(t.arch(0.05).empty());  // wall contacts at y = 0.1 are above a 5 cm reach
+}
+
+TEST_CASE("trimming keeps members while x keeps moving outwards from the centre", "[arch]") {
+  Graph t;
+  // The path climbs back inwards at its left end (lw is left of centre but right of p1): lw is cut off.
+  int lw = t.node(-0.12, 0.30, true), p1 = t.node(-0.14, 0.12), p2 = t.node(-0.02, 0.08), p3 = t.node(0.1, 0.12),
+      r = t.node(0.16, 0.2, false, true);
+  t.chain({lw, p1, p2, p3, r});
+  auto path = core::shortest_wall_path(t.g, t.pos, 1.36);
+  CHECK(path == std::vector<int>{lw, p1, p2, p3, r});
+  CHECK(t.arch() == std::vector<int>{p1, p2, p3, r});
+}
+
+TEST_CASE("arch angles: 180 deg is flat, below a dome, above a defect", "[arch]") {
+  std::vector<double> radius(3, 0.065);
+  std::vector<core::Vec2> flat = {{-0.13, 0.1}, {0, 0.1}, {0.13, 0.1}};
+  CHECK(core::arch_geometry({0, 1, 2}, flat, radius).max_angle_deg == Approx(180));
+  std::vector<core::Vec2> dome = {{-0.1, 0.1}, {0, 0.2}, {0.1, 0.1}};
+  CHECK(core::arch_geometry({0, 1, 2}, dome, radius).max_angle_deg == Approx(90));
+  std::vector<core::Vec2> vee = {{-0.1, 0.2}, {0, 0.1}, {0.1, 0.2}};
+  CHECK(core::arch_geometry({0, 1, 2}, vee, radius).max_angle_deg == Approx(270));
+}
+
+TEST_CASE("contacts rebuilt from positions match the geometry", "[arch]") {
+  core::Scene s;
+  core::Geometry geo = core::make_geometry(s);
+  const double r = 0.065;
+  // A disk touching the left hopper wall at y = 0.12, one touching it, one apart.
+  double x0 = -(geo.half_width_at(0.12) - r / std::cos(geo.wall_angle_from_vertical()));
+  std::vector<core::Vec2> pos = {{x0, 0.12}, {x0 + 2 * r, 0.12}, {x0 + 4 * r + 0.01, 0.12}};
+  std::vector<double> radius(3, r);
+  auto g = core::contacts_from_positions(pos, radius, geo, 1e-3, 1.0);
+  CHECK(g.touches_left[0]);
+  CHECK_FALSE(g.touches_left[1]);
+  CHECK(g.neighbours[0] == std::vector<int>{1});
+  CHECK(g.neighbours[2].empty());
+}
+
+namespace {
+// Three original disks in an arch over the aperture, loaded by two more resting on it (an unloaded 3-disk
+// arch rolls off the walls; with a load it holds, as in a real column). Kicks off.
+struct StagedArch {
+  core::Scene scene;
+  std::unique_ptr<sim::Hopper> hopper;
+  double y_top = 0;
+  StagedArch() {
+    core::apply_overrides(scene, {"n_total=5", "chi=0", "settle_time=0", "kick_impulse_max=0"});
+    hopper = std::make_unique<sim::Hopper>(scene);
+    const auto& g = hopper->geometry();
+    const double r = scene.radius_original, ya = 0.12;
+    const double x0 = g.half_width_at(ya) - r / std::cos(g.wall_angle_from_vertical());
+    core::Vec2 a{-x0, ya}, b{0, ya + std::sqrt(4 * r * r - x0 * x0) + 1e-4}, c{x0, ya};
+    y_top = b.y;
+    auto above = [r](core::Vec2 p, core::Vec2 q) {
+      core::Vec2 m = 0.5 * (p + q), d = q - p;
+      double len = core::length(d), h = std::sqrt(4 * r * r - 0.25 * len * len) + 1e-4;
+      return m + h * core::Vec2{-d.y / len, d.x / len};
+    };
+    hopper->place(0, a);
+    hopper->place(1, b);
+    hopper->place(2, c);
+    hopper->place(3, above(a, b));
+    hopper->place(4, above(b, c));
+  }
+};
+}  // namespace
+
+TEST_CASE("a real Box2D arch of 3 disks holds under gravity and is detected", "[arch][sim]") {
+  StagedArch s;
+  s.hopper->advance_to(2.0);
+  auto p = s.hopper->positions();
+  CHECK(std::abs(p[1].y - s.y_top) < 1e-3);  // the keystone has not moved by a millimetre
+  CHECK(s.hopper->events().exits.empty());
+  CHECK(s.hopper->current_arch() == std::vector<int>{0, 1, 2});
+  CHECK(s.hopper->frame(true).arch == std::vector<int>{0, 1, 2});
+}
+
+TEST_CASE("the clog rule fires at clog_timeout, removes exactly the arch and re-injects it", "[arch][sim]") {
+  StagedArch s;
+  auto& h = *s.hopper;
+  while (h.events().arches.empty() && h.time() < 6.0) h.step();
+  REQUIRE(h.events().arches.size() == 1);
+  const auto& ev = h.events().arches[0];
+  CHECK(ev.t == Approx(s.scene.clog_timeout).margin(s.scene.dt));
+  CHECK(ev.clog_duration == Approx(5.0).margin(s.scene.dt));
+  CHECK(ev.ids == std::vector<int>{0, 1, 2});
+  CHECK(ev.method == "contact_path");
+  CHECK(ev.geometry.span > 0.3);
+  auto p = h.positions();
+  for (int id : {0, 1, 2}) CHECK(p[id].y > 0.4);  // re-injected above the (tiny) column
+  for (int id : {3, 4}) CHECK(p[id].y < 0.4);     // the load stayed where it was
+  h.finish();
+  REQUIRE(h.events().clogs.size() >= 1);
+  CHECK(h.events().clogs[0].ended_by == core::ClogEnd::Rule);
+  CHECK(h.events().clogs[0].arrested);
+}
