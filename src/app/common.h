@@ -53,6 +53,7 @@ using Action = std::function<int()>;
 void add_run_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
+void add_record_command(CLI::App& app, Action& action);
 void add_bench_arch_command(CLI::App& bench, Action& action);
 
 }  // namespace app

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   cli.require_subcommand(1);
   app::Action action;
   app::add_run_command(cli, action);
+  app::add_record_command(cli, action);
   app::add_bench_command(cli, action);
   app::add_analyze_command(cli, action);
   try {
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,analyze,bench} ... (see siloscope --help)\n", e.what());
+    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,record,analyze,bench} ... (see siloscope --help)\n", e.what());
     return 2;
   }
   try {

@@ -38,10 +38,14 @@ std::string fmt_double(double v) {
 }
 
 std::string range_text(const Field& f) {
-  std::ostringstream o;
-  o << "[" << (std::isinf(f.min) ? std::string("-inf") : fmt_double(f.min)) << ", "
-    << (std::isinf(f.max) ? std::string("inf") : fmt_double(f.max)) << "]";
-  return o.str();
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.10g, %.10g]", f.min, f.max);
+  return buf;
+}
+
+std::string unit_text(const Field& f) {
+  std::string u = f.unit ? f.unit : "";
+  return (u.empty() || u == "1") ? "" : " " + u;
 }
 
 [[noreturn]] void bad(const std::string& origin, const std::string& key, const std::string& value,
@@ -169,7 +173,7 @@ void validate(const Scene& s) {
           if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>) {
             double d = static_cast<double>(v);
             if (!std::isfinite(d) || d < f.min || d > f.max)
-              bad(origin, f.key, field_text(s, f), std::string("allowed range is ") + range_text(f) + " " + f.unit);
+              bad(origin, f.key, field_text(s, f), "allowed range is " + range_text(f) + unit_text(f));
           } else if constexpr (std::is_same_v<T, std::string>) {
             std::string choices = f.choices ? f.choices : "";
             bool ok = false;

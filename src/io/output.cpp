@@ -66,14 +66,14 @@ void rename_into_place(const fs::path& from, const fs::path& to) {
     throw core::RuntimeFault("cannot rename " + from.string() + " to " + to.string() + ": " + std::strerror(errno));
 }
 
-void write_file_atomic(const fs::path& path, const std::string& text) {
+void write_file_atomic(const fs::path& path, const std::string& text, bool sync) {
   fs::path tmp = path;
   tmp += ".tmp-" + std::to_string(::getpid());
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw core::RuntimeFault("cannot write " + tmp.string() + ": " + std::strerror(errno));
   bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   ok = (std::fflush(f) == 0) && ok;
-  ok = (::fsync(fileno(f)) == 0) && ok;
+  if (sync) ok = (::fsync(fileno(f)) == 0) && ok;
   int err = errno;
   ok = (std::fclose(f) == 0) && ok;
   if (!ok) {

@@ -30,8 +30,9 @@ class OutputDir {
   bool force_, committed_ = false;
 };
 
-// Write `text` to `path` atomically (temporary file + fsync + rename). Throws core::RuntimeFault on failure.
-void write_file_atomic(const fs::path& path, const std::string& text);
+// Write `text` to `path` atomically (temporary file, fsync if `sync`, rename). Throws core::RuntimeFault on
+// failure (a full disk, no permission), leaving no temporary file behind.
+void write_file_atomic(const fs::path& path, const std::string& text, bool sync = true);
 
 // Rename `from` onto `to` (same filesystem), replacing `to`; throws core::RuntimeFault naming both.
 void rename_into_place(const fs::path& from, const fs::path& to);

@@ -1,0 +1,26 @@
+#version 330 core
+// Instanced disks: one quad per disk, expanded in the vertex shader, coloured by a signed distance field.
+layout(location = 0) in vec2 a_corner;   // quad corner in [-1, 1]^2
+layout(location = 1) in vec3 a_disk;     // centre x, y (m), radius (m)
+layout(location = 2) in vec4 a_fill;     // fill colour, straight alpha
+layout(location = 3) in vec4 a_halo;     // halo colour (alpha 0: no halo)
+
+uniform mat3 u_world_to_clip;
+uniform float u_px_per_m;
+uniform float u_halo_px;
+
+out vec2 v_offset_px;   // fragment offset from the centre, pixels
+out float v_radius_px;
+out vec4 v_fill;
+out vec4 v_halo;
+
+void main() {
+  float margin_px = 1.5 + (a_halo.a > 0.0 ? u_halo_px : 0.0);
+  float extent = a_disk.z + margin_px / u_px_per_m;
+  vec2 world = a_disk.xy + a_corner * extent;
+  gl_Position = vec4((u_world_to_clip * vec3(world, 1.0)).xy, 0.0, 1.0);
+  v_offset_px = a_corner * extent * u_px_per_m;
+  v_radius_px = a_disk.z * u_px_per_m;
+  v_fill = a_fill;
+  v_halo = a_halo;
+}

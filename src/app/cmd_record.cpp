@@ -1,0 +1,278 @@
+// siloscope record SCENE --out recordings/NAME: a discharge movie (NAME.mp4) and, in NAME/, the events, the
+// measurements, the metadata and optional PNG frames. Three threads: the simulation produces Frames, the
+// renderer turns them into Images (OSMesa), the encoder writes them; bounded queues keep memory flat.
+#include <cstdio>
+#include <exception>
+#include <thread>
+
+#include "analysis/measure.h"
+#include "analysis/tidy.h"
+#include "app/common.h"
+#include "app/queue.h"
+#include "core/error.h"
+#include "io/events_csv.h"
+#include "io/metadata.h"
+#include "io/output.h"
+#include "record/mp4.h"
+#include "record/png.h"
+#include "render/camera.h"
+#include "render/context.h"
+#include "render/overlay.h"
+#include "render/renderer.h"
+#include "render/target.h"
+#include "sim/hopper.h"
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct RecordOptions {
+  SceneOptions scene;
+  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species", overlay = "all";
+  int fps = 30, crf = 20, png_every = 0;
+  double speed = 1.0;
+  std::string preset = "veryfast";
+  bool transparent = false, no_movie = false, force = false, quiet = false;
+};
+
+struct Stages {
+  double sim = 0, draw = 0, readback = 0, convert = 0, encode = 0, png = 0;
+};
+
+void parse_size(const std::string& s, int& w, int& h) {
+  char x = 0;
+  char extra = 0;
+  if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0)
+    throw core::InputError("--size " + s + ": expected WIDTHxHEIGHT in pixels, e.g. 1920x1080");
+}
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+int record_movie(const RecordOptions& o) {
+  // --- everything the user typed is checked before any work starts ---
+  core::Scene scene = o.scene.load();
+  record::VideoSettings video;
+  parse_size(o.size, video.width, video.height);
+  video.fps = o.fps;
+  video.crf = o.crf;
+  video.preset = o.preset;
+  if (!o.no_movie) record::validate(video);
+  if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
+  if (o.png_every < 0) throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
+  if (o.no_movie && o.png_every == 0) throw core::InputError("--no-movie without --png-every would record nothing");
+  if (o.fps < 1 || o.fps > 240) throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
+  render::Style style;
+  style.palette = render::parse_palette(o.palette);
+  style.color = render::parse_color_mode(o.color);
+  style.transparent = o.transparent;
+  const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
+  const core::Geometry geo = core::make_geometry(scene);
+  const auto views = render::layout_views(o.camera, geo, video.width, video.height);
+
+  fs::path base = o.out;
+  if (base.extension() == ".mp4") base.replace_extension();
+  if (base.filename().empty()) throw core::InputError("--out " + o.out + ": expected recordings/NAME");
+  fs::path movie_path = base;
+  movie_path += ".mp4";
+  if (!o.no_movie) io::check_destination(movie_path, o.force, "movie");
+  io::OutputDir dir(base, o.force);
+  if (o.png_every > 0) fs::create_directory(dir.file("frames"));
+
+  const long n_frames = std::max(1L, std::lround(scene.duration * o.fps / o.speed));
+  render::OverlayData odata;
+  odata.clog_timeout = scene.clog_timeout;
+  odata.clog_min_gap = scene.clog_min_gap;
+  odata.diameter = 2 * scene.radius_original;
+  char title[160];
+  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio, scene.chi,
+                scene.mu, static_cast<unsigned long long>(scene.seed));
+  odata.title = title;
+
+  io::RunInfo info;
+  info.command = command_line();
+  install_interrupt_handler();
+
+  // --- the three stages ---
+  BoundedQueue<core::Frame> frames(8);
+  BoundedQueue<core::Image> images(4);
+  std::exception_ptr render_error, encode_error;
+  Stages st;
+  std::string gl_renderer;
+  long encoded = 0;
+  std::unique_ptr<record::Mp4Writer> mp4;
+  if (!o.no_movie) {
+    video.comment = io::metadata_toml(scene, info);
+    mp4 = std::make_unique<record::Mp4Writer>(movie_path, video);
+  }
+
+  std::thread render_thread([&] {
+    try {
+      render::OffscreenContext ctx;
+      gl_renderer = ctx.description();
+      render::Renderer renderer;
+      render::Overlay ov;
+      render::Target target(video.width, video.height);
+      core::Frame f;
+      while (frames.pop(f)) {
+        auto t0 = Clock::now();
+        target.bind();
+        renderer.draw(f, geo, views, style, video.width, video.height);
+        ov.draw(f, odata, overlay, views, style, video.width, video.height);
+        auto t1 = Clock::now();
+        core::Image img;
+        target.read(img, style.transparent);
+        img.t = f.t;
+        st.draw += std::chrono::duration<double>(t1 - t0).count();
+        st.readback += since(t1);
+        if (!images.push(std::move(img))) break;
+      }
+    } catch (...) {
+      render_error = std::current_exception();
+      frames.close();
+    }
+    images.close();
+  });
+
+  std::thread encode_thread([&] {
+    try {
+      core::Image img;
+      while (images.pop(img)) {
+        if (mp4) mp4->add(img);
+        if (o.png_every > 0 && encoded % o.png_every == 0) {
+          auto t0 = Clock::now();
+          char name[32];
+          std::snprintf(name, sizeof name, "frame_%06ld.png", encoded);
+          record::write_png(dir.file("frames") / name, img);
+          st.png += since(t0);
+        }
+        ++encoded;
+      }
+    } catch (...) {
+      encode_error = std::current_exception();
+      images.close();
+      frames.close();
+    }
+  });
+
+  // --- the simulation, on this thread ---
+  Progress progress("record", static_cast<double>(n_frames), !o.quiet);
+  auto wall0 = Clock::now();
+  bool was_interrupted = false;
+  std::exception_ptr sim_error;
+  std::unique_ptr<sim::Hopper> hopper;
+  try {
+    auto t0 = Clock::now();
+    hopper = std::make_unique<sim::Hopper>(scene);
+    for (long k = 0; k < n_frames; ++k) {
+      hopper->advance_to(k * o.speed / o.fps);
+      core::Frame f = hopper->frame(true);
+      st.sim += since(t0);
+      if (!frames.push(std::move(f))) break;
+      t0 = Clock::now();
+      if (interrupted()) {
+        was_interrupted = true;
+        break;
+      }
+      char extra[96];
+      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld/%ld frames, %zu exits", hopper->time(), k + 1, n_frames,
+                    hopper->events().exits.size());
+      progress.update(static_cast<double>(k + 1), extra);
+    }
+  } catch (...) {
+    sim_error = std::current_exception();
+  }
+  frames.close();
+  render_thread.join();
+  encode_thread.join();
+  progress.finish();
+  if (sim_error) std::rethrow_exception(sim_error);
+  if (render_error) std::rethrow_exception(render_error);
+  if (encode_error) std::rethrow_exception(encode_error);
+  const double wall = since(wall0);
+
+  // --- finish: movie into place first, then the directory that describes it ---
+  if (mp4) {
+    mp4->finish();
+    st.convert = mp4->convert_seconds();
+    st.encode = mp4->encode_seconds();
+  }
+  hopper->finish();
+  const double shown = encoded > 0 ? (encoded - 1) * o.speed / o.fps : 0.0;
+  const double analysed = was_interrupted ? std::max(hopper->time(), 1e-9) : scene.duration;
+  const analysis::Measurements m = analysis::measure(hopper->events(), analysed);
+  io::write_events(dir.file(""), hopper->events());
+  io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
+  io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper->events().exits));
+  const double per = 1e3 / std::max(1L, encoded);
+  info.facts = {{"movie", "\"" + (o.no_movie ? std::string() : movie_path.filename().string()) + "\""},
+                {"frames", std::to_string(encoded)},
+                {"size", "\"" + std::to_string(video.width) + "x" + std::to_string(video.height) + "\""},
+                {"fps", std::to_string(o.fps)},
+                {"speed_sim_s_per_video_s", num(o.speed)},
+                {"camera", "\"" + o.camera + "\""},
+                {"palette", "\"" + o.palette + "\""},
+                {"color", "\"" + o.color + "\""},
+                {"overlay", "\"" + o.overlay + "\""},
+                {"crf", std::to_string(o.crf)},
+                {"preset", "\"" + o.preset + "\""},
+                {"png_every", std::to_string(o.png_every)},
+                {"interrupted", was_interrupted ? "true" : "false"},
+                {"simulated_s", num(hopper->time())},
+                {"gl_renderer", "\"" + gl_renderer + "\""},
+                {"wall_s", num(wall)},
+                {"ms_per_frame_sim", num(st.sim * per)},
+                {"ms_per_frame_draw", num(st.draw * per)},
+                {"ms_per_frame_readback", num(st.readback * per)},
+                {"ms_per_frame_convert", num(st.convert * per)},
+                {"ms_per_frame_encode", num(st.encode * per)},
+                {"ms_per_frame_png", num(st.png * per)}};
+  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
+  dir.commit();
+
+  if (!o.quiet) {
+    std::printf("renderer    %s\n", gl_renderer.c_str());
+    std::printf("recorded    %ld frames (%.1f s of discharge%s) in %.1f s wall: %.2fx real time, %.1f frames/s\n",
+                encoded, shown, was_interrupted ? ", interrupted" : "", wall, shown / wall, encoded / wall);
+    std::printf("per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f ms"
+                " (stages overlap)\n",
+                st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
+    std::printf("%s", analysis::summary_text(m).c_str());
+    if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
+    std::printf("run data    %s/\n", base.c_str());
+  }
+  return was_interrupted ? 130 : 0;
+}
+}  // namespace
+
+void add_record_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<RecordOptions>();
+  auto* cmd = app.add_subcommand("record", "film a discharge: an MP4 movie, optional PNG frames, events and metadata");
+  cmd->set_version_flag("--version", io::version_string());
+  o->scene.add_to(*cmd);
+  cmd->add_option("--out", o->out, "recordings/NAME: writes NAME.mp4 and the directory NAME/")->required();
+  cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")->capture_default_str();
+  cmd->add_option("--fps", o->fps, "video frames per second")->capture_default_str();
+  cmd->add_option("--speed", o->speed, "simulated seconds per video second (0.25 = 4x slow motion)")->capture_default_str();
+  cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")->capture_default_str();
+  cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")->capture_default_str();
+  cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")->capture_default_str();
+  cmd->add_option("--preset", o->preset, "x264 preset, ultrafast .. veryslow")->capture_default_str();
+  cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")->capture_default_str();
+  cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();
+  cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")->capture_default_str();
+  cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
+  cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
+  cmd->add_flag("--force", o->force, "replace existing outputs");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  cmd->callback([o, &action] { action = [o] { return record_movie(*o); }; });
+}
+
+}  // namespace app

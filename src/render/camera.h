@@ -1,0 +1,45 @@
+// Cameras and views: which window of the world (metres) appears where in the image (pixels). Pure math, no GL.
+// Pixel coordinates have their origin at the top-left corner, x to the right, y down; world y points up.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace render {
+
+struct Camera {
+  double cx = 0, cy = 0;  // m, the world point at the centre of the view
+  double height = 1;      // m of world shown from the top to the bottom of the view
+};
+
+struct Rect {
+  int x = 0, y = 0, w = 0, h = 0;  // pixels, top-left origin
+};
+
+struct View {
+  Camera cam;
+  Rect rect;
+  std::string name;  // "hopper", "outlet", "window"
+
+  double px_per_m() const { return rect.h / cam.height; }
+  core::Vec2 world_to_pixel(core::Vec2 p) const;
+  core::Vec2 pixel_to_world(core::Vec2 px) const;
+  // Column-major 3x3 matrix taking world (x, y, 1) to clip coordinates of this view's viewport.
+  std::array<float, 9> world_to_clip() const;
+};
+
+// A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels.
+Camera fit(double x0, double y0, double x1, double y1, int w, int h);
+
+// Views for a camera spec in an image of w x h pixels:
+//   hopper          the whole container
+//   outlet          the outlet region, from 0.25 m below the aperture to 1.05 m above it
+//   split           the whole container in a strip on the left, the outlet in the rest
+//   window:X0,Y0,X1,Y1   any window in metres
+// Throws core::InputError naming the spec and the allowed forms.
+std::vector<View> layout_views(const std::string& spec, const core::Geometry& geo, int w, int h);
+
+}  // namespace render

@@ -1,0 +1,209 @@
+#include "render/overlay.h"
+
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.h"
+#include "render/gl.h"
+
+// The OpenGL3 backend, compiled from Debian's shipped source with our loader (see CMakeLists.txt).
+bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
+void ImGui_ImplOpenGL3_Shutdown();
+void ImGui_ImplOpenGL3_NewFrame();
+void ImGui_ImplOpenGL3_RenderDrawData(ImDrawData* draw_data);
+bool ImGui_ImplOpenGL3_CreateFontsTexture();
+void ImGui_ImplOpenGL3_DestroyFontsTexture();
+
+namespace render {
+
+namespace {
+const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+ImU32 to_u32(Rgba c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a)); }
+}  // namespace
+
+OverlayOptions parse_overlay(const std::string& spec) {
+  if (spec == "all") return {};
+  OverlayOptions o = OverlayOptions::none();
+  if (spec == "none") return o;
+  std::stringstream ss(spec);
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (item == "time") o.time = true;
+    else if (item == "counts") o.counts = true;
+    else if (item == "rate") o.rate = true;
+    else if (item == "timer") o.timer = true;
+    else if (item == "arch") o.arch = true;
+    else if (item == "legend") o.legend = true;
+    else if (item == "scale") o.scale = true;
+    else
+      throw core::InputError("--overlay " + spec + ": '" + item +
+                             "' is not one of all, none, time, counts, rate, timer, arch, legend, scale");
+  }
+  return o;
+}
+
+Overlay::Overlay() {
+  IMGUI_CHECKVERSION();
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ctx_ = ImGui::CreateContext();
+  ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  ImGui::StyleColorsLight();
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) throw core::RuntimeFault("ImGui: the OpenGL3 backend failed");
+  ImGui::SetCurrentContext(previous ? previous : static_cast<ImGuiContext*>(ctx_));
+}
+
+Overlay::~Overlay() {
+  ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext(static_cast<ImGuiContext*>(ctx_));
+}
+
+void Overlay::ensure_font(int h) {
+  const int px = std::max(13, h / 42);
+  if (px == font_px_) return;
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  if (std::filesystem::exists(kFont)) {
+    io.Fonts->AddFontFromFileTTF(kFont, static_cast<float>(px));
+  } else {
+    ImFontConfig cfg;
+    cfg.SizePixels = static_cast<float>(px);
+    io.Fonts->AddFontDefault(&cfg);
+  }
+  ImGui_ImplOpenGL3_DestroyFontsTexture();
+  if (!ImGui_ImplOpenGL3_CreateFontsTexture()) throw core::RuntimeFault("ImGui: cannot create the font texture");
+  font_px_ = px;
+  laid_out_ = false;  // the panel's size changes with the font
+}
+
+void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
+                   const Style& style, int w, int h) {
+  if (!o.any()) return;
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
+  ensure_font(h);
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
+  io.DeltaTime = 1.0f / 30.0f;
+  ImGui_ImplOpenGL3_NewFrame();
+  // Auto-sized windows learn their size in their first frame: lay the first one out once without drawing it.
+  if (!laid_out_) {
+    ImGui::NewFrame();
+    build(f, d, o, views, style, w, h);
+    ImGui::EndFrame();
+    laid_out_ = true;
+  }
+  ImGui::NewFrame();
+  build(f, d, o, views, style, w, h);
+  ImGui::Render();
+  glViewport(0, 0, w, h);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  check_gl("Overlay::draw");
+  ImGui::SetCurrentContext(previous ? previous : static_cast<ImGuiContext*>(ctx_));
+}
+
+void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
+                    const Style& style, int w, int h) {
+  const float em = static_cast<float>(font_px_);
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+
+  // The information panel, top-left of the first view.
+  const bool panel = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
+  if (panel) {
+    // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays visible.
+    ImGui::SetNextWindowPos(ImVec2(w - 0.6f * em, 0.6f * em), 0, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowBgAlpha(0.82f);
+    ImGui::Begin("info", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+    if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
+    if (o.time) ImGui::Text("t = %.2f s", f.t);
+    if (o.counts) {
+      ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Original).r,
+                                species_color(style.palette, core::Species::Original).g,
+                                species_color(style.palette, core::Species::Original).b, 1),
+                         "%lld original", static_cast<long long>(f.exits_original));
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Added).r,
+                                species_color(style.palette, core::Species::Added).g,
+                                species_color(style.palette, core::Species::Added).b, 1),
+                         "%lld added", static_cast<long long>(f.exits_added));
+      ImGui::SameLine();
+      ImGui::TextUnformatted("exits");
+    }
+    if (o.rate) ImGui::Text("Q~ = %.2f /s (originals, so far)", f.t > 0 ? f.exits_original / f.t : 0.0);
+    if (o.timer) {
+      const double frac = std::min(1.0, f.since_last_exit / d.clog_timeout);
+      const bool clogged = f.since_last_exit >= d.clog_min_gap;
+      ImGui::PushStyleColor(ImGuiCol_PlotHistogram, clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
+      char label[64];
+      std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit, d.clog_timeout);
+      ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
+      ImGui::PopStyleColor();
+    }
+    if (o.arch && !f.arch.empty()) {
+      int added = 0;
+      for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
+      ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
+    }
+    if (o.legend) {
+      ImGui::Separator();
+      const float r = 0.4f * em;
+      auto swatch = [&](Rgba fill, Rgba ring, const char* text) {
+        ImVec2 p = ImGui::GetCursorScreenPos();
+        ImVec2 c(p.x + r + 2, p.y + 0.5f * ImGui::GetTextLineHeight());
+        if (ring.a > 0) ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(ring), 0, 0.25f * em);
+        ImGui::GetWindowDrawList()->AddCircleFilled(c, r, to_u32(fill));
+        ImGui::Dummy(ImVec2(2 * r + 0.5f * em, ImGui::GetTextLineHeight()));
+        ImGui::SameLine();
+        ImGui::TextUnformatted(text);
+      };
+      if (style.color == ColorMode::Species) {
+        swatch(species_color(style.palette, core::Species::Original), {0, 0, 0, 0}, "original");
+        ImGui::SameLine();
+        swatch(species_color(style.palette, core::Species::Added), {0, 0, 0, 0}, "added");
+        ImGui::SameLine();
+      } else {
+        // A colour bar on a fixed scale.
+        const bool speed = style.color == ColorMode::Speed;
+        ImGui::Text("%s 0", speed ? "speed [m/s]" : "contact force [N]");
+        ImGui::SameLine();
+        ImVec2 p = ImGui::GetCursorScreenPos();
+        const int steps = 32;
+        const float bw = 8 * em, bh = ImGui::GetTextLineHeight();
+        for (int k = 0; k < steps; ++k)
+          ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x + bw * k / steps, p.y), ImVec2(p.x + bw * (k + 1) / steps, p.y + bh),
+                                                    to_u32(colormap((k + 0.5) / steps)));
+        ImGui::Dummy(ImVec2(bw, bh));
+        ImGui::SameLine();
+        ImGui::Text("%g", speed ? style.speed_max : style.force_max);
+      }
+      swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
+    }
+    ImGui::End();
+  }
+
+  // Scale bar: one original diameter, bottom-left of the most zoomed view.
+  if (o.scale) {
+    const View* v = &views.front();
+    for (const auto& c : views)
+      if (c.px_per_m() > v->px_per_m()) v = &c;
+    const float len = static_cast<float>(d.diameter * v->px_per_m());
+    const float x0 = v->rect.x + em, y0 = v->rect.y + v->rect.h - 1.2f * em;
+    const ImU32 ink = IM_COL32(20, 20, 20, 255);
+    dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
+    char text[64];
+    std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
+    dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
+  }
+  // Thin separators between views.
+  for (size_t k = 1; k < views.size(); ++k)
+    dl->AddLine(ImVec2(static_cast<float>(views[k].rect.x), 0), ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(h)),
+                IM_COL32(120, 120, 120, 255), std::max(1.0f, h / 720.0f));
+}
+
+}  // namespace render

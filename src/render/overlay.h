@@ -1,0 +1,49 @@
+// The information drawn over a frame with Dear ImGui: simulated time, exits of each species, running Q~, the
+// clog timer, the current arch, a legend (or a colour bar) and a scale bar in particle diameters. Every element
+// can be switched off; a clean frame has none.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/frame.h"
+#include "render/camera.h"
+#include "render/palette.h"
+
+namespace render {
+
+struct OverlayOptions {
+  bool time = true, counts = true, rate = true, timer = true, arch = true, legend = true, scale = true;
+  static OverlayOptions none() { return {false, false, false, false, false, false, false}; }
+  bool any() const { return time || counts || rate || timer || arch || legend || scale; }
+};
+// Parse "all", "none" or a comma list of time,counts,rate,timer,arch,legend,scale. Throws core::InputError.
+OverlayOptions parse_overlay(const std::string& spec);
+
+struct OverlayData {
+  double clog_timeout = 5;    // s
+  double clog_min_gap = 0.5;  // s
+  double diameter = 0.13;     // m, of an original disk (the scale bar's unit)
+  std::string title;          // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
+};
+
+class Overlay {
+ public:
+  Overlay();  // needs a current GL 3.3 context; creates the ImGui context and its GL objects
+  ~Overlay();
+  Overlay(const Overlay&) = delete;
+  Overlay& operator=(const Overlay&) = delete;
+  // Draw into the bound framebuffer of w x h pixels.
+  void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
+            const Style& style, int w, int h);
+
+ private:
+  void ensure_font(int h);
+  void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
+             const Style& style, int w, int h);
+  void* ctx_ = nullptr;
+  int font_px_ = 0;
+  bool laid_out_ = false;
+};
+
+}  // namespace render

@@ -1,0 +1,41 @@
+// Colours and styles of a rendered frame. Pure data, no GL.
+#pragma once
+
+#include <string>
+
+#include "core/frame.h"
+
+namespace render {
+
+struct Rgba {
+  float r, g, b, a;
+};
+
+enum class Palette { Paper, ColorBlind };
+enum class ColorMode { Species, Speed, Force };
+
+struct Style {
+  Palette palette = Palette::Paper;
+  ColorMode color = ColorMode::Species;
+  double speed_max = 0.5;  // m/s at the top of the colour scale
+  double force_max = 2.0;  // N at the top of the colour scale
+  bool transparent = false;  // transparent background (PNG)
+  bool show_arch = true;
+};
+
+// Parse "paper"/"colorblind" and "species"/"speed"/"force"; throw core::InputError naming the option.
+Palette parse_palette(const std::string& s);
+ColorMode parse_color_mode(const std::string& s);
+
+// Original disks red and added disks blue, as in the paper; the colour-blind-safe palette uses Okabe-Ito
+// vermillion and blue.
+Rgba species_color(Palette p, core::Species s);
+Rgba background_color(const Style& s);
+Rgba wall_color(Palette p);
+Rgba arch_color(Palette p);  // halo and bonds of arch members
+// A perceptually uniform map (viridis, polynomial fit) of t in [0, 1].
+Rgba colormap(double t);
+// The fill colour of a disk under a style.
+Rgba particle_color(const Style& s, const core::Particle& p);
+
+}  // namespace render

@@ -1,0 +1,50 @@
+// Draws a Frame (never the Box2D world) with OpenGL 3.3 core into the bound framebuffer: background, walls,
+// instanced signed-distance disks, and the arch highlight (a halo on members, bonds between neighbours).
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+#include "core/geometry.h"
+#include "render/camera.h"
+#include "render/palette.h"
+
+namespace render {
+
+struct ArchStyle {
+  double fade_below = 0.5;  // s; while the outlet has flowed more recently than this, the arch is drawn faint
+  double halo_m = 0.012;    // halo width, m (at least 2 px)
+  double bond_m = 0.012;    // bond width, m (at least 2 px)
+};
+
+class Renderer {
+ public:
+  Renderer();  // needs a current GL 3.3 context
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Clears the w x h framebuffer and draws every view.
+  void draw(const core::Frame& frame, const core::Geometry& geo, const std::vector<View>& views, const Style& style,
+            int w, int h, const ArchStyle& arch = {});
+
+ private:
+  struct DiskInstance {
+    float x, y, r;
+    float fill[4];
+    float halo[4];
+  };
+  struct SegmentInstance {
+    float ax, ay, bx, by;
+    float color[4];
+    float width_px;
+  };
+  void draw_view(const View& v, int image_h);
+  unsigned disk_program_ = 0, segment_program_ = 0;
+  unsigned quad_vbo_ = 0, disk_vao_ = 0, disk_vbo_ = 0, segment_vao_ = 0, segment_vbo_ = 0;
+  std::vector<DiskInstance> disks_;
+  std::vector<SegmentInstance> walls_, bonds_;
+  float halo_m_ = 0.012f, bond_m_ = 0.012f, wall_m_ = 0.012f;
+};
+
+}  // namespace render

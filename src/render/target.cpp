@@ -1,0 +1,57 @@
+#include "render/target.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "render/gl.h"
+
+namespace render {
+
+Target::Target(int width, int height) : w_(width), h_(height) {
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  if (w_ <= 0 || h_ <= 0 || w_ > max_size || h_ > max_size)
+    throw core::InputError("image size " + std::to_string(w_) + "x" + std::to_string(h_) +
+                           " is not allowed; each side must be from 1 to " + std::to_string(max_size) + " pixels");
+  glGenFramebuffers(1, &fbo_);
+  glGenRenderbuffers(1, &color_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w_, h_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw core::RuntimeFault("off-screen framebuffer " + std::to_string(w_) + "x" + std::to_string(h_) +
+                             " is incomplete (status " + std::to_string(status) + ")");
+  check_gl("Target");
+}
+
+Target::~Target() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &color_);
+}
+
+void Target::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_); }
+
+void Target::read(core::Image& out, bool straight_alpha) const {
+  const size_t row = static_cast<size_t>(w_) * 4;
+  scratch_.resize(row * h_);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, scratch_.data());
+  check_gl("glReadPixels");
+  out.width = w_;
+  out.height = h_;
+  out.rgba.resize(row * h_);
+  for (int y = 0; y < h_; ++y) std::memcpy(&out.rgba[row * y], &scratch_[row * (h_ - 1 - y)], row);
+  if (!straight_alpha) return;
+  for (size_t i = 0; i < out.rgba.size(); i += 4) {
+    const unsigned a = out.rgba[i + 3];
+    if (a == 0 || a == 255) continue;
+    for (int k = 0; k < 3; ++k) out.rgba[i + k] = static_cast<std::uint8_t>(std::min(255u, (out.rgba[i + k] * 255u + a / 2) / a));
+  }
+}
+
+}  // namespace render

@@ -1,0 +1,28 @@
+// An off-screen framebuffer of any size, and its read-back into a core::Image (rows from the top).
+#pragma once
+
+#include "core/image.h"
+
+namespace render {
+
+class Target {
+ public:
+  // Throws core::InputError if the size is not positive or exceeds what GL allows here.
+  Target(int width, int height);
+  ~Target();
+  Target(const Target&) = delete;
+  Target& operator=(const Target&) = delete;
+  void bind() const;
+  int width() const { return w_; }
+  int height() const { return h_; }
+  // Read the pixels into `out` (resized), flipping GL's bottom-up rows. The renderer blends with premultiplied
+  // alpha; straight_alpha converts back (needed only for transparent backgrounds).
+  void read(core::Image& out, bool straight_alpha = false) const;
+
+ private:
+  int w_, h_;
+  unsigned fbo_ = 0, color_ = 0;
+  mutable std::vector<std::uint8_t> scratch_;
+};
+
+}  // namespace render

@@ -1,0 +1,158 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "render/camera.h"
+#include "render/context.h"
+#include "render/overlay.h"
+#include "render/renderer.h"
+#include "render/target.h"
+
+namespace {
+core::Particle disk(float x, float y, float r, core::Species s) { return {x, y, 0, 0, 0, r, 0, s}; }
+
+// Distance between a pixel and a colour, 0..255 per channel (max over channels).
+int distance(const std::uint8_t* px, render::Rgba c) {
+  int d = 0;
+  const float want[3] = {c.r, c.g, c.b};
+  for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(px[k] - static_cast<int>(std::lround(want[k] * 255))));
+  return d;
+}
+
+struct Fixture {
+  render::OffscreenContext ctx;
+  render::Renderer renderer;
+  core::Scene scene;
+  core::Geometry geo = core::make_geometry(scene);
+};
+Fixture& fixture() {
+  static Fixture f;  // one GL context per test process
+  return f;
+}
+}  // namespace
+
+TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
+  core::Scene s;
+  auto geo = core::make_geometry(s);
+  for (const char* spec : {"hopper", "outlet", "split", "window:-0.3,0.1,0.5,0.9"}) {
+    auto views = render::layout_views(spec, geo, 640, 360);
+    for (const auto& v : views) {
+      for (core::Vec2 p : {core::Vec2{0.0, 0.0}, core::Vec2{0.2, 0.5}, core::Vec2{-0.4, 1.3}}) {
+        core::Vec2 back = v.pixel_to_world(v.world_to_pixel(p));
+        CHECK(back.x == Approx(p.x).margin(1e-12));
+        CHECK(back.y == Approx(p.y).margin(1e-12));
+      }
+      // The view's centre maps to the centre of its rectangle; y grows downwards in pixels.
+      core::Vec2 c = v.world_to_pixel({v.cam.cx, v.cam.cy});
+      CHECK(c.x == Approx(v.rect.x + 0.5 * v.rect.w));
+      CHECK(c.y == Approx(v.rect.y + 0.5 * v.rect.h));
+      CHECK(v.world_to_pixel({v.cam.cx, v.cam.cy + 0.1}).y < c.y);
+    }
+  }
+  auto w = render::layout_views("window:-0.5,0,0.5,1", geo, 400, 400);
+  CHECK(w[0].px_per_m() == Approx(400));
+  CHECK_THROWS_AS(render::layout_views("window:1,0,0,1", geo, 400, 400), core::InputError);
+  CHECK_THROWS_AS(render::layout_views("sideways", geo, 400, 400), core::InputError);
+}
+
+TEST_CASE("disks show their species colour at the expected pixels; arch members carry the halo", "[render]") {
+  auto& fx = fixture();
+  const int w = 400, h = 400;
+  core::Frame f;
+  f.particles = {disk(-0.25f, 0.75f, 0.065f, core::Species::Original), disk(0.25f, 0.75f, 0.026f, core::Species::Added),
+                 disk(-0.15f, 0.25f, 0.065f, core::Species::Original), disk(0.15f, 0.25f, 0.065f, core::Species::Original)};
+  f.arch = {2, 3};
+  f.since_last_exit = 3.0;  // clogged: the arch is drawn at full strength
+  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, w, h);
+  render::Style style;
+  render::Target target(w, h);
+  target.bind();
+  fx.renderer.draw(f, fx.geo, views, style, w, h);
+  core::Image img;
+  target.read(img);
+  REQUIRE(img.width == w);
+  const auto& v = views[0];
+  auto at = [&](double x, double y) {
+    core::Vec2 p = v.world_to_pixel({x, y});
+    return img.pixel(static_cast<int>(p.x), static_cast<int>(p.y));
+  };
+  CHECK(distance(at(-0.25, 0.75), render::species_color(style.palette, core::Species::Original)) < 8);
+  CHECK(distance(at(0.25, 0.75), render::species_color(style.palette, core::Species::Added)) < 8);
+  CHECK(distance(at(0.0, 0.6), render::background_color(style)) == 0);  // empty space
+  CHECK(distance(at(0.25, 0.75 + 0.04), render::background_color(style)) == 0);  // just outside the small disk
+  // The halo: a gold ring just outside each arch member (here 4.8 px wide, sampled 2.4 px out).
+  const double ring = 0.065 + 2.4 / v.px_per_m();
+  CHECK(distance(at(-0.15, 0.25 - ring), render::arch_color(style.palette)) < 40);
+  CHECK(distance(at(-0.25, 0.75 - ring), render::background_color(style)) == 0);  // a non-member has none
+  // The bond between the two members is dark, mid-way between them.
+  CHECK(at(0.0, 0.25)[0] < 60);
+  // Rows come from the top: the top row of the image shows world y = 1 (empty), not y = 0.
+  CHECK(distance(img.pixel(200, 0), render::background_color(style)) == 0);
+}
+
+TEST_CASE("colour by speed uses the colour map on its fixed scale", "[render]") {
+  auto& fx = fixture();
+  core::Frame f;
+  f.particles = {disk(0, 0.5f, 0.1f, core::Species::Original)};
+  f.particles[0].vx = 0.5f;  // the top of the default 0.5 m/s scale
+  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, 200, 200);
+  render::Style style;
+  style.color = render::ColorMode::Speed;
+  render::Target target(200, 200);
+  target.bind();
+  fx.renderer.draw(f, fx.geo, views, style, 200, 200);
+  core::Image img;
+  target.read(img);
+  CHECK(distance(img.pixel(100, 100), render::colormap(1.0)) < 8);
+}
+
+TEST_CASE("a transparent background reads back with zero alpha and straight colours", "[render]") {
+  auto& fx = fixture();
+  core::Frame f;
+  f.particles = {disk(0, 0.5f, 0.1f, core::Species::Added)};
+  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, 100, 100);
+  render::Style style;
+  style.transparent = true;
+  render::Target target(100, 100);
+  target.bind();
+  fx.renderer.draw(f, fx.geo, views, style, 100, 100);
+  core::Image img;
+  target.read(img, true);
+  CHECK(img.pixel(2, 50)[3] == 0);
+  CHECK(img.pixel(50, 50)[3] == 255);
+  CHECK(distance(img.pixel(50, 50), render::species_color(style.palette, core::Species::Added)) < 8);
+}
+
+TEST_CASE("the overlay draws into the frame and a clean frame has none", "[render]") {
+  auto& fx = fixture();
+  static render::Overlay overlay;
+  core::Frame f;
+  f.t = 12.5;
+  f.exits_original = 10;
+  auto views = render::layout_views("hopper", fx.geo, 320, 240);
+  render::Style style;
+  render::Target target(320, 240);
+  auto render_with = [&](const render::OverlayOptions& o) {
+    target.bind();
+    fx.renderer.draw(f, fx.geo, views, style, 320, 240);
+    overlay.draw(f, {}, o, views, style, 320, 240);
+    core::Image img;
+    target.read(img);
+    return img;
+  };
+  core::Image clean = render_with(render::OverlayOptions::none());
+  core::Image full = render_with({});
+  long differing = 0;
+  for (size_t i = 0; i < clean.rgba.size(); ++i) differing += clean.rgba[i] != full.rgba[i];
+  CHECK(differing > 1000);
+  CHECK(render::parse_overlay("none").any() == false);
+  CHECK(render::parse_overlay("time,scale").time);
+  CHECK_THROWS_WITH(render::parse_overlay("time,clock"), Catch::Matchers::Contains("'clock'"));
+}
+
+TEST_CASE("image sizes outside what GL allows are refused", "[render]") {
+  fixture();
+  CHECK_THROWS_AS(render::Target(0, 100), core::InputError);
+  CHECK_THROWS_AS(render::Target(100000, 100), core::InputError);
+}
