@@ -7,6 +7,7 @@
 
 #include "analysis/tidy.h"
 #include "core/error.h"
+#include "core/physics.h"
 
 namespace analysis {
 
@@ -104,7 +105,7 @@ std::string realizations_csv(const std::vector<Run>& runs) {
 std::string points_csv(const std::vector<Point>& points) {
   std::string s;
   for (const auto& k : kVaried) s += k + ",";
-  s += "n_runs";
+  s += "dipole_force_ratio,n_runs";
   const char* names[] = {"q_per_s", "q_tilde_per_s", "chi_eff", "long_arches_per_min", "added_per_long_arch",
                          "fraction_broken_by_vibration", "q_tilde_over_qp"};
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
@@ -114,6 +115,8 @@ std::string points_csv(const std::vector<Point>& points) {
       std::string v = core::field_text(p.scene, *core::find_field(k));
       s += v + ",";
     }
+    s += num(core::dipole_contact_force(p.scene) /
+             (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) + ",";
     s += std::to_string(p.runs.size());
     for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
                               &p.fraction_broken_by_vibration, &p.q_tilde_over_qp})

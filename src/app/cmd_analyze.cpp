@@ -36,7 +36,10 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out) {
   for (const auto& c : children) find_runs(c, out);
 }
 
-int analyze(const AnalyzeOptions& o) {
+}  // namespace
+
+int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet) {
+  AnalyzeOptions o{inputs, out_dir, force};
   std::vector<fs::path> dirs;
   for (const auto& in : o.inputs) {
     size_t before = dirs.size();
@@ -63,6 +66,7 @@ int analyze(const AnalyzeOptions& o) {
   io::RunInfo info{command_line(), {{"runs", std::to_string(runs.size())}, {"points", std::to_string(points.size())}}};
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
+  if (quiet) return 0;
   std::printf("%zu runs, %zu points -> %s/{points,realizations,survival}.csv\n", runs.size(), points.size(),
               o.out.c_str());
   std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p", "chi_eff");
@@ -75,7 +79,6 @@ int analyze(const AnalyzeOptions& o) {
   }
   return 0;
 }
-}  // namespace
 
 void add_analyze_command(CLI::App& app, Action& action) {
   auto opts = std::make_shared<AnalyzeOptions>();
@@ -84,7 +87,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->add_option("dirs", opts->inputs, "run directories, or directories holding them")->required();
   cmd->add_option("--out", opts->out, "output directory")->required();
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
-  cmd->callback([opts, &action] { action = [opts] { return analyze(*opts); }; });
+  cmd->callback([opts, &action] { action = [opts] { return analyze_runs(opts->inputs, opts->out, opts->force, false); }; });
 }
 
 }  // namespace app

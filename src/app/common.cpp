@@ -50,8 +50,13 @@ void set_command_line(int argc, char** argv) {
 }
 
 void install_interrupt_handler() {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  // No SA_RESTART: a blocking waitpid() returns EINTR so the sweep can pass the interrupt on to its workers.
+  struct sigaction sa = {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
 }
 bool interrupted() { return g_signals.load() > 0; }
 

@@ -54,6 +54,10 @@ void add_run_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_record_command(CLI::App& app, Action& action);
+void add_sweep_command(CLI::App& app, Action& action);
+void add_figures_command(CLI::App& app, Action& action);
+// Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
+int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet);
 void add_bench_arch_command(CLI::App& bench, Action& action);
 
 }  // namespace app

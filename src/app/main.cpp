@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   app::add_record_command(cli, action);
   app::add_bench_command(cli, action);
   app::add_analyze_command(cli, action);
+  app::add_sweep_command(cli, action);
+  app::add_figures_command(cli, action);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -25,7 +27,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,record,analyze,bench} ... (see siloscope --help)\n", e.what());
+    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,record,sweep,analyze,figures,bench} ... (see siloscope --help)\n", e.what());
     return 2;
   }
   try {

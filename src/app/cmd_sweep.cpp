@@ -1,0 +1,272 @@
+// siloscope sweep CAMPAIGN.toml: run every realization of a campaign on all local cores, resumably; or, with
+// --emit-jobs, write the same commands as a job list for GNU parallel and a SLURM array script.
+//
+// Each realization is one `siloscope run` process writing its own directory atomically, so a crash loses at
+// most the realizations in flight, a rerun skips what is finished, and results do not depend on how the work
+// was split (seeds come from the campaign, not from the worker).
+#include <spawn.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include "app/campaign.h"
+#include "app/common.h"
+#include "core/error.h"
+#include "io/metadata.h"
+#include "io/output.h"
+
+extern char** environ;
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct SweepOptions {
+  std::string campaign, results, binary;
+  int workers = 0;
+  bool emit_jobs = false, dry_run = false, no_analyze = false, quiet = false;
+};
+
+struct Job {
+  size_t point;
+  int index;
+  std::string dir;   // relative to the results directory
+  std::string line;  // the shell command, run from the results directory
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string self_exe() {
+  std::error_code ec;
+  fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("siloscope") : p.string();
+}
+
+// Holds an exclusive lock on RESULTS/.lock for the life of the sweep.
+class ResultsLock {
+ public:
+  explicit ResultsLock(const fs::path& dir) {
+    fd_ = ::open((dir / ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);  // workers must not inherit it
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      throw core::InputError("results directory " + dir.string() + " is in use by another sweep");
+  }
+  ~ResultsLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+// Prepare the results directory: the campaign file it belongs to, the scene of each point. Refuses a directory
+// that holds a different campaign.
+void prepare_results(const Campaign& c, const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir / "scenes", ec);
+  if (ec) throw core::InputError("results directory " + dir.string() + ": cannot create it: " + ec.message());
+  const fs::path stamp = dir / "campaign.toml";
+  if (fs::exists(stamp)) {
+    std::ifstream in(stamp);
+    std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (old != c.text)
+      throw core::InputError("results directory " + dir.string() + " holds a different campaign (its campaign.toml "
+                             "differs from " + c.path + "); choose another --results directory");
+  } else {
+    io::write_file_atomic(stamp, c.text);
+  }
+  for (size_t p = 0; p < c.points.size(); ++p) {
+    char name[32];
+    std::snprintf(name, sizeof name, "p%03zu.toml", p);
+    std::string text = "# point " + std::to_string(p) + " of campaign " + c.name + ": " + c.points[p].label + "\n" +
+                       core::scene_toml(c.points[p].scene);
+    io::write_file_atomic(dir / "scenes" / name, text);
+  }
+  // Runs of an earlier sweep that was killed (kill -9) may still be going: wait for those (they will finish
+  // their directories), and remove the leftovers of the dead ones.
+  if (!fs::exists(dir / "runs")) return;
+  std::vector<fs::path> partial;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "runs", ec))
+    if (e.path().filename().string().find(".partial-") != std::string::npos) partial.push_back(e.path());
+  for (const auto& p : partial) {
+    const std::string name = p.filename().string();
+    const pid_t pid = static_cast<pid_t>(std::atol(name.substr(name.rfind('-') + 1).c_str()));
+    bool said = false;
+    while (pid > 0 && ::kill(pid, 0) == 0 && fs::exists(p)) {
+      if (!said) std::fprintf(stderr, "siloscope: waiting for a realization left running by an earlier sweep (pid %d)\n", pid);
+      said = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    fs::remove_all(p, ec);
+  }
+}
+
+std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std::string& binary, size_t& done) {
+  std::vector<Job> jobs;
+  done = 0;
+  for (size_t p = 0; p < c.points.size(); ++p) {
+    for (int k = 0; k < c.realizations; ++k) {
+      Job j{p, k, "runs/" + c.run_dir(p, k), ""};
+      if (fs::exists(dir / j.dir / "metadata.toml")) {
+        ++done;
+        continue;
+      }
+      char scene[32];
+      std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
+      j.line = quote(binary) + " run " + scene + " --seed " + std::to_string(c.realization_seed(p, k)) +
+               " --quiet --out " + j.dir;
+      jobs.push_back(j);
+    }
+  }
+  return jobs;
+}
+
+void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& jobs) {
+  std::string list;
+  for (const auto& j : jobs) list += j.line + "\n";
+  io::write_file_atomic(dir / "jobs.txt", list);
+  std::string slurm =
+      "#!/bin/bash\n"
+      "# SLURM array for campaign " + c.name + ": one realization per task. Submit from this directory:\n"
+      "#   sbatch --array=1-" + std::to_string(jobs.size()) + " jobs.slurm\n"
+      "#SBATCH --job-name=siloscope-" + c.name + "\n"
+      "#SBATCH --cpus-per-task=1\n"
+      "#SBATCH --output=logs/slurm-%A_%a.out\n"
+      "set -euo pipefail\n"
+      "cd \"${SLURM_SUBMIT_DIR:-.}\"\n"
+      "mkdir -p logs\n"
+      "line=$(sed -n \"${SLURM_ARRAY_TASK_ID}p\" jobs.txt)\n"
+      "eval \"$line\"\n";
+  io::write_file_atomic(dir / "jobs.slurm", slurm);
+  std::printf("%zu jobs written to %s/jobs.txt (finished realizations left out)\n", jobs.size(), dir.c_str());
+  std::printf("GNU parallel:  cd %s && parallel --joblog logs/parallel.log -j $(nproc) < jobs.txt\n", dir.c_str());
+  std::printf("SLURM:         cd %s && sbatch --array=1-%zu jobs.slurm\n", dir.c_str(), jobs.size());
+  std::printf("then:          siloscope analyze %s/runs --out %s/analysis --force\n", dir.c_str(), dir.c_str());
+}
+
+pid_t spawn_job(const Job& j, const fs::path& dir) {
+  // The same line a job list holds, run from the results directory, its output kept in logs/.
+  char log[64];
+  std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
+  std::string cmd = "cd " + quote(dir.string()) + " && exec " + j.line + " > " + log + " 2>&1";
+  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  pid_t pid = 0;
+  int r = posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ);
+  if (r != 0) throw core::RuntimeFault("cannot start a worker process: " + std::string(std::strerror(r)));
+  return pid;
+}
+
+int sweep(const SweepOptions& o) {
+  Campaign c = load_campaign(o.campaign);
+  const fs::path dir = fs::absolute(o.results.empty() ? fs::path("results") / c.name : fs::path(o.results));
+  const std::string binary = o.binary.empty() ? self_exe() : o.binary;
+  if (o.dry_run) {
+    std::printf("campaign %s: %zu points x %d realizations of %g s\n", c.name.c_str(), c.points.size(), c.realizations,
+                c.duration);
+    for (size_t p = 0; p < c.points.size(); ++p)
+      std::printf("  p%03zu  %-48s mu = %.6g A*m^2  first seed %llu\n", p, c.points[p].label.c_str(),
+                  c.points[p].scene.mu, static_cast<unsigned long long>(c.realization_seed(p, 0)));
+    return 0;
+  }
+  const int workers = o.workers > 0 ? o.workers : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw core::InputError("--results " + dir.string() + ": cannot create directory: " + ec.message());
+  ResultsLock lock(dir);
+  prepare_results(c, dir);
+  fs::create_directories(dir / "logs");
+  size_t done = 0;
+  std::vector<Job> jobs = pending_jobs(c, dir, binary, done);
+  const size_t total = c.points.size() * static_cast<size_t>(c.realizations);
+  if (o.emit_jobs) {
+    emit_jobs(c, dir, jobs);
+    return 0;
+  }
+  if (!o.quiet)
+    std::printf("campaign %s: %zu points x %d realizations; %zu finished, %zu to run on %d workers -> %s\n",
+                c.name.c_str(), c.points.size(), c.realizations, done, jobs.size(), workers, dir.c_str());
+
+  install_interrupt_handler();
+  Progress progress("sweep", static_cast<double>(jobs.size()), !o.quiet);
+  std::map<pid_t, size_t> running;
+  std::vector<std::string> failures;
+  size_t next = 0, finished = 0;
+  bool forwarded = false;
+  while (next < jobs.size() || !running.empty()) {
+    if (interrupted() && !forwarded) {
+      // Ctrl-C from a terminal reaches the workers already; a signal sent to the sweep alone is passed on.
+      for (const auto& [pid, job] : running) ::kill(pid, SIGINT);
+      forwarded = true;
+    }
+    while (!interrupted() && next < jobs.size() && static_cast<int>(running.size()) < workers) {
+      running[spawn_job(jobs[next], dir)] = next;
+      ++next;
+    }
+    int status = 0;
+    pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const Job& j = jobs[it->second];
+    running.erase(it);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!ok && !interrupted()) {
+      char log[64];
+      std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
+      failures.push_back(j.dir + " (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) +
+                         ", see " + (dir / log).string() + ")");
+      std::fprintf(stderr, "\nsiloscope: realization %s failed; the others go on\n", failures.back().c_str());
+    }
+    ++finished;
+    char extra[64];
+    std::snprintf(extra, sizeof extra, "%zu/%zu realizations", done + finished, total);
+    progress.update(static_cast<double>(finished), extra);
+  }
+  progress.finish();
+  if (interrupted()) {
+    std::fprintf(stderr, "siloscope: sweep interrupted; finished realizations are kept, rerun to resume\n");
+    return 130;
+  }
+  if (!failures.empty()) {
+    std::fprintf(stderr, "siloscope: %zu of %zu realizations failed:\n", failures.size(), jobs.size());
+    for (const auto& f : failures) std::fprintf(stderr, "  %s\n", f.c_str());
+    return 1;
+  }
+  if (!o.no_analyze) analyze_runs({(dir / "runs").string()}, (dir / "analysis").string(), true, o.quiet);
+  return 0;
+}
+}  // namespace
+
+void add_sweep_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SweepOptions>();
+  auto* cmd = app.add_subcommand("sweep", "run a campaign (a grid of scenes x realizations) on all cores, resumably");
+  cmd->set_version_flag("--version", io::version_string());
+  cmd->add_option("campaign", o->campaign, "campaign file, e.g. assets/campaigns/quick.toml")->required();
+  cmd->add_option("--results", o->results, "results directory (default: results/NAME)");
+  cmd->add_option("--workers", o->workers, "parallel realizations (default: all cores)");
+  cmd->add_flag("--emit-jobs", o->emit_jobs, "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
+  cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
+  cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");
+  cmd->add_flag("--no-analyze", o->no_analyze, "do not aggregate into RESULTS/analysis at the end");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  cmd->callback([o, &action] { action = [o] { return sweep(*o); }; });
+}
+
+}  // namespace app

@@ -1,0 +1,167 @@
+// Campaigns: grid expansion, seeds, resuming after an interruption, workers, and the GNU parallel path.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "app/campaign.h"
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kBin = SILOSCOPE_BINARY;
+const std::string kScenes = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/";
+
+fs::path temp_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("siloscope_sweep_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int sh(const std::string& cmd) {
+  int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A tiny campaign: 3 points x `n` realizations of 1 s (after 2 s of settling).
+fs::path tiny_campaign(const fs::path& dir, int n, const std::string& extra = "") {
+  std::ofstream(dir / "short.toml") << "settle_time = 2.0\n";
+  std::ofstream(dir / "c.toml") << "name = \"tiny\"\nscene = \"short.toml\"\nseed = 7\nrealizations = " << n
+                                << "\nduration = 1.0\n[grid]\nsize_ratio = [0.4, 1.0]\n[[points]]\nchi = 0.0\n"
+                                << extra;
+  return dir / "c.toml";
+}
+
+long count_runs(const fs::path& results) {
+  long n = 0;
+  if (!fs::exists(results / "runs")) return 0;
+  for (const auto& e : fs::recursive_directory_iterator(results / "runs"))
+    n += e.path().filename() == "metadata.toml";
+  return n;
+}
+}  // namespace
+
+TEST_CASE("a campaign grid expands to the product of its lists plus its extra points", "[campaign]") {
+  fs::path d = temp_dir("grid");
+  std::ofstream(d / "c.toml") << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
+                              << "[grid]\nsize_ratio = [0.4, 0.6]\nmu = [0.0, 0.5, 1.0]\n[[points]]\nchi = 0.0\n";
+  app::Campaign c = app::load_campaign((d / "c.toml").string());
+  REQUIRE(c.points.size() == 7);
+  CHECK(c.name == "c");
+  CHECK(c.points[0].label == "mu=0,size_ratio=0.4");
+  CHECK(c.points[5].scene.mu == 1.0);
+  CHECK(c.points[5].scene.size_ratio == 0.6);
+  CHECK(c.points[6].scene.chi == 0.0);
+  CHECK(c.points[6].scene.duration == 10);
+  // Seeds: distinct across points and realizations, and a function of the point's label, not its position.
+  std::set<std::uint64_t> seeds;
+  for (size_t p = 0; p < c.points.size(); ++p)
+    for (int k = 0; k < 3; ++k) seeds.insert(c.realization_seed(p, k));
+  CHECK(seeds.size() == 21);
+  std::ofstream(d / "swapped.toml") << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
+                                    << "[[points]]\nchi = 0.0\n[grid]\nsize_ratio = [0.6, 0.4]\nmu = [1.0, 0.5, 0.0]\n";
+  app::Campaign s = app::load_campaign((d / "swapped.toml").string());
+  CHECK(s.points.back().label == "chi=0");
+  CHECK(s.realization_seed(s.points.size() - 1, 2) == c.realization_seed(6, 2));
+}
+
+TEST_CASE("the dipole force ratio sets mu per size ratio", "[campaign]") {
+  core::Scene s;
+  s.size_ratio = 0.4;
+  s.mu = app::mu_for_force_ratio(s, 10.0);
+  // model.md: contact force over weight is about 2.0 mu^2 at r = 0.4.
+  CHECK(s.mu * s.mu * 1.97 == Approx(10.0).epsilon(0.02));
+  s.size_ratio = 0.2;
+  CHECK(app::mu_for_force_ratio(s, 126.0) == Approx(1.0).epsilon(0.02));
+}
+
+TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {
+  fs::path d = temp_dir("bad");
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(d / "c.toml", std::ios::trunc) << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 2\n" << text;
+    try {
+      app::load_campaign((d / "c.toml").string());
+    } catch (const core::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  CHECK_THAT(error_of(""), Catch::Matchers::Contains("grid is empty"));
+  CHECK_THAT(error_of("[grid]\nsize_ratio = []\n"), Catch::Matchers::Contains("grid.size_ratio must be a non-empty list"));
+  CHECK_THAT(error_of("[grid]\nmagnetism = [1.0]\n"), Catch::Matchers::Contains("unknown key 'magnetism'"));
+  CHECK_THAT(error_of("[grid]\nsize_ratio = [0.1]\n"), Catch::Matchers::Contains("size_ratio = 0.1"));
+  CHECK_THAT(error_of("[grid]\nmu = [0.5, 0.5]\n"), Catch::Matchers::Contains("duplicates an earlier point"));
+  CHECK_THAT(error_of("[[points]]\nmu = 0.0\n[[points]]\nchi=0.4\n"), Catch::Matchers::Contains("duplicates"));
+}
+
+TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel", "[campaign][app]") {
+  fs::path d = temp_dir("workers");
+  fs::path c = tiny_campaign(d, 2);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 1 --quiet --results " + (d / "one").string()) == 0);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 2 --quiet --results " + (d / "two").string()) == 0);
+  CHECK(count_runs(d / "one") == 6);
+  const std::string points = slurp(d / "one" / "analysis" / "points.csv");
+  CHECK(points.find("q_tilde_over_qp") != std::string::npos);
+  CHECK(slurp(d / "two" / "analysis" / "points.csv") == points);
+  CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") == slurp(d / "two" / "runs" / "p001" / "r001" / "exits.csv"));
+  // The job list, run by GNU parallel from the results directory, gives the same aggregate.
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --emit-jobs --results " + (d / "gnu").string() + " > /dev/null") == 0);
+  CHECK(fs::exists(d / "gnu" / "jobs.slurm"));
+  REQUIRE(sh("cd " + (d / "gnu").string() + " && parallel --will-cite -j 2 < jobs.txt") == 0);
+  REQUIRE(sh(kBin + " analyze " + (d / "gnu" / "runs").string() + " --out " + (d / "gnu" / "analysis").string() +
+             " > /dev/null") == 0);
+  CHECK(slurp(d / "gnu" / "analysis" / "points.csv") == points);
+  // A results directory of another campaign is refused and left alone.
+  fs::path other = tiny_campaign(d, 3);
+  CHECK(sh(kBin + " sweep " + other.string() + " --quiet --results " + (d / "one").string() + " 2> /dev/null") == 2);
+  CHECK(count_runs(d / "one") == 6);
+}
+
+TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization", "[campaign][app]") {
+  fs::path d = temp_dir("resume");
+  fs::path c = tiny_campaign(d, 4);  // 12 realizations
+  for (int sig : {SIGINT, SIGKILL}) {
+    fs::path r = d / (sig == SIGINT ? "int" : "kill");
+    pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      execl(kBin.c_str(), kBin.c_str(), "sweep", c.c_str(), "--workers", "2", "--quiet", "--results", r.c_str(),
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int i = 0; i < 400 && count_runs(r) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    CAPTURE(sig);
+    CHECK(count_runs(r) < 12);  // it really was cut short
+    REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 2 --quiet --results " + r.string()) == 0);
+    CHECK(count_runs(r) == 12);
+    long partial = 0;
+    for (const auto& e : fs::recursive_directory_iterator(r / "runs"))
+      partial += e.path().filename().string().find(".partial-") != std::string::npos;
+    CHECK(partial == 0);
+  }
+  // Both resumed campaigns equal an uninterrupted one.
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 2 --quiet --results " + (d / "whole").string()) == 0);
+  const std::string whole = slurp(d / "whole" / "analysis" / "points.csv");
+  CHECK(slurp(d / "int" / "analysis" / "points.csv") == whole);
+  CHECK(slurp(d / "kill" / "analysis" / "points.csv") == whole);
+}
