@@ -79,6 +79,15 @@ void Hopper::build_walls() {
   for (int w = 0; w < static_cast<int>(core::Wall::Count); ++w) {
     if (w != static_cast<int>(core::Wall::Top)) add_wall(w);
   }
+  // While settling, a ceiling closes the deposition column: strong dipoles can throw disks upwards.
+  b2EdgeShape edge;
+  const float x = static_cast<float>(geo_.half_width * L_), y = static_cast<float>(deposit_height_ * L_);
+  edge.SetTwoSided(b2Vec2(-x, y), b2Vec2(x, y));
+  b2FixtureDef fd;
+  fd.shape = &edge;
+  fd.friction = static_cast<float>(scene_.friction);
+  fd.userData.pointer = kWallTag + static_cast<std::uintptr_t>(core::Wall::Count);
+  ceiling_ = walls_->CreateFixture(&fd);
 }
 
 b2Fixture* Hopper::add_wall(int w) {
@@ -177,8 +186,12 @@ void Hopper::open_aperture() {
   for (int i = 0; i < particle_count(); ++i)
     if (pos(i).y + radius_[i] > geo_.total_height)
       throw core::InputError("scene: after settle_time = " + fmt(scene_.settle_time) + " s particle " +
-                             std::to_string(i) + " is still above the top of the container at y = " +
-                             fmt(pos(i).y) + " m; raise settle_time or silo_height");
+                             std::to_string(i) + " (" + core::species_name(species_[i]) +
+                             ") is still above the top of the container at y = " + fmt(pos(i).y) +
+                             " m; raise settle_time or silo_height" +
+                             (scene_.mu > 0 ? ", or lower mu (repelling disks float on the column)" : ""));
+  walls_->DestroyFixture(ceiling_);
+  ceiling_ = nullptr;
   add_wall(static_cast<int>(core::Wall::Top));
   walls_->DestroyFixture(lid_);
   lid_ = nullptr;
@@ -274,8 +287,8 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   if (!cause) return;
   std::ostringstream o;
   o << "unstable integration at t = " << fmt(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt(p.x)
-    << " m, y = " << fmt(p.y) << " m, speed " << fmt(core::length(v)) << " m/s); try a smaller dt (now "
-    << fmt(scene_.dt) << " s) or more iterations";
+    << " m, y = " << fmt(p.y) << " m, speed " << fmt(core::length(v)) << " m/s); try dt <= " << fmt(0.5 * scene_.dt)
+    << " s (now " << fmt(scene_.dt) << " s), more iterations, or continuous = true";
   if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
     std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
     return;
@@ -283,7 +296,7 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   throw core::RuntimeFault(o.str());
 }
 
-void Hopper::check_overlaps() const {
+void Hopper::check_overlaps() {
   double worst = 0;
   int wa = -1, wb = -1;
   for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
@@ -291,14 +304,17 @@ void Hopper::check_overlaps() const {
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
     if (a < 0 || b < 0) continue;
     core::Vec2 d = pos(a) - pos(b);
-    double overlap = (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]);
+    double overlap = std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
+    overlaps_.sum += overlap;
+    ++overlaps_.samples;
     if (overlap > worst) worst = overlap, wa = a, wb = b;
   }
+  overlaps_.max = std::max(overlaps_.max, worst);
   if (worst <= kMaxOverlapFraction) return;
   std::ostringstream o;
   o << "unstable integration at t = " << fmt(t_) << " s: disks " << wa << " and " << wb << " overlap by "
     << fmt(100 * worst) << "% of the smaller radius (bound " << fmt(100 * kMaxOverlapFraction)
-    << "%); try a smaller dt (now " << fmt(scene_.dt) << " s) or more iterations";
+    << "%); try dt <= " << fmt(0.5 * scene_.dt) << " s (now " << fmt(scene_.dt) << " s) or more iterations";
   if (scene_.unsafe) {
     std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
     return;
@@ -414,7 +430,7 @@ std::vector<int> Hopper::current_arch() const {
   return core::find_arch(contact_graph(), positions(), scene_.arch_wall_reach);
 }
 
-core::Frame Hopper::frame(bool with_arch) const {
+core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
   core::Frame f;
   f.t = t_;
   f.step = step_;
@@ -433,7 +449,7 @@ core::Frame Hopper::frame(bool with_arch) const {
   }
   // Contact forces from the last step's normal impulses (internal units: impulse * L).
   const double to_newton = 1.0 / (L_ * scene_.dt);
-  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+  for (const b2Contact* c = with_forces ? world_->GetContactList() : nullptr; c; c = c->GetNext()) {
     if (!c->IsTouching()) continue;
     const b2Manifold* m = c->GetManifold();
     double impulse = 0;

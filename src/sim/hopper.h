@@ -43,8 +43,9 @@ class Hopper {
   double time() const { return t_; }
   std::uint64_t steps() const { return step_; }
 
-  // The snapshot the renderer and trajectory see. with_arch: run arch detection (cheap, see bench).
-  core::Frame frame(bool with_arch = true) const;
+  // The snapshot the renderer and trajectory see. Work nobody will look at is skipped: with_arch runs arch
+  // detection, with_forces sums contact impulses into per-disk forces (needed only to colour by force).
+  core::Frame frame(bool with_arch = true, bool with_forces = true) const;
   // The current blocking arch from Box2D's contacts, left to right (empty when none).
   std::vector<int> current_arch() const;
   core::ContactGraph contact_graph() const;
@@ -64,6 +65,15 @@ class Hopper {
   long arch_fallbacks() const { return arch_fallbacks_; }
   // Settling outcome: the largest disk speed (m/s) when the aperture opened.
   double settle_max_speed() const { return settle_max_speed_; }
+
+  // Overlaps between touching disks, as a fraction of the smaller radius of each pair, sampled at every kick
+  // after the opening: the mean over all sampled contacts and the largest seen.
+  struct OverlapStats {
+    double sum = 0, max = 0;
+    long samples = 0;
+    double mean() const { return samples ? sum / samples : 0.0; }
+  };
+  const OverlapStats& overlaps() const { return overlaps_; }
 
   void set_profiling(bool on) { profiling_ = on; }
   const StageTimes& stage_times() const { return times_; }
@@ -85,7 +95,7 @@ class Hopper {
   void handle_exits();
   void apply_clog_rule();
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
-  void check_overlaps() const;
+  void check_overlaps();
   bool outlet_at_rest() const;
   void reinject(int id);
   core::Vec2 pos(int id) const;
@@ -98,6 +108,7 @@ class Hopper {
   std::unique_ptr<b2World> world_;
   b2Body* walls_ = nullptr;
   b2Fixture* lid_ = nullptr;
+  b2Fixture* ceiling_ = nullptr;  // closes the deposition column while settling
   std::vector<b2Body*> bodies_;
   std::vector<double> radius_;
   std::vector<core::Species> species_;
@@ -116,6 +127,7 @@ class Hopper {
   std::int64_t exits_original_ = 0, exits_added_ = 0;
   double settle_max_speed_ = 0;
   bool profiling_ = false;
+  OverlapStats overlaps_;
   StageTimes times_;
 };
 
