@@ -111,6 +111,8 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--csv", opts->csv, "write the table as CSV here");
   cmd->callback([opts, &action] { action = [opts] { return bench_sim(*opts); }; });
   add_bench_arch_command(*bench, action);
+  add_bench_accuracy_command(*bench, action);
+  add_bench_stability_command(*bench, action);
 }
 
 }  // namespace app

@@ -35,14 +35,14 @@ int figures(const FiguresOptions& o) {
   const char* env = std::getenv("SILOSCOPE_FIGURES_SCRIPT");
   fs::path script = env ? env : SILOSCOPE_FIGURES_SCRIPT;
   if (!fs::exists(script)) throw core::InputError("figures: the script " + script.string() + " is missing");
-  if (std::system("python3 -c 'import matplotlib' 2>/dev/null") != 0)
+  if (std::system((python_interpreter() + " -c 'import matplotlib' 2>/dev/null").c_str()) != 0)
     throw core::RuntimeFault("figures: python3 with matplotlib is needed (Debian: apt-get install python3-matplotlib)");
   // Drawn into a temporary directory, moved into place when complete.
   fs::path tmp = out;
   tmp += ".partial";
   std::error_code ec;
   fs::remove_all(tmp, ec);
-  std::string cmd = "python3 " + quote(script.string()) + " " + quote(src.string()) + " " + quote(tmp.string());
+  std::string cmd = python_interpreter() + " " + quote(script.string()) + " " + quote(src.string()) + " " + quote(tmp.string());
   int status = std::system(cmd.c_str());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     fs::remove_all(tmp, ec);

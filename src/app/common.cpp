@@ -43,6 +43,8 @@ core::Scene SceneOptions::load() const {
   return s;
 }
 
+std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
+
 std::string command_line() { return g_command; }
 void set_command_line(int argc, char** argv) {
   g_command.clear();

@@ -27,6 +27,9 @@ struct SceneOptions {
   core::Scene load() const;
 };
 
+// Debian's python3 (where python3-matplotlib installs), even when another python3 comes first on PATH.
+std::string python_interpreter();
+
 // The command line as one string, for metadata.
 std::string command_line();
 void set_command_line(int argc, char** argv);
@@ -59,5 +62,7 @@ void add_figures_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet);
 void add_bench_arch_command(CLI::App& bench, Action& action);
+void add_bench_accuracy_command(CLI::App& bench, Action& action);
+void add_bench_stability_command(CLI::App& bench, Action& action);
 
 }  // namespace app

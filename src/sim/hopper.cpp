@@ -55,7 +55,7 @@ Hopper::Hopper(const core::Scene& scene)
                         fmt(scene_.mu) + " A*m^2 and r = " + fmt(scene_.size_ratio) +
                         "; the largest safe time step is " + fmt(safe) + " s";
       if (!scene_.unsafe) throw core::InputError("scene: " + msg + " (or pass --unsafe)");
-      std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
+      warn_unsafe(msg);
     }
   }
   kick_every_ = static_cast<std::uint64_t>(std::llround(scene_.kick_period / scene_.dt));
@@ -290,7 +290,7 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
     << " m, y = " << fmt(p.y) << " m, speed " << fmt(core::length(v)) << " m/s); try dt <= " << fmt(0.5 * scene_.dt)
     << " s (now " << fmt(scene_.dt) << " s), more iterations, or continuous = true";
   if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
-    std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
+    warn_unsafe(o.str());
     return;
   }
   throw core::RuntimeFault(o.str());
@@ -316,10 +316,15 @@ void Hopper::check_overlaps() {
     << fmt(100 * worst) << "% of the smaller radius (bound " << fmt(100 * kMaxOverlapFraction)
     << "%); try dt <= " << fmt(0.5 * scene_.dt) << " s (now " << fmt(scene_.dt) << " s) or more iterations";
   if (scene_.unsafe) {
-    std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", o.str().c_str());
+    warn_unsafe(o.str());
     return;
   }
   throw core::RuntimeFault(o.str());
+}
+
+void Hopper::warn_unsafe(const std::string& msg) const {
+  // Loudly, but not thousands of times: the first three, then a count at the end of the run's metadata.
+  if (health_warnings_++ < 3) std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
 }
 
 bool Hopper::outlet_at_rest() const {

@@ -74,6 +74,8 @@ class Hopper {
     double mean() const { return samples ? sum / samples : 0.0; }
   };
   const OverlapStats& overlaps() const { return overlaps_; }
+  // With scene.unsafe, health problems are warned about (the first few printed) and counted instead of stopping.
+  long health_warnings() const { return health_warnings_; }
 
   void set_profiling(bool on) { profiling_ = on; }
   const StageTimes& stage_times() const { return times_; }
@@ -128,6 +130,8 @@ class Hopper {
   double settle_max_speed_ = 0;
   bool profiling_ = false;
   OverlapStats overlaps_;
+  mutable long health_warnings_ = 0;
+  void warn_unsafe(const std::string& msg) const;
   StageTimes times_;
 };
 

@@ -1,0 +1,112 @@
+#include "app/accuracy.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "core/physics.h"
+#include "sim/dipole.h"
+#include "sim/hopper.h"
+
+namespace app {
+
+void NumericSetting::apply(core::Scene& s) const {
+  s.dt = dt;
+  s.velocity_iterations = velocity_iterations;
+  s.position_iterations = position_iterations;
+  s.length_scale = length_scale;
+  s.continuous = continuous;
+  s.dipole_cutoff = 0;
+  if (dipole_cutoff_fraction > 0 && s.mu > 0) {
+    // The distance at which the pair force falls to this fraction of an added disk's weight.
+    const double w = core::mass_of(s.radius_added(), s.density) * s.gravity;
+    s.dipole_cutoff = std::pow(core::kDipolePrefactor * s.mu * s.mu / (dipole_cutoff_fraction * w), 0.25);
+  }
+}
+
+SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations, int threads) {
+  SettingResult out;
+  std::mutex m;
+  std::atomic<int> next{1};
+  double overlap_sum = 0;
+  long overlap_n = 0;
+  auto worker = [&] {
+    for (int seed; (seed = next++) <= realizations;) {
+      core::Scene s = scene;
+      setting.apply(s);
+      s.seed = static_cast<std::uint64_t>(seed);
+      try {
+        auto t0 = std::chrono::steady_clock::now();
+        sim::Hopper h(s);
+        auto t1 = std::chrono::steady_clock::now();
+        h.advance_to(s.duration);
+        h.finish();
+        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+        (void)t0;
+        std::lock_guard lock(m);
+        out.sim_seconds += s.duration;
+        out.wall_seconds += wall;
+        out.runs.push_back(analysis::measure(h.events(), s.duration));
+        for (const auto& c : h.events().clogs)
+          if (c.ended_by != core::ClogEnd::RunEnd) out.clog_durations.push_back(c.end - c.start);
+        overlap_sum += h.overlaps().sum;
+        overlap_n += h.overlaps().samples;
+        out.overlap_max = std::max(out.overlap_max, h.overlaps().max);
+      } catch (const std::exception& e) {
+        std::lock_guard lock(m);
+        if (out.failures++ == 0) out.failure = e.what();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < std::max(1, threads); ++i) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  out.overlap_mean = overlap_n ? overlap_sum / overlap_n : 0;
+  return out;
+}
+
+double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting, double seconds) {
+  core::Scene s = scene;
+  setting.apply(s);
+  s.n_total = 2;
+  s.chi = 1.0;
+  s.gravity = 0;
+  s.kick_impulse_max = 0;
+  s.settle_time = 0;
+  s.dipole_cutoff = 0;
+  sim::Hopper h(s);
+  // Start one contact-gap apart in the middle of the silo, at rest: all energy is the dipole's at first.
+  const double ra = s.radius_added(), y = 3.0;
+  h.place(0, {-ra - 0.25 * ra, y});
+  h.place(1, {ra + 0.25 * ra, y});
+  auto energy = [&] {
+    core::Frame f = h.frame(false, false);
+    const double m = core::mass_of(ra, s.density);
+    double e = 0;
+    for (const auto& p : f.particles) e += 0.5 * m * (p.vx * p.vx + p.vy * p.vy);
+    return e + sim::dipole_energy(std::hypot(f.particles[0].x - f.particles[1].x, f.particles[0].y - f.particles[1].y), s.mu);
+  };
+  const double e0 = energy();
+  h.advance_to(seconds);
+  return std::abs(energy() - e0) / e0;
+}
+
+double ks_distance(std::vector<double> a, std::vector<double> b) {
+  if (a.empty() || b.empty()) return NAN;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  size_t i = 0, j = 0;
+  double d = 0;
+  while (i < a.size() && j < b.size()) {
+    const double x = std::min(a[i], b[j]);
+    while (i < a.size() && a[i] <= x) ++i;
+    while (j < b.size() && b[j] <= x) ++j;
+    d = std::max(d, std::abs(static_cast<double>(i) / a.size() - static_cast<double>(j) / b.size()));
+  }
+  return d;
+}
+
+}  // namespace app

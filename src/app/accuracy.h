@@ -1,0 +1,42 @@
+// Speed versus accuracy: run a scene at a numerical setting (time step, iterations, internal length unit,
+// continuous collision, dipole cutoff) over several realizations and measure what the setting costs and buys.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/measure.h"
+#include "core/scene.h"
+
+namespace app {
+
+struct NumericSetting {
+  std::string name;
+  double dt = 1e-3;
+  int velocity_iterations = 8, position_iterations = 3;
+  double length_scale = 10;
+  bool continuous = false;
+  double dipole_cutoff_fraction = 0;  // > 0: cut dipole pairs whose force is below this fraction of a weight
+  void apply(core::Scene& s) const;
+};
+
+struct SettingResult {
+  double sim_seconds = 0, wall_seconds = 0;
+  std::vector<analysis::Measurements> runs;
+  std::vector<double> clog_durations;  // every clog's duration, pooled over realizations
+  double overlap_mean = 0, overlap_max = 0;  // fraction of the smaller radius
+  int failures = 0;
+  std::string failure;  // the first health-monitor message
+};
+
+// Run `realizations` seeds (1..n) of `scene` at `setting`, `threads` at a time.
+SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations, int threads);
+
+// Relative energy drift |E(T) - E(0)| / E(0) of two added disks repelling each other in free space (no gravity,
+// no kicks, no walls reached) over `seconds`, integrated at `setting`; the dipole sets the energy scale.
+double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting, double seconds);
+
+// Two-sample Kolmogorov-Smirnov distance sup |F_a - F_b|.
+double ks_distance(std::vector<double> a, std::vector<double> b);
+
+}  // namespace app
