@@ -33,7 +33,7 @@ struct SettingResult {
 SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations, int threads);
 
 // Relative energy drift |E(T) - E(0)| / E(0) of two added disks repelling each other in free space (no gravity,
-// no kicks, no walls reached) over `seconds`, integrated at `setting`; the dipole sets the energy scale.
+// no kicks) over `seconds` or until a disk nears a wall, integrated at `setting`; the dipole sets the energy.
 double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting, double seconds);
 
 // Two-sample Kolmogorov-Smirnov distance sup |F_a - F_b|.

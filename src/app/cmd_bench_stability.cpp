@@ -1,5 +1,5 @@
 // siloscope bench stability: where the methods fail. A map of time step against dipole strength for r = 0.2 and
-// 0.4: for every cell, does the static check (the dipole's safe time step) refuse it, and does the integration
+// 0.4: for every cell, do the static checks (dipole and kinematic safe time steps) refuse it, and does the integration
 // actually break (health monitor, run with --unsafe)? A good check refuses what breaks and accepts what does not.
 #include <atomic>
 #include <cmath>
@@ -52,7 +52,7 @@ int bench_stability(const StabilityOptions& o) {
       s.duration = o.seconds;
       s.unsafe = true;  // run it anyway: we want to know whether it really breaks
       c.mu = s.mu;
-      c.safe_dt = core::dipole_safe_dt(s);
+      c.safe_dt = std::min(core::dipole_safe_dt(s), core::kinematic_safe_dt(s));
       c.refused = s.dt > c.safe_dt;
       try {
         sim::Hopper h(s);
@@ -75,8 +75,8 @@ int bench_stability(const StabilityOptions& o) {
   std::printf("\n%-6s %-9s %-9s %-10s %-8s %-6s %s\n", "r", "dt [s]", "F/W", "safe dt", "refused", "broke", "outcome");
   for (const auto& c : cells) {
     const bool broke = c.warnings > 0 || !c.failure.empty();
-    const char* outcome = c.refused ? (broke ? "refused, breaks" : "refused, ran clean")
-                                    : (broke ? "ACCEPTED, BREAKS" : "accepted, clean");
+    const char* outcome = c.refused ? (broke ? "refused-breaks" : "refused-runs-clean")
+                                    : (broke ? "ACCEPTED-BREAKS" : "accepted-clean");
     missed += !c.refused && broke;
     correct += c.refused == broke;
     conservative += c.refused && !broke;

@@ -21,12 +21,21 @@ inline double dipole_contact_force(const Scene& s) {
 
 // Largest time step (s) that resolves the dipole repulsion between two added disks at contact: the pair's
 // stiffness k = dF/dr = 4 |F| / r at r = 2 r_a gives omega = sqrt(2 k / m) (reduced mass m / 2); we ask
-// omega * dt <= 0.5, a margin of 4 below the symplectic-Euler stability limit omega * dt = 2.
+// omega * dt <= 1, a margin of 2 below the symplectic-Euler stability limit omega * dt = 2. The stability map
+// (`siloscope bench stability`, docs/accuracy/stability.png) shows runs breaking near omega * dt = 2.
 inline double dipole_safe_dt(const Scene& s) {
-  if (s.mu <= 0.0) return INFINITY;
+  if (s.mu <= 0.0 || s.n_added() < 2) return INFINITY;
   const double stiffness = 4.0 * dipole_contact_force(s) / (2.0 * s.radius_added());
   const double omega = std::sqrt(2.0 * stiffness / mass_of(s.radius_added(), s.density));
-  return 0.5 / omega;
+  return 1.0 / omega;
+}
+
+// Largest time step (s) at which no disk moves more than the smallest diameter in one step at the free-fall
+// speed from the top of the container, sqrt(2 g H): beyond it disks tunnel through each other and the walls.
+inline double kinematic_safe_dt(const Scene& s) {
+  const double smallest = s.n_added() > 0 ? std::min(s.radius_added(), s.radius_original) : s.radius_original;
+  const double v = std::sqrt(2.0 * s.gravity * (s.silo_height + s.hopper_height));
+  return v > 0 ? 2.0 * smallest / v : INFINITY;
 }
 
 }  // namespace core

@@ -12,8 +12,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STYLE = {"accepted, clean": ("#009E73", "o"), "refused, breaks": ("#D55E00", "X"),
-         "refused, ran clean": ("#E69F00", "s"), "ACCEPTED, BREAKS": ("#000000", "*")}
+STYLE = {"accepted-clean": ("#009E73", "o"), "refused-breaks": ("#D55E00", "X"),
+         "refused-runs-clean": ("#E69F00", "s"), "ACCEPTED-BREAKS": ("#000000", "*")}
 
 
 def main(src, out):
@@ -36,7 +36,7 @@ def main(src, out):
         ax.set_xlabel("time step [ms]")
         ax.set_title(f"r = {r:g}")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=8, loc="lower left", framealpha=0.9)
     (axes[0] if len(sizes) > 1 else axes).set_ylabel("dipole contact force / weight (0 drawn at 0.1)")
     fig.tight_layout()
     fig.savefig(out, dpi=150)

@@ -47,16 +47,20 @@ Hopper::Hopper(const core::Scene& scene)
       rng_reinject_(scene.seed, 3),
       clogs_(scene.clog_min_gap, scene.clog_timeout) {
   core::validate(scene_);
-  // The dipole repulsion is integrated explicitly: refuse a time step that cannot resolve it.
-  if (scene_.mu > 0 && scene_.n_added() >= 2) {
-    double safe = core::dipole_safe_dt(scene_);
-    if (scene_.dt > safe) {
-      std::string msg = "dt = " + fmt(scene_.dt) + " s is too large for the dipole repulsion at mu = " +
-                        fmt(scene_.mu) + " A*m^2 and r = " + fmt(scene_.size_ratio) +
-                        "; the largest safe time step is " + fmt(safe) + " s";
-      if (!scene_.unsafe) throw core::InputError("scene: " + msg + " (or pass --unsafe)");
-      warn_unsafe(msg);
-    }
+  // Time steps the integration cannot survive are refused before any work: the explicit dipole repulsion,
+  // and disks outrunning their own size in one step.
+  const double dipole_dt = core::dipole_safe_dt(scene_), kinematic_dt = core::kinematic_safe_dt(scene_);
+  std::string refusal;
+  if (scene_.dt > dipole_dt)
+    refusal = "dt = " + fmt(scene_.dt) + " s is too large for the dipole repulsion at mu = " + fmt(scene_.mu) +
+              " A*m^2 and r = " + fmt(scene_.size_ratio) + "; the largest safe time step is " +
+              fmt(std::min(dipole_dt, kinematic_dt)) + " s";
+  else if (scene_.dt > kinematic_dt)
+    refusal = "dt = " + fmt(scene_.dt) + " s lets a falling disk move more than the smallest diameter per step " +
+              "(free fall from the top); the largest safe time step is " + fmt(kinematic_dt) + " s";
+  if (!refusal.empty()) {
+    if (!scene_.unsafe) throw core::InputError("scene: " + refusal + " (or pass --unsafe)");
+    warn_unsafe(refusal);
   }
   kick_every_ = static_cast<std::uint64_t>(std::llround(scene_.kick_period / scene_.dt));
   open_step_ = static_cast<std::uint64_t>(std::llround(scene_.settle_time / scene_.dt));
@@ -219,6 +223,15 @@ void Hopper::place(int id, core::Vec2 p) {
   bodies_[id]->SetAngularVelocity(0);
 }
 
+void Hopper::set_velocity(int id, core::Vec2 v) {
+  bodies_[id]->SetLinearVelocity(b2Vec2(static_cast<float>(v.x * L_), static_cast<float>(v.y * L_)));
+}
+
+void Hopper::check_health() {
+  for (int i = 0; i < particle_count(); ++i) check_health_fast(i, pos(i), vel(i));
+  check_overlaps();
+}
+
 void Hopper::apply_kicks() {
   draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
@@ -282,8 +295,8 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   else if (p.y > (open_ ? geo_.total_height : deposit_height_) + radius_[id] ||
            (p.y > 0 && std::abs(p.x) > geo_.half_width_at(p.y) + radius_[id]))
     cause = "a disk outside the container";
-  else if (core::length(v) > 10.0 * std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0)
-    cause = "a disk faster than 10x the free-fall speed from the top";
+  else if (core::length(v) > 10.0 * (std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0))
+    cause = "a disk faster than 10x (the free-fall speed from the top + 1 m/s)";
   if (!cause) return;
   std::ostringstream o;
   o << "unstable integration at t = " << fmt(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt(p.x)

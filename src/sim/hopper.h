@@ -84,6 +84,9 @@ class Hopper {
   b2World& world() { return *world_; }
   // Move disk `id` to p (m) at rest; tests use it to build arches by hand.
   void place(int id, core::Vec2 p);
+  void set_velocity(int id, core::Vec2 v);  // m/s
+  // Run every health check now (they also run on their own: per disk every step, overlaps at every kick).
+  void check_health();
 
  private:
   void build_walls();
