@@ -66,7 +66,7 @@ TEST_CASE("health: time steps the integration cannot survive are refused with th
   }
   s = small_scene();
   s.size_ratio = 0.2;
-  s.mu = app::mu_for_force_ratio(s, 1000.0);
+  s.mu = core::mu_for_force_ratio(s, 1000.0);
   s.dt = 0.002;
   CHECK_THROWS_WITH(sim::Hopper(s), Contains("dipole repulsion") && Contains("largest safe time step"));
   // With --unsafe the run goes on, loudly, and counts what it saw.
@@ -89,7 +89,7 @@ TEST_CASE("health: the default scene runs 150 s without a single warning", "[sim
 
 TEST_CASE("an isolated magnetic pair conserves energy at the default time step", "[sim][health]") {
   core::Scene s;
-  s.mu = app::mu_for_force_ratio(s, 10.0);
+  s.mu = core::mu_for_force_ratio(s, 10.0);
   app::NumericSetting defaults;  // dt = 1 ms, (8, 3)
   // Measured 3.1e-4 (second order: 1.2e-3 at 2 ms, 7.4e-5 at 0.5 ms); the bound leaves a factor of 3.
   CHECK(app::pair_energy_drift(s, defaults, 0.3) < 1e-3);

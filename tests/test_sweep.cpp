@@ -14,6 +14,7 @@
 
 #include "app/campaign.h"
 #include "core/error.h"
+#include "core/physics.h"
 
 namespace fs = std::filesystem;
 
@@ -85,11 +86,11 @@ TEST_CASE("a campaign grid expands to the product of its lists plus its extra po
 TEST_CASE("the dipole force ratio sets mu per size ratio", "[campaign]") {
   core::Scene s;
   s.size_ratio = 0.4;
-  s.mu = app::mu_for_force_ratio(s, 10.0);
+  s.mu = core::mu_for_force_ratio(s, 10.0);
   // model.md: contact force over weight is about 2.0 mu^2 at r = 0.4.
   CHECK(s.mu * s.mu * 1.97 == Approx(10.0).epsilon(0.02));
   s.size_ratio = 0.2;
-  CHECK(app::mu_for_force_ratio(s, 126.0) == Approx(1.0).epsilon(0.02));
+  CHECK(core::mu_for_force_ratio(s, 126.0) == Approx(1.0).epsilon(0.02));
 }
 
 TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {

@@ -49,18 +49,12 @@ core::Scene apply(const core::Scene& base, const std::vector<Assignment>& set, c
     double r = std::strtod(ratio->c_str(), &end);
     if (ratio->empty() || *end || !(r >= 0) || !std::isfinite(r))
       throw core::InputError(where + ": dipole_force_ratio = " + *ratio + " must be a number >= 0");
-    s.mu = mu_for_force_ratio(s, r);
+    s.mu = core::mu_for_force_ratio(s, r);
   }
   core::validate(s);
   return s;
 }
 }  // namespace
-
-double mu_for_force_ratio(const core::Scene& s, double ratio) {
-  const double ra = s.radius_added(), d = 2 * ra;
-  const double weight = core::mass_of(ra, s.density) * s.gravity;
-  return std::sqrt(ratio * weight * d * d * d * d / core::kDipolePrefactor);
-}
 
 std::uint64_t Campaign::realization_seed(size_t p, int k) const {
   std::uint64_t h = hash_text(points[p].label, 1469598103934665603ULL ^ seed);

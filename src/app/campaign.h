@@ -45,9 +45,6 @@ struct Campaign {
   std::string run_dir(size_t p, int k) const;
 };
 
-// mu (A*m^2) for which the contact dipole force between two added disks is `ratio` times an added disk's weight.
-double mu_for_force_ratio(const core::Scene& s, double ratio);
-
 // Throws core::InputError naming the file, the key and the problem (empty grid, unknown key, duplicate point...).
 Campaign load_campaign(const std::string& path);
 

@@ -10,6 +10,7 @@
 #include "app/campaign.h"
 #include "app/common.h"
 #include "core/error.h"
+#include "core/physics.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -34,17 +35,18 @@ std::string num(double v) {
 
 std::vector<NumericSetting> settings() {
   // The reference first: the finest setting we can afford. Then one change at a time around the default.
+  // Names go into CSV unquoted: no commas.
   return {
       {"reference", 2.5e-4, 30, 10, 10, true, 0},
       {"default", 1e-3, 8, 3, 10, false, 0},
       {"dt=0.5ms", 5e-4, 8, 3, 10, false, 0},
       {"dt=2ms", 2e-3, 8, 3, 10, false, 0},
       {"dt=5ms", 5e-3, 8, 3, 10, false, 0},
-      {"iter(4,2)", 1e-3, 4, 2, 10, false, 0},
-      {"iter(20,8)", 1e-3, 20, 8, 10, false, 0},
+      {"iter4-2", 1e-3, 4, 2, 10, false, 0},
+      {"iter20-8", 1e-3, 20, 8, 10, false, 0},
       {"metres(L=1)", 1e-3, 8, 3, 1, false, 0},
       {"ccd-on", 1e-3, 8, 3, 10, true, 0},
-      {"dt=2ms,iter(20,8)", 2e-3, 20, 8, 10, false, 0},
+      {"dt=2ms+iter20-8", 2e-3, 20, 8, 10, false, 0},
       {"dipole-cutoff-1%", 1e-3, 8, 3, 10, false, 0.01},
   };
 }
@@ -59,7 +61,7 @@ int bench_accuracy(const AccuracyOptions& o) {
   core::Scene pure = base;
   pure.chi = 0;
   core::Scene magnetic = base;
-  magnetic.mu = mu_for_force_ratio(magnetic, 10.0);
+  magnetic.mu = core::mu_for_force_ratio(magnetic, 10.0);
   struct SceneCase {
     const char* name;
     core::Scene scene;

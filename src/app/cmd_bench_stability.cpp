@@ -47,7 +47,7 @@ int bench_stability(const StabilityOptions& o) {
       core::Scene s;
       s.size_ratio = c.r;
       s.dt = c.dt;
-      s.mu = mu_for_force_ratio(s, c.ratio);
+      s.mu = core::mu_for_force_ratio(s, c.ratio);
       s.settle_time = 2.0;
       s.duration = o.seconds;
       s.unsafe = true;  // run it anyway: we want to know whether it really breaks

@@ -13,6 +13,7 @@
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/trajectory.h"
 #include "record/mp4.h"
 #include "record/png.h"
 #include "render/camera.h"
@@ -168,12 +169,17 @@ int record_movie(const RecordOptions& o) {
   bool was_interrupted = false;
   std::exception_ptr sim_error;
   std::unique_ptr<sim::Hopper> hopper;
+  std::unique_ptr<io::TrajectoryWriter> trajectory;
   try {
     auto t0 = Clock::now();
     hopper = std::make_unique<sim::Hopper>(scene);
+    io::TrajectoryInfo tinfo = trajectory_info(*hopper, o.speed / o.fps, video.comment.empty() ? io::metadata_toml(scene, info) : video.comment);
+    trajectory = std::make_unique<io::TrajectoryWriter>(dir.file("trajectory.sstraj"), tinfo);
     for (long k = 0; k < n_frames; ++k) {
       hopper->advance_to(k * o.speed / o.fps);
-      core::Frame f = hopper->frame(true);
+      // Forces are summed only when they are shown or kept (the trajectory keeps them).
+      core::Frame f = hopper->frame(true, true);
+      trajectory->add(f, static_cast<int>(hopper->events().arches.size()));
       st.sim += since(t0);
       if (!frames.push(std::move(f))) break;
       t0 = Clock::now();
@@ -199,6 +205,7 @@ int record_movie(const RecordOptions& o) {
   const double wall = since(wall0);
 
   // --- finish: movie into place first, then the directory that describes it ---
+  if (trajectory) trajectory->close();
   if (mp4) {
     mp4->finish();
     st.convert = mp4->convert_seconds();
@@ -214,6 +221,8 @@ int record_movie(const RecordOptions& o) {
   const double per = 1e3 / std::max(1L, encoded);
   info.facts = {{"movie", "\"" + (o.no_movie ? std::string() : movie_path.filename().string()) + "\""},
                 {"frames", std::to_string(encoded)},
+                {"trajectory", "\"trajectory.sstraj\""},
+                {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(scene.n_total)))},
                 {"size", "\"" + std::to_string(video.width) + "x" + std::to_string(video.height) + "\""},
                 {"fps", std::to_string(o.fps)},
                 {"speed_sim_s_per_video_s", num(o.speed)},

@@ -8,6 +8,7 @@
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/trajectory.h"
 #include "sim/hopper.h"
 
 namespace app {
@@ -16,6 +17,7 @@ namespace {
 struct RunOptions {
   SceneOptions scene;
   std::string out;
+  double trajectory_fps = 0;
   bool force = false;
   bool quiet = false;
 };
@@ -28,6 +30,8 @@ std::string num(double v) {
 
 int run(const RunOptions& o) {
   const core::Scene scene = o.scene.load();
+  if (o.trajectory_fps < 0 || o.trajectory_fps > 1.0 / scene.dt)
+    throw core::InputError("--trajectory-fps " + std::to_string(o.trajectory_fps) + ": allowed range is 0 to 1/dt");
   io::OutputDir dir(o.out, o.force);  // checked before hours of simulation, not after
   install_interrupt_handler();
 
@@ -35,9 +39,24 @@ int run(const RunOptions& o) {
   auto wall0 = std::chrono::steady_clock::now();
   sim::Hopper hopper(scene);  // deposits, settles, opens: t = 0
   auto wall1 = std::chrono::steady_clock::now();
+  std::unique_ptr<io::TrajectoryWriter> trajectory;
+  long traj_frame = 0;
+  if (o.trajectory_fps > 0) {
+    io::RunInfo tinfo{command_line(), {}};
+    trajectory = std::make_unique<io::TrajectoryWriter>(
+        dir.file("trajectory.sstraj"), trajectory_info(hopper, 1.0 / o.trajectory_fps, io::metadata_toml(scene, tinfo)));
+  }
+  auto record_frame = [&] {
+    // Frames at k / fps of simulated time, to the nearest step.
+    if (!trajectory || hopper.time() < traj_frame / o.trajectory_fps - 0.5 * scene.dt) return;
+    trajectory->add(hopper.frame(true, true), static_cast<int>(hopper.events().arches.size()));
+    ++traj_frame;
+  };
+  record_frame();
   const double report_every = 0.5;
   for (double next = report_every; hopper.time() < scene.duration - 0.5 * scene.dt;) {
     hopper.step();
+    record_frame();
     if (hopper.time() >= next) {
       next += report_every;
       if (interrupted()) {
@@ -53,6 +72,7 @@ int run(const RunOptions& o) {
     }
   }
   hopper.finish();
+  if (trajectory) trajectory->close();
   progress.finish();
   auto wall2 = std::chrono::steady_clock::now();
   const double settle_wall = std::chrono::duration<double>(wall1 - wall0).count();
@@ -89,6 +109,8 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd);
   cmd->add_option("--out", opts->out, "output directory (created whole when the run completes)")->required();
+  cmd->add_option("--trajectory-fps", opts->trajectory_fps,
+                  "also write trajectory.sstraj with this many frames per simulated second (for inspect)");
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--quiet", opts->quiet, "print nothing but errors");
   cmd->callback([opts, &action] { action = [opts] { return run(*opts); }; });

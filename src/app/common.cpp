@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "io/trajectory.h"
+#include "sim/hopper.h"
 
 namespace app {
 
@@ -46,6 +48,19 @@ core::Scene SceneOptions::load() const {
 std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
 
 std::string command_line() { return g_command; }
+
+io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata) {
+  io::TrajectoryInfo t;
+  t.n_particles = static_cast<std::uint32_t>(h.particle_count());
+  t.frame_interval = frame_interval;
+  t.clog_timeout = h.scene().clog_timeout;
+  t.clog_min_gap = h.scene().clog_min_gap;
+  t.radius_original = h.scene().radius_original;
+  for (double r : h.radii()) t.radius.push_back(static_cast<float>(r));
+  t.species = h.species();
+  t.metadata = metadata;
+  return t;
+}
 void set_command_line(int argc, char** argv) {
   g_command.clear();
   for (int i = 0; i < argc; ++i) g_command += (i ? " " : "") + std::string(argv[i]);

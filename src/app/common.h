@@ -12,7 +12,17 @@
 
 #include "core/scene.h"
 
+namespace sim {
+class Hopper;
+}
+namespace io {
+struct TrajectoryInfo;
+}
+
 namespace app {
+
+// The header of a trajectory of `h`: radii, species, the scene's clog settings, `metadata` (TOML text).
+io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata);
 
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {
@@ -58,6 +68,7 @@ void add_bench_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_record_command(CLI::App& app, Action& action);
 void add_sweep_command(CLI::App& app, Action& action);
+void add_inspect_command(CLI::App& app, Action& action);
 void add_figures_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet);

@@ -30,6 +30,13 @@ inline double dipole_safe_dt(const Scene& s) {
   return 1.0 / omega;
 }
 
+// mu (A*m^2) for which the contact dipole force between two added disks is `ratio` times an added disk's weight.
+inline double mu_for_force_ratio(const Scene& s, double ratio) {
+  const double d = 2.0 * s.radius_added();
+  const double weight = mass_of(s.radius_added(), s.density) * s.gravity;
+  return std::sqrt(ratio * weight * d * d * d * d / kDipolePrefactor);
+}
+
 // Largest time step (s) at which no disk moves more than the smallest diameter in one step at the free-fall
 // speed from the top of the container, sqrt(2 g H): beyond it disks tunnel through each other and the walls.
 inline double kinematic_safe_dt(const Scene& s) {

@@ -216,9 +216,15 @@ void validate(const Scene& s) {
 Scene load_scene(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path) {
   toml::table tbl;
   try {
-    tbl = toml::parse(in, path);
+    tbl = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream o;
     o << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": malformed TOML: "

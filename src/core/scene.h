@@ -89,6 +89,8 @@ void validate(const Scene& s);
 
 // Read a scene file (TOML, flat keys). Unknown keys and wrong types are errors. Does not validate.
 Scene load_scene(const std::string& path);
+// The same from TOML text; `origin` names it in errors.
+Scene parse_scene(const std::string& text, const std::string& origin);
 // Apply "key=value" overrides from the command line.
 void apply_overrides(Scene& s, const std::vector<std::string>& assignments);
 

@@ -18,7 +18,7 @@ struct Style {
   Palette palette = Palette::Paper;
   ColorMode color = ColorMode::Species;
   double speed_max = 0.5;  // m/s at the top of the colour scale
-  double force_max = 2.0;  // N at the top of the colour scale
+  double force_max = 20.0;  // N at the top of the colour scale (~99th percentile of the default scene)
   bool transparent = false;  // transparent background (PNG)
   bool show_arch = true;
 };

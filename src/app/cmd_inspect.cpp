@@ -1,0 +1,104 @@
+// siloscope inspect DIR: step through a recorded run frame by frame, in a window or from a script off-screen.
+// siloscope live SCENE: the simulation running in a window, with a panel to change the scene and restart.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/common.h"
+#include "core/error.h"
+#include "io/metadata.h"
+#include "io/trajectory.h"
+#include "render/context.h"
+#include "ui/inspector.h"
+#include "ui/window.h"
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct InspectOptions {
+  std::string path, script, size = "1280x720", screenshot;
+  int frames = 0;
+  bool quiet = false;
+};
+
+struct LiveOptions {
+  SceneOptions scene;
+  std::string size = "1280x720", screenshot;
+  int frames = 0;
+};
+
+fs::path trajectory_path(const std::string& p) {
+  fs::path path = p;
+  if (fs::is_directory(path)) path /= "trajectory.sstraj";
+  if (!fs::exists(path))
+    throw core::InputError(p + ": no trajectory here (record writes one; run writes one with --trajectory-fps 30)");
+  return path;
+}
+
+void size_of(const std::string& s, int& w, int& h) {
+  char x = 0, extra = 0;
+  if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 320 || h < 240)
+    throw core::InputError("--size " + s + ": expected WIDTHxHEIGHT of at least 320x240");
+}
+
+int inspect(const InspectOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  io::Trajectory traj(trajectory_path(o.path));
+  const core::Scene scene = core::parse_scene(traj.info().metadata, o.path + " (trajectory metadata)");
+  ui::Inspector insp(traj, scene);
+  const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!o.quiet)
+    std::fprintf(stderr, "trajectory: %ld frames%s, %zu clogs, opened in %.0f ms\n", traj.size(),
+                 traj.truncated() ? " (cut off: a partial last frame was dropped)" : "", insp.clogs().size(), open_ms);
+  if (!o.script.empty()) {
+    render::OffscreenContext ctx;
+    ui::Painter painter;
+    const int n = ui::run_script(insp, painter, o.script);
+    if (!o.quiet) std::fprintf(stderr, "script: %d commands done\n", n);
+    return 0;
+  }
+  ui::WindowOptions w;
+  size_of(o.size, w.width, w.height);
+  w.screenshot = o.screenshot;
+  w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
+  const double redraw = ui::run_inspector_window(insp, w);
+  if (!o.quiet && redraw > 0) std::fprintf(stderr, "median redraw after a frame change: %.1f ms\n", redraw);
+  return 0;
+}
+
+int live(const LiveOptions& o) {
+  core::Scene scene = o.scene.load();
+  ui::WindowOptions w;
+  size_of(o.size, w.width, w.height);
+  w.screenshot = o.screenshot;
+  w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
+  ui::run_live_window(scene, w);
+  return 0;
+}
+}  // namespace
+
+void add_inspect_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<InspectOptions>();
+  auto* cmd = app.add_subcommand("inspect", "step through a recorded run frame by frame (window, or --script off-screen)");
+  cmd->set_version_flag("--version", io::version_string());
+  cmd->add_option("run", o->path, "a run or recording directory (with trajectory.sstraj), or the file")->required();
+  cmd->add_option("--script", o->script, "run inspector commands from FILE off-screen, no window (see docs/inspector.md)");
+  cmd->add_option("--size", o->size, "window size")->capture_default_str();
+  cmd->add_option("--screenshot", o->screenshot, "save the window's pixels to PNG after --frames frames, then close");
+  cmd->add_option("--frames", o->frames, "close the window after N frames (stepping one frame each)");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  cmd->callback([o, &action] { action = [o] { return inspect(*o); }; });
+
+  auto l = std::make_shared<LiveOptions>();
+  auto* lc = app.add_subcommand("live", "the simulation running in a window, with a panel to change mu, r, chi, kicks");
+  lc->set_version_flag("--version", io::version_string());
+  l->scene.add_to(*lc);
+  lc->add_option("--size", l->size, "window size")->capture_default_str();
+  lc->add_option("--screenshot", l->screenshot, "save the window's pixels to PNG after --frames frames, then close");
+  lc->add_option("--frames", l->frames, "close the window after N frames");
+  lc->callback([l, &action] { action = [l] { return live(*l); }; });
+}
+
+}  // namespace app

@@ -1,0 +1,172 @@
+#include "io/trajectory.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace io {
+
+namespace {
+constexpr char kMagic[8] = {'S', 'I', 'L', 'O', 'T', 'R', 'A', 'J'};
+constexpr size_t kFixedHeader = 64;
+
+size_t pad8(size_t n) { return (n + 7) & ~size_t(7); }
+
+template <class T>
+void put(std::vector<unsigned char>& b, size_t at, const T& v) {
+  std::memcpy(&b[at], &v, sizeof v);
+}
+template <class T>
+T get(const unsigned char* b, size_t at) {
+  T v;
+  std::memcpy(&v, b + at, sizeof v);
+  return v;
+}
+}  // namespace
+
+size_t TrajectoryWriter::frame_bytes(std::uint32_t n) { return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + 24 * size_t(n); }
+
+TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const TrajectoryInfo& info)
+    : path_(path.string()), n_(info.n_particles) {
+  f_ = std::fopen(path_.c_str(), "wb");
+  if (!f_) throw core::RuntimeFault("cannot write trajectory " + path_ + ": " + std::strerror(errno));
+  const size_t after_arrays = pad8(kFixedHeader + 4 * size_t(n_) + n_);
+  const size_t header = pad8(after_arrays + 4 + info.metadata.size());
+  std::vector<unsigned char> h(header, 0);
+  std::memcpy(h.data(), kMagic, 8);
+  put<std::uint32_t>(h, 8, kTrajectoryVersion);
+  put<std::uint32_t>(h, 12, static_cast<std::uint32_t>(header));
+  put<std::uint32_t>(h, 16, n_);
+  put<std::uint32_t>(h, 20, kTrajectoryMaxArch);
+  put<std::uint32_t>(h, 24, static_cast<std::uint32_t>(frame_bytes(n_)));
+  put<double>(h, 32, info.frame_interval);
+  put<double>(h, 40, info.clog_timeout);
+  put<double>(h, 48, info.clog_min_gap);
+  put<double>(h, 56, info.radius_original);
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    put<float>(h, kFixedHeader + 4 * i, info.radius[i]);
+    h[kFixedHeader + 4 * size_t(n_) + i] = static_cast<unsigned char>(info.species[i]);
+  }
+  put<std::uint32_t>(h, after_arrays, static_cast<std::uint32_t>(info.metadata.size()));
+  std::memcpy(&h[after_arrays + 4], info.metadata.data(), info.metadata.size());
+  if (std::fwrite(h.data(), 1, h.size(), f_) != h.size()) throw core::RuntimeFault("cannot write trajectory " + path_);
+  buf_.resize(frame_bytes(n_));
+}
+
+TrajectoryWriter::~TrajectoryWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void TrajectoryWriter::add(const core::Frame& f, int long_arches) {
+  if (f.particles.size() != n_) throw core::RuntimeFault("trajectory: frame with a different particle count");
+  std::fill(buf_.begin(), buf_.end(), 0);
+  put<double>(buf_, 0, f.t);
+  put<double>(buf_, 8, f.since_last_exit);
+  put<std::int64_t>(buf_, 16, f.exits_original);
+  put<std::int64_t>(buf_, 24, f.exits_added);
+  put<std::int32_t>(buf_, 32, long_arches);
+  const int count = static_cast<int>(std::min<size_t>(f.arch.size(), kTrajectoryMaxArch));
+  put<std::int32_t>(buf_, 36, count);
+  for (int k = 0; k < kTrajectoryMaxArch; ++k) put<std::int32_t>(buf_, 40 + 4 * k, k < count ? f.arch[k] : -1);
+  const size_t base = 40 + 4 * kTrajectoryMaxArch, n = n_;
+  for (size_t i = 0; i < n; ++i) {
+    const auto& p = f.particles[i];
+    put<float>(buf_, base + 4 * i, p.x);
+    put<float>(buf_, base + 4 * (n + i), p.y);
+    put<float>(buf_, base + 4 * (2 * n + i), p.angle);
+    put<float>(buf_, base + 4 * (3 * n + i), p.vx);
+    put<float>(buf_, base + 4 * (4 * n + i), p.vy);
+    put<float>(buf_, base + 4 * (5 * n + i), p.force);
+  }
+  if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
+    throw core::RuntimeFault("cannot write trajectory " + path_ + ": " + std::strerror(errno));
+  // Whole frames reach the file as the run goes, so a cut-off run keeps what it recorded.
+  if (++frames_ % 30 == 0) std::fflush(f_);
+}
+
+void TrajectoryWriter::close() {
+  if (!f_) return;
+  const bool ok = std::fflush(f_) == 0;
+  const bool closed = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (!ok || !closed) throw core::RuntimeFault("cannot finish trajectory " + path_ + ": " + std::strerror(errno));
+}
+
+Trajectory::Trajectory(const std::filesystem::path& path) {
+  const std::string p = path.string();
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw core::InputError(p + ": cannot open trajectory file");
+  std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (data.size() < kFixedHeader || std::memcmp(data.data(), kMagic, 8) != 0)
+    throw core::InputError(p + ": not a siloscope trajectory (no SILOTRAJ header)");
+  const auto version = get<std::uint32_t>(data.data(), 8);
+  if (version != kTrajectoryVersion)
+    throw core::InputError(p + ": trajectory version " + std::to_string(version) + "; this siloscope reads version " +
+                           std::to_string(kTrajectoryVersion));
+  const auto header = get<std::uint32_t>(data.data(), 12);
+  info_.n_particles = get<std::uint32_t>(data.data(), 16);
+  const auto max_arch = get<std::uint32_t>(data.data(), 20);
+  const auto fbytes = get<std::uint32_t>(data.data(), 24);
+  if (max_arch != kTrajectoryMaxArch || fbytes != TrajectoryWriter::frame_bytes(info_.n_particles) ||
+      header > data.size() || header < kFixedHeader + 5 * size_t(info_.n_particles) + 4)
+    throw core::InputError(p + ": corrupted trajectory header");
+  info_.frame_interval = get<double>(data.data(), 32);
+  info_.clog_timeout = get<double>(data.data(), 40);
+  info_.clog_min_gap = get<double>(data.data(), 48);
+  info_.radius_original = get<double>(data.data(), 56);
+  const size_t n = info_.n_particles;
+  for (size_t i = 0; i < n; ++i) {
+    info_.radius.push_back(get<float>(data.data(), kFixedHeader + 4 * i));
+    info_.species.push_back(static_cast<core::Species>(data[kFixedHeader + 4 * n + i] ? 1 : 0));
+  }
+  const size_t after_arrays = pad8(kFixedHeader + 5 * n);
+  const auto meta = get<std::uint32_t>(data.data(), after_arrays);
+  if (after_arrays + 4 + meta > header) throw core::InputError(p + ": corrupted trajectory header (metadata)");
+  info_.metadata.assign(reinterpret_cast<const char*>(&data[after_arrays + 4]), meta);
+  const size_t body = data.size() - header, count = body / fbytes;
+  truncated_ = body % fbytes != 0;
+  for (size_t k = 0; k < count; ++k) {
+    const unsigned char* f = &data[header + k * fbytes];
+    frames_.emplace_back(f, f + fbytes);
+    long_arches_.push_back(get<std::int32_t>(f, 32));
+  }
+}
+
+double Trajectory::time(long k) const { return get<double>(frames_[static_cast<size_t>(k)].data(), 0); }
+double Trajectory::since_last_exit(long k) const { return get<double>(frames_[static_cast<size_t>(k)].data(), 8); }
+
+core::Frame Trajectory::frame(long k) const {
+  if (k < 0 || k >= size())
+    throw core::InputError("frame " + std::to_string(k) + " is out of range; the trajectory has frames 0 to " +
+                           std::to_string(size() - 1));
+  const unsigned char* b = frames_[static_cast<size_t>(k)].data();
+  core::Frame f;
+  f.t = get<double>(b, 0);
+  f.since_last_exit = get<double>(b, 8);
+  f.exits_original = get<std::int64_t>(b, 16);
+  f.exits_added = get<std::int64_t>(b, 24);
+  const int count = get<std::int32_t>(b, 36);
+  const size_t n = info_.n_particles;
+  for (int j = 0; j < std::min(count, kTrajectoryMaxArch); ++j) {
+    const int id = get<std::int32_t>(b, 40 + 4 * j);
+    if (id >= 0 && static_cast<size_t>(id) < n) f.arch.push_back(id);
+  }
+  const size_t base = 40 + 4 * kTrajectoryMaxArch;
+  f.particles.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    core::Particle& q = f.particles[i];
+    q.x = get<float>(b, base + 4 * i);
+    q.y = get<float>(b, base + 4 * (n + i));
+    q.angle = get<float>(b, base + 4 * (2 * n + i));
+    q.vx = get<float>(b, base + 4 * (3 * n + i));
+    q.vy = get<float>(b, base + 4 * (4 * n + i));
+    q.force = get<float>(b, base + 4 * (5 * n + i));
+    q.radius = info_.radius[i];
+    q.species = info_.species[i];
+  }
+  return f;
+}
+
+}  // namespace io

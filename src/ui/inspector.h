@@ -1,0 +1,98 @@
+// The inspector's state and its command language. The scripted mode runs commands from a file; the window's
+// buttons and keys run the same commands, so a figure made by clicking can be written down and made again.
+//
+//   goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end
+//   step N                       one or more frames forward (N > 0) or back (N < 0)
+//   next clog | prev clog        the last frame of the next / previous clog (the arch fully formed)
+//   zoom hopper|outlet|split|window:X0,Y0,X1,Y1     the camera;  zoom by F   magnify about the view centre
+//   pan DX DY                    move the view, metres
+//   color species|speed|force    palette paper|colorblind    overlay all|none|time,counts,...    arch on|off
+//   snapshot FILE.png [WxH]      re-render the current view off-screen at any resolution (default 1920x1080)
+//   export FILE.mp4 FROM TO [WxH] [FPS]    frames FROM..TO as a movie
+//   print                        frame, time, clog timer and arch members on standard output
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/image.h"
+#include "io/trajectory.h"
+#include "render/camera.h"
+#include "render/overlay.h"
+#include "render/palette.h"
+
+namespace render {
+class Renderer;
+class Overlay;
+class Target;
+}  // namespace render
+
+namespace ui {
+
+// A stretch of frames during which nothing left for at least clog_min_gap.
+struct ClogSpan {
+  long first, last;  // frames
+  double duration;   // s, the clog timer at its last frame
+  bool removed;      // ended by the clog_timeout rule (a long-lasting arch)
+};
+
+// Renders frames into images at any size in the current GL context (OSMesa or a window's).
+class Painter {
+ public:
+  Painter();
+  ~Painter();
+  // Draws into an off-screen target of w x h (kept while the size stays) and reads it back.
+  core::Image paint(const core::Frame& f, const core::Geometry& geo, const std::vector<render::View>& views,
+                    const render::Style& style, const render::OverlayOptions& overlay,
+                    const render::OverlayData& data, int w, int h);
+  render::Renderer& renderer() { return *renderer_; }
+  render::Overlay& overlay() { return *overlay_; }
+
+ private:
+  std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<render::Overlay> overlay_;
+  std::unique_ptr<render::Target> target_;
+};
+
+class Inspector {
+ public:
+  Inspector(const io::Trajectory& traj, const core::Scene& scene);
+
+  // Run one command; throws core::InputError naming the problem (unknown command, frame out of range...).
+  // `painter` is needed by snapshot and export only.
+  void execute(const std::string& line, Painter* painter = nullptr);
+
+  long frame_index() const { return frame_; }
+  void set_frame(long k);  // clamps to the trajectory
+  core::Frame current() const { return traj_.frame(frame_); }
+  const std::vector<ClogSpan>& clogs() const { return clogs_; }
+  const io::Trajectory& trajectory() const { return traj_; }
+  const core::Geometry& geometry() const { return geo_; }
+  const core::Scene& scene() const { return scene_; }
+
+  // The views for an image of w x h: the camera preset, then zoom and pan.
+  std::vector<render::View> views(int w, int h) const;
+  core::Image render_current(Painter& p, int w, int h) const;
+
+  std::string camera = "split";
+  double zoom = 1.0;         // magnification on top of the preset
+  core::Vec2 pan{0, 0};      // m
+  render::Style style;
+  render::OverlayOptions overlay;
+  render::OverlayData overlay_data;
+  std::string last_output;  // what `print` printed last
+
+ private:
+  const io::Trajectory& traj_;
+  core::Scene scene_;
+  core::Geometry geo_;
+  long frame_ = 0;
+  std::vector<ClogSpan> clogs_;
+};
+
+// Run a script file; errors carry the file name and line number. Returns the number of commands run.
+int run_script(Inspector& insp, Painter& painter, const std::string& path);
+
+}  // namespace ui

@@ -1,0 +1,168 @@
+#include "ui/panels.h"
+
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/arch.h"
+#include "core/error.h"
+
+namespace ui {
+
+namespace {
+void remember(PanelState& ps, const char* name) {
+  ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  ps.rects[name] = {a.x, a.y, b.x, b.y};
+}
+const char* kSizes[] = {"1920x1080", "3840x2160", "1280x720", "2048x2048"};
+}  // namespace
+
+void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command) {
+  try {
+    insp.execute(command, painter);
+    ps.message = command;
+  } catch (const std::exception& e) {
+    ps.message = e.what();
+  }
+}
+
+void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h, float timeline_y,
+                 float timeline_w, float timeline_h) {
+  const long n = insp.trajectory().size();
+  ImGui::SetNextWindowPos(ImVec2(x, 0));
+  ImGui::SetNextWindowSize(ImVec2(w, h));
+  ImGui::Begin("siloscope inspect", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  const core::Frame f = insp.current();
+
+  // Transport.
+  int frame = static_cast<int>(insp.frame_index());
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderInt("##frame", &frame, 0, static_cast<int>(n - 1), "frame %d")) insp.set_frame(frame);
+  remember(ps, "frame");
+  ImGui::Text("t = %.3f s   clog timer %.2f s", f.t, f.since_last_exit);
+  if (ImGui::Button("|<")) run_command(insp, ps, painter, "goto start");
+  ImGui::SameLine();
+  if (ImGui::Button("< clog")) run_command(insp, ps, painter, "prev clog");
+  remember(ps, "prev clog");
+  ImGui::SameLine();
+  if (ImGui::Button("<")) insp.set_frame(insp.frame_index() - 1);
+  remember(ps, "step back");
+  ImGui::SameLine();
+  if (ImGui::Button(ps.playing ? "pause" : "play")) ps.playing = !ps.playing;
+  remember(ps, "play");
+  ImGui::SameLine();
+  if (ImGui::Button(">")) insp.set_frame(insp.frame_index() + 1);
+  remember(ps, "step forward");
+  ImGui::SameLine();
+  if (ImGui::Button("clog >")) run_command(insp, ps, painter, "next clog");
+  remember(ps, "next clog");
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) run_command(insp, ps, painter, "goto end");
+  ImGui::SetNextItemWidth(-1);
+  ImGui::SliderFloat("##speed", &ps.speed, 0.05f, 10.0f, "playback %.2fx", ImGuiSliderFlags_Logarithmic);
+
+  // View.
+  ImGui::Separator();
+  const char* cams[] = {"split", "outlet", "hopper"};
+  for (const char* c : cams) {
+    if (ImGui::RadioButton(c, insp.camera == c)) run_command(insp, ps, painter, std::string("zoom ") + c);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+  float zoom = static_cast<float>(insp.zoom);
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic)) insp.zoom = zoom;
+  remember(ps, "zoom");
+  int color = static_cast<int>(insp.style.color);
+  ImGui::RadioButton("species", &color, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("speed", &color, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("force", &color, 2);
+  insp.style.color = static_cast<render::ColorMode>(color);
+  bool cb = insp.style.palette == render::Palette::ColorBlind;
+  if (ImGui::Checkbox("colour-blind palette", &cb)) insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
+  ImGui::SameLine();
+  ImGui::Checkbox("arch", &insp.style.show_arch);
+  auto& o = insp.overlay;
+  ImGui::Checkbox("time", &o.time);
+  ImGui::SameLine();
+  ImGui::Checkbox("counts", &o.counts);
+  ImGui::SameLine();
+  ImGui::Checkbox("Q~", &o.rate);
+  ImGui::SameLine();
+  ImGui::Checkbox("timer", &o.timer);
+  ImGui::Checkbox("legend", &o.legend);
+  ImGui::SameLine();
+  ImGui::Checkbox("scale", &o.scale);
+  ImGui::SameLine();
+  ImGui::Checkbox("arch info", &o.arch);
+
+  // The arch of this frame.
+  ImGui::Separator();
+  if (f.arch.empty()) {
+    ImGui::TextUnformatted("no arch spans the hopper in this frame");
+  } else {
+    std::vector<core::Vec2> pos;
+    std::vector<double> rad;
+    for (const auto& p : f.particles) pos.push_back({p.x, p.y}), rad.push_back(p.radius);
+    const auto g = core::arch_geometry(f.arch, pos, rad);
+    int added = 0;
+    for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
+    ImGui::Text("arch: %zu disks, %d added%s", f.arch.size(), added,
+                f.since_last_exit >= insp.overlay_data.clog_min_gap ? ", clogging" : ", forming");
+    ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
+    std::string members;
+    for (int id : f.arch) members += std::to_string(id) + (f.particles[id].species == core::Species::Added ? "a " : "o ");
+    ImGui::TextWrapped("members (left to right, o/a = original/added): %s", members.c_str());
+  }
+  ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
+
+  // Outputs.
+  ImGui::Separator();
+  ImGui::SetNextItemWidth(0.55f * w);
+  ImGui::InputText("##snap", ps.snapshot_path, sizeof ps.snapshot_path);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
+  if (ImGui::Button("snapshot (re-rendered off-screen)"))
+    run_command(insp, ps, painter, std::string("snapshot ") + ps.snapshot_path + " " + kSizes[ps.snapshot_size]);
+  remember(ps, "snapshot");
+  ImGui::SetNextItemWidth(0.3f * w);
+  ImGui::InputInt("from", &ps.export_from, 0);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(0.3f * w);
+  ImGui::InputInt("to", &ps.export_to, 0);
+  ImGui::SetNextItemWidth(0.55f * w);
+  ImGui::InputText("##clip", ps.export_path, sizeof ps.export_path);
+  ImGui::SameLine();
+  if (ImGui::Button("export mp4"))
+    run_command(insp, ps, painter, std::string("export ") + ps.export_path + " " + std::to_string(ps.export_from) + " " +
+                                       std::to_string(ps.export_to));
+  ImGui::Separator();
+  ImGui::TextWrapped("%s", ps.message.c_str());
+  ImGui::TextDisabled("keys: left/right step, space play, n/p next/prev clog; wheel zoom, drag pan");
+  if (ps.last_redraw_ms > 0) ImGui::TextDisabled("last redraw %.1f ms", ps.last_redraw_ms);
+  ImGui::End();
+
+  // Timeline: clogs in orange (red when the rule removed the arch), the current frame as a line; click to seek.
+  ImGui::SetNextWindowPos(ImVec2(0, timeline_y));
+  ImGui::SetNextWindowSize(ImVec2(timeline_w, timeline_h));
+  ImGui::Begin("timeline", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
+  ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const float bw = ImGui::GetContentRegionAvail().x, bh = ImGui::GetContentRegionAvail().y;
+  ImGui::InvisibleButton("##timeline", ImVec2(bw, std::max(4.0f, bh)));
+  remember(ps, "timeline");
+  if (ImGui::IsItemActive()) insp.set_frame(std::lround((ImGui::GetIO().MousePos.x - p0.x) / bw * (n - 1)));
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(p0, ImVec2(p0.x + bw, p0.y + bh), IM_COL32(235, 235, 235, 255));
+  auto xof = [&](long k) { return p0.x + bw * static_cast<float>(k) / std::max(1L, n - 1); };
+  for (const auto& c : insp.clogs())
+    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bh), ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bh),
+                      c.removed ? IM_COL32(200, 40, 30, 255) : IM_COL32(240, 150, 30, 255));
+  dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bh), IM_COL32(0, 0, 0, 255), 2);
+  ImGui::End();
+}
+
+}  // namespace ui

@@ -1,0 +1,34 @@
+// The inspector's Dear ImGui panels, separate from the window so they can be driven by synthetic input in
+// tests. Every control runs an Inspector command (see inspector.h).
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+
+#include "ui/inspector.h"
+
+namespace ui {
+
+struct PanelState {
+  bool playing = false;
+  float speed = 1.0f;               // video frames per display frame, scaled by the trajectory's frame rate
+  std::string message;              // the last result or error, shown in the panel
+  char snapshot_path[256] = "snapshot.png";
+  int snapshot_size = 0;            // index into the size presets
+  int export_from = 0, export_to = 0;
+  char export_path[256] = "clip.mp4";
+  double last_redraw_ms = 0;
+  // Screen rectangles (x0, y0, x1, y1) of named widgets from the last frame, for tests and tooltips.
+  std::map<std::string, std::array<float, 4>> rects;
+};
+
+// Draw the control panel at (x, 0) of width w, and the timeline at (0, y) of size timeline_w x timeline_h.
+// Must be called between ImGui::NewFrame() and ImGui::Render().
+void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h, float timeline_y,
+                 float timeline_w, float timeline_h);
+
+// Run a command and put its outcome (or error) in ps.message instead of throwing.
+void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command);
+
+}  // namespace ui

@@ -1,0 +1,293 @@
+#include "ui/window.h"
+
+#include "render/gl.h"  // glad first: GLFW must not pull in a GL header
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+
+#include "core/error.h"
+#include "core/physics.h"
+#include "record/png.h"
+#include "render/context.h"
+#include "render/renderer.h"
+#include "sim/hopper.h"
+#include "ui/panels.h"
+
+bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
+void ImGui_ImplOpenGL3_Shutdown();
+void ImGui_ImplOpenGL3_NewFrame();
+void ImGui_ImplOpenGL3_RenderDrawData(ImDrawData* draw_data);
+
+namespace ui {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+constexpr float kPanelWidth = 400, kTimelineHeight = 48;
+
+void* glfw_proc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+
+// A GLFW window with a GL 3.3 core context and an ImGui context of its own.
+class Window {
+ public:
+  Window(int w, int h, const char* title) {
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+      throw core::InputError("no display (DISPLAY is not set): the window needs one; use --script FILE for the "
+                             "scripted, off-screen inspector, or run under xvfb-run");
+    if (!glfwInit()) throw core::InputError("cannot open a window on this display; use --script FILE instead");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    win_ = glfwCreateWindow(w, h, title, nullptr, nullptr);
+    if (!win_) {
+      glfwTerminate();
+      throw core::InputError("cannot create an OpenGL 3.3 window on this display; use --script FILE instead");
+    }
+    glfwMakeContextCurrent(win_);
+    glfwSwapInterval(1);
+    render::load_gl(&glfw_proc);
+    ctx_ = ImGui::CreateContext();
+    ImGui::SetCurrentContext(ctx_);
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsLight();
+    ImGui_ImplGlfw_InitForOpenGL(win_, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+  }
+  ~Window() {
+    ImGui::SetCurrentContext(ctx_);
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext(ctx_);
+    glfwDestroyWindow(win_);
+    glfwTerminate();
+  }
+  GLFWwindow* get() const { return win_; }
+  ImGuiContext* imgui() const { return ctx_; }
+
+ private:
+  GLFWwindow* win_ = nullptr;
+  ImGuiContext* ctx_ = nullptr;
+};
+
+// Mouse wheel zooms about the cursor, dragging pans; only over the scene, not over the panels.
+void mouse_view(Inspector& insp, float scene_w, float scene_h) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse || io.MousePos.x < 0 || io.MousePos.x > scene_w || io.MousePos.y > scene_h) return;
+  auto views = insp.views(static_cast<int>(scene_w), static_cast<int>(scene_h));
+  const render::View* main = &views.front();
+  for (const auto& v : views)
+    if (v.px_per_m() > main->px_per_m()) main = &v;
+  if (io.MouseWheel != 0) insp.zoom = std::clamp(insp.zoom * std::pow(1.15, io.MouseWheel), 0.1, 100.0);
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+    insp.pan.x -= io.MouseDelta.x / main->px_per_m();
+    insp.pan.y += io.MouseDelta.y / main->px_per_m();
+  }
+}
+
+void keys(Inspector& insp, PanelState& ps, Painter* painter) {
+  if (ImGui::GetIO().WantTextInput) return;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) insp.set_frame(insp.frame_index() + 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) insp.set_frame(insp.frame_index() - 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) ps.playing = !ps.playing;
+  if (ImGui::IsKeyPressed(GLFW_KEY_N, false)) run_command(insp, ps, painter, "next clog");
+  if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) run_command(insp, ps, painter, "prev clog");
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Home), false)) run_command(insp, ps, painter, "goto start");
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_End), false)) run_command(insp, ps, painter, "goto end");
+}
+
+void save_screenshot(const std::string& path, int w, int h) {
+  core::Image img;
+  img.width = w;
+  img.height = h;
+  std::vector<std::uint8_t> raw(static_cast<size_t>(w) * h * 4);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  img.rgba.resize(raw.size());
+  for (int y = 0; y < h; ++y)
+    std::copy_n(&raw[static_cast<size_t>(h - 1 - y) * w * 4], static_cast<size_t>(w) * 4, &img.rgba[static_cast<size_t>(y) * w * 4]);
+  for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+  record::write_png(path, img, true);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// One window frame: the scene (renderer + in-frame overlay) on the left, ImGui panels over the rest.
+template <class Panels>
+void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspector& insp, Panels&& panels) {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(win.get(), &fw, &fh);
+  const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
+  const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight));
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  auto views = insp.views(scene_w, scene_h);
+  painter.renderer().draw(f, insp.geometry(), views, insp.style, fw, fh);
+  painter.overlay().draw(f, insp.overlay_data, insp.overlay, views, insp.style, scene_w, fh);
+  ImGui::SetCurrentContext(win.imgui());
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh), static_cast<float>(scene_h));
+  ImGui::Render();
+  glViewport(0, 0, fw, fh);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+}  // namespace
+
+double run_inspector_window(Inspector& insp, const WindowOptions& o) {
+  Window win(o.width, o.height, "siloscope inspect");
+  Painter painter;
+  PanelState ps;
+  ps.export_to = static_cast<int>(insp.trajectory().size() - 1);
+  std::vector<double> redraws;
+  long shown = -1;
+  double play_acc = 0;
+  auto last = Clock::now();
+  for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
+    glfwPollEvents();
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (ps.playing) {
+      // Play at the recording's own pace times the playback speed.
+      play_acc += dt * ps.speed / insp.trajectory().info().frame_interval;
+      const long step = static_cast<long>(play_acc);
+      play_acc -= step;
+      insp.set_frame(insp.frame_index() + step);
+      if (insp.frame_index() == insp.trajectory().size() - 1) ps.playing = false;
+    }
+    const auto t0 = Clock::now();
+    const core::Frame f = insp.current();
+    draw_frame(win, painter, f, insp, [&](float scene_w, float fw, float fh, float scene_h) {
+      ImGui::SetCurrentContext(win.imgui());
+      keys(insp, ps, &painter);
+      mouse_view(insp, scene_w, scene_h);
+      draw_panels(insp, ps, &painter, scene_w, fw - scene_w, fh, scene_h, scene_w, fh - scene_h);
+    });
+    if (insp.frame_index() != shown || n == 0) {
+      glFinish();  // the redraw is done when the pixels are
+      ps.last_redraw_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
+      if (n > 0) redraws.push_back(ps.last_redraw_ms);
+      shown = insp.frame_index();
+    }
+    if (o.frames > 0 && n + 1 >= o.frames) {
+      int fw = 0, fh = 0;
+      glfwGetFramebufferSize(win.get(), &fw, &fh);
+      if (!o.screenshot.empty()) save_screenshot(o.screenshot, fw, fh);
+      break;
+    }
+    glfwSwapBuffers(win.get());
+    // In tests, step through frames so redraw times are measured.
+    if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
+  }
+  return median(redraws);
+}
+
+double run_live_window(const core::Scene& base, const WindowOptions& o) {
+  Window win(o.width, o.height, "siloscope live");
+  Painter painter;
+  core::Scene scene = base;
+  auto hopper = std::make_unique<sim::Hopper>(scene);
+  float ratio = 0, kick = static_cast<float>(scene.kick_impulse_max), speed = 1.0f;
+  std::string message = "running";
+  render::Style style;
+  render::OverlayOptions overlay;
+  std::string camera = "split";
+  float zoom = 1.0f;
+  auto last = Clock::now();
+  for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
+    glfwPollEvents();
+    const auto now = Clock::now();
+    const double wall = std::min(0.1, std::chrono::duration<double>(now - last).count());
+    last = now;
+    try {
+      hopper->advance_to(hopper->time() + speed * wall);
+    } catch (const std::exception& e) {
+      message = e.what();
+    }
+    const core::Frame f = hopper->frame(true, style.color == render::ColorMode::Force);
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(win.get(), &fw, &fh);
+    const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
+    auto views = render::layout_views(camera, hopper->geometry(), scene_w, fh);
+    for (auto& v : views)
+      if (v.name != "hopper") v.cam.height /= zoom;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    painter.renderer().draw(f, hopper->geometry(), views, style, fw, fh);
+    render::OverlayData od;
+    od.clog_timeout = scene.clog_timeout;
+    od.clog_min_gap = scene.clog_min_gap;
+    od.diameter = 2 * scene.radius_original;
+    painter.overlay().draw(f, od, overlay, views, style, scene_w, fh);
+    ImGui::SetCurrentContext(win.imgui());
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
+    ImGui::Begin("siloscope live", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t, static_cast<long long>(f.exits_original),
+                static_cast<long long>(f.exits_added));
+    ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
+    ImGui::Separator();
+    ImGui::TextUnformatted("scene (applies on restart)");
+    float r = static_cast<float>(scene.size_ratio), chi = static_cast<float>(scene.chi);
+    ImGui::SliderFloat("r", &r, 0.2f, 1.0f, "%.2f");
+    ImGui::SliderFloat("chi", &chi, 0.0f, 1.0f, "%.2f");
+    ImGui::SliderFloat("F_dip / W", &ratio, 0.0f, 30.0f, "%.1f");
+    ImGui::SliderFloat("kick [N s]", &kick, 1e-6f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
+    scene.size_ratio = r;
+    scene.chi = chi;
+    scene.kick_impulse_max = kick;
+    scene.mu = core::mu_for_force_ratio(scene, ratio);
+    ImGui::Text("mu = %.3g A m^2", scene.mu);
+    if (ImGui::Button("restart (settles first)")) {
+      try {
+        core::validate(scene);
+        hopper = std::make_unique<sim::Hopper>(scene);
+        message = "restarted";
+      } catch (const std::exception& e) {
+        message = e.what();
+      }
+    }
+    ImGui::Separator();
+    const char* cams[] = {"split", "outlet", "hopper"};
+    for (const char* c : cams) {
+      if (ImGui::RadioButton(c, camera == c)) camera = c;
+      ImGui::SameLine();
+    }
+    ImGui::NewLine();
+    ImGui::SliderFloat("zoom", &zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+    int color = static_cast<int>(style.color);
+    ImGui::RadioButton("species", &color, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("speed", &color, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("force", &color, 2);
+    style.color = static_cast<render::ColorMode>(color);
+    ImGui::Checkbox("arch", &style.show_arch);
+    ImGui::TextWrapped("%s", message.c_str());
+    ImGui::End();
+    ImGui::Render();
+    glViewport(0, 0, fw, fh);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (o.frames > 0 && n + 1 >= o.frames) {
+      if (!o.screenshot.empty()) save_screenshot(o.screenshot, fw, fh);
+      break;
+    }
+    glfwSwapBuffers(win.get());
+  }
+  return 0;
+}
+
+}  // namespace ui
