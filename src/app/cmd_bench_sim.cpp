@@ -113,6 +113,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   add_bench_arch_command(*bench, action);
   add_bench_accuracy_command(*bench, action);
   add_bench_stability_command(*bench, action);
+  add_bench_sweep_command(*bench, action);
 }
 
 }  // namespace app

@@ -75,5 +75,6 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);
+void add_bench_sweep_command(CLI::App& bench, Action& action);
 
 }  // namespace app

@@ -1,0 +1,242 @@
+// The inspector: trajectories, scripts, the ImGui panels under synthetic input, and the window under Xvfb.
+#include <catch2/catch.hpp>
+
+#include <imgui.h>
+#include <sys/wait.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#include <stb_image.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "io/metadata.h"
+#include "io/trajectory.h"
+#include "render/context.h"
+#include "render/palette.h"
+#include "ui/inspector.h"
+#include "ui/panels.h"
+
+bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
+void ImGui_ImplOpenGL3_Shutdown();
+void ImGui_ImplOpenGL3_NewFrame();
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+const std::string kBin = SILOSCOPE_BINARY;
+
+fs::path temp_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("siloscope_ui_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+core::Scene two_disk_scene() {
+  core::Scene s;
+  core::apply_overrides(s, {"n_total=2", "chi=0.5"});
+  return s;
+}
+
+// Five frames: an original disk moving right along y = 0.5 (x = -0.2 + 0.1 k), an added disk resting at
+// (0.2, 0.8). Frames 2 and 3 are clogged (timer >= 0.5 s) and hold the arch [0, 1].
+fs::path synthetic_trajectory(const fs::path& dir) {
+  core::Scene s = two_disk_scene();
+  io::TrajectoryInfo info;
+  info.n_particles = 2;
+  info.frame_interval = 1.0 / 30;
+  info.radius = {0.065f, 0.026f};
+  info.species = {core::Species::Original, core::Species::Added};
+  info.metadata = io::metadata_toml(s, {"test", {}});
+  fs::path p = dir / "trajectory.sstraj";
+  io::TrajectoryWriter w(p, info);
+  for (int k = 0; k < 5; ++k) {
+    core::Frame f;
+    f.t = k / 30.0;
+    f.particles = {{static_cast<float>(-0.2 + 0.1 * k), 0.5f, 0, 0, 0, 0.065f, 0, core::Species::Original},
+                   {0.2f, 0.8f, 0, 0, 0, 0.026f, 0, core::Species::Added}};
+    f.since_last_exit = (k == 2 || k == 3) ? 1.0 + k : 0.0;
+    if (k >= 2 && k <= 3) f.arch = {0, 1};
+    w.add(f, k == 4 ? 1 : 0);
+  }
+  w.close();
+  return p;
+}
+
+struct Png {
+  int w = 0, h = 0;
+  std::vector<unsigned char> px;
+  const unsigned char* at(int x, int y) const { return &px[(static_cast<size_t>(y) * w + x) * 4]; }
+};
+Png read_png(const fs::path& p) {
+  Png img;
+  int n = 0;
+  unsigned char* d = stbi_load(p.c_str(), &img.w, &img.h, &n, 4);
+  REQUIRE(d);
+  img.px.assign(d, d + static_cast<size_t>(img.w) * img.h * 4);
+  stbi_image_free(d);
+  return img;
+}
+bool near(const unsigned char* px, render::Rgba c, int tol = 10) {
+  return std::abs(px[0] - c.r * 255) <= tol && std::abs(px[1] - c.g * 255) <= tol && std::abs(px[2] - c.b * 255) <= tol;
+}
+
+render::OffscreenContext& gl() {
+  static render::OffscreenContext ctx;
+  return ctx;
+}
+
+int sh(const std::string& cmd) {
+  int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+}  // namespace
+
+TEST_CASE("trajectories round-trip; a cut-off file reads up to its last whole frame; foreign files are refused", "[ui]") {
+  fs::path d = temp_dir("traj");
+  fs::path p = synthetic_trajectory(d);
+  io::Trajectory t(p);
+  REQUIRE(t.size() == 5);
+  CHECK_FALSE(t.truncated());
+  CHECK(t.frame(3).particles[0].x == Approx(0.1f));
+  CHECK(t.frame(3).arch == std::vector<int>{0, 1});
+  CHECK(t.frame(1).particles[1].species == core::Species::Added);
+  CHECK(t.long_arches(4) == 1);
+  // Cut it in the middle of frame 3.
+  const auto size = fs::file_size(p);
+  fs::resize_file(p, size - io::TrajectoryWriter::frame_bytes(2) - 100);
+  io::Trajectory cut(p);
+  CHECK(cut.size() == 3);
+  CHECK(cut.truncated());
+  std::ofstream(d / "foreign.sstraj") << "this is not a trajectory at all, just text";
+  CHECK_THROWS_WITH(io::Trajectory(d / "foreign.sstraj"), Contains("not a siloscope trajectory"));
+  CHECK_THROWS_WITH(io::Trajectory(d / "missing.sstraj"), Contains("cannot open"));
+  fs::resize_file(p, 40);
+  CHECK_THROWS_AS(io::Trajectory(p), core::InputError);
+}
+
+TEST_CASE("a script off-screen makes the expected images", "[ui]") {
+  gl();
+  fs::path d = temp_dir("script");
+  io::Trajectory t(synthetic_trajectory(d));
+  ui::Inspector insp(t, two_disk_scene());
+  REQUIRE(insp.clogs().size() == 1);
+  CHECK(insp.clogs()[0].first == 2);
+  CHECK(insp.clogs()[0].last == 3);
+  ui::Painter painter;
+  std::ofstream(d / "fig.txt") << "# a figure\ngoto clog 1\nzoom window:-0.5,0,0.5,1\noverlay none\nsnapshot "
+                               << (d / "a.png").string() << " 400x400\nstep -3\nprint\nsnapshot "
+                               << (d / "b.png").string() << " 400x400\n";
+  CHECK(ui::run_script(insp, painter, (d / "fig.txt").string()) == 7);
+  CHECK(insp.frame_index() == 0);
+  CHECK_THAT(insp.last_output, Contains("frame 0"));
+  const render::Style style;
+  const Png a = read_png(d / "a.png"), b = read_png(d / "b.png");
+  REQUIRE(a.w == 400);
+  // Frame 3: the original disk at x = 0.1 m -> pixel 240; frame 0: at x = -0.2 m -> pixel 120. y = 0.5 m -> row 200.
+  // In frame 3 the arch bond runs through the centres: sample 3 cm to the side of it.
+  CHECK(near(a.at(228, 200), render::species_color(style.palette, core::Species::Original)));
+  CHECK(near(a.at(120, 200), render::background_color(style)));
+  CHECK(near(b.at(120, 200), render::species_color(style.palette, core::Species::Original)));
+  CHECK(near(b.at(240, 200), render::background_color(style)));
+  // The added disk at (0.2, 0.8) -> pixel (280, 80); in frame 3 it is an arch member with a gold halo.
+  CHECK(near(a.at(286, 80), render::species_color(style.palette, core::Species::Added)));
+  const double halo_px = 0.026 * 400 + 2;  // radius 10.4 px, then 2 px into the halo
+  CHECK(near(a.at(280, static_cast<int>(80 + halo_px)), render::arch_color(style.palette), 60));
+  CHECK(near(b.at(280, static_cast<int>(80 + halo_px)), render::background_color(style)));
+}
+
+TEST_CASE("script errors name the line; frames out of range are refused", "[ui]") {
+  gl();
+  fs::path d = temp_dir("script_err");
+  io::Trajectory t(synthetic_trajectory(d));
+  ui::Inspector insp(t, two_disk_scene());
+  ui::Painter painter;
+  std::ofstream(d / "bad.txt") << "goto frame 1\nzom outlet\n";
+  CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "bad.txt").string()),
+                    Contains("bad.txt:2: unknown command 'zom'"));
+  std::ofstream(d / "range.txt") << "# ok\n\ngoto frame 99\n";
+  CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "range.txt").string()),
+                    Contains("range.txt:3") && Contains("out of range (0 to 4)"));
+  CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
+  CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
+  CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
+}
+
+TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a slider zooms", "[ui]") {
+  gl();
+  fs::path d = temp_dir("panels");
+  io::Trajectory t(synthetic_trajectory(d));
+  ui::Inspector insp(t, two_disk_scene());
+  ImGuiContext* ctx = ImGui::CreateContext();
+  ImGui::SetCurrentContext(ctx);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(1280, 720);
+  REQUIRE(ImGui_ImplOpenGL3_Init("#version 330 core"));
+  ui::PanelState ps;
+  auto frame = [&](ImVec2 mouse, bool down) {
+    io.DeltaTime = 1.0f / 60;
+    io.MousePos = mouse;
+    io.MouseDown[0] = down;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    ui::draw_panels(insp, ps, nullptr, 880, 400, 720, 672, 880, 48);
+    ImGui::Render();
+  };
+  auto click = [&](const std::string& name, float fx = 0.5f) {
+    REQUIRE(ps.rects.count(name));
+    const auto r = ps.rects[name];
+    ImVec2 p(r[0] + fx * (r[2] - r[0]), 0.5f * (r[1] + r[3]));
+    frame(p, false);
+    frame(p, true);
+    frame(p, false);
+  };
+  frame(ImVec2(-1, -1), false);  // lay out once so the widgets have rectangles
+  REQUIRE(insp.frame_index() == 0);
+  click("step forward");
+  CHECK(insp.frame_index() == 1);
+  click("next clog");
+  CHECK(insp.frame_index() == 3);
+  click("step back");
+  CHECK(insp.frame_index() == 2);
+  click("zoom", 0.98f);
+  CHECK(insp.zoom > 5.0);
+  click("timeline", 0.999f);
+  CHECK(insp.frame_index() == 4);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext(ctx);
+}
+
+TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says when there is no display", "[ui]") {
+  fs::path d = temp_dir("window");
+  REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml --duration 1 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
+             (d / "rec").string()) == 0);
+  const std::string shot = (d / "window.png").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' " + kBin + " inspect " + (d / "rec").string() +
+             " --quiet --screenshot " + shot + " --frames 4") == 0);
+  const Png w = read_png(shot);
+  CHECK(w.w == 1280);
+  CHECK(w.h == 720);
+  long red = 0, panel = 0;
+  const render::Rgba original = render::species_color(render::Palette::Paper, core::Species::Original);
+  for (int y = 0; y < w.h; ++y)
+    for (int x = 0; x < w.w; ++x) {
+      const unsigned char* p = w.at(x, y);
+      if (x < 880 && near(p, original, 12)) ++red;                        // disks of the hopper in the scene area
+      if (x > 900 && p[0] > 200 && p[0] < 250 && p[0] == p[1] && p[1] == p[2]) ++panel;  // the panel's light grey
+    }
+  CHECK(red > 5000);
+  CHECK(panel > 50000);
+  // Without a display: a clear message pointing to the scripted mode, exit 2.
+  CHECK(sh("env -u DISPLAY -u WAYLAND_DISPLAY " + kBin + " inspect " + (d / "rec").string() + " > " +
+           (d / "err.txt").string() + " 2>&1") == 2);
+  std::ifstream in(d / "err.txt");
+  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK_THAT(err, Contains("no display") && Contains("--script"));
+}
