@@ -59,7 +59,7 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   CHECK(m.fraction_broken_by_vibration == Approx(1.0 / 3.0));
 }
 
-TEST_CASE("event files round-trip; truncated or corrupted ones are refused with file and line", "[analysis][io]") {
+TEST_CASE("event files round-trip, truncated or corrupted ones are refused with file and line", "[analysis][io]") {
   namespace fs = std::filesystem;
   fs::path dir = fs::temp_directory_path() / "siloscope_test_events";
   fs::remove_all(dir);

@@ -45,7 +45,7 @@ TEST_CASE("wall-to-wall arches of 3, 4 and 5 disks are found, left to right", "[
   }
 }
 
-TEST_CASE("fewest particles first; ties go to the lowest path", "[arch]") {
+TEST_CASE("fewest particles first, ties go to the lowest path", "[arch]") {
   Graph t;
   int l = t.node(-0.12, 0.10, true), r = t.node(0.12, 0.10, false, true);
   int high = t.node(0.0, 0.22), low = t.node(0.0, 0.16);

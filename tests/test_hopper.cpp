@@ -63,7 +63,7 @@ TEST_CASE("every disk that falls through the aperture gives exactly one exit eve
   CHECK(jumps == static_cast<long>(exits_seen + rule_members_seen));
 }
 
-TEST_CASE("the same seed gives an identical run; another seed differs", "[sim][hopper][determinism]") {
+TEST_CASE("the same seed gives an identical run, another seed differs", "[sim][hopper][determinism]") {
   auto run = [](std::uint64_t seed) {
     sim::Hopper h(flowing_scene(seed));
     h.advance_to(4.0);

@@ -56,7 +56,7 @@ TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
   CHECK_THROWS_AS(render::layout_views("sideways", geo, 400, 400), core::InputError);
 }
 
-TEST_CASE("disks show their species colour at the expected pixels; arch members carry the halo", "[render]") {
+TEST_CASE("disks show their species colour at the expected pixels, arch members carry the halo", "[render]") {
   auto& fx = fixture();
   const int w = 400, h = 400;
   core::Frame f;

@@ -96,7 +96,7 @@ int sh(const std::string& cmd) {
 }
 }  // namespace
 
-TEST_CASE("trajectories round-trip; a cut-off file reads up to its last whole frame; foreign files are refused", "[ui]") {
+TEST_CASE("trajectories round-trip, a cut-off file reads up to its last whole frame, foreign files are refused", "[ui]") {
   fs::path d = temp_dir("traj");
   fs::path p = synthetic_trajectory(d);
   io::Trajectory t(p);
@@ -150,7 +150,7 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   CHECK(near(b.at(280, static_cast<int>(80 + halo_px)), render::background_color(style)));
 }
 
-TEST_CASE("script errors name the line; frames out of range are refused", "[ui]") {
+TEST_CASE("script errors name the line, frames out of range are refused", "[ui]") {
   gl();
   fs::path d = temp_dir("script_err");
   io::Trajectory t(synthetic_trajectory(d));

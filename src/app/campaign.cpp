@@ -69,13 +69,17 @@ std::string Campaign::run_dir(size_t p, int k) const {
 }
 
 Campaign load_campaign(const std::string& path) {
-  Campaign c;
-  c.path = path;
   std::ifstream in(path);
   if (!in) throw core::InputError(path + ": cannot open campaign file");
   std::stringstream ss;
   ss << in.rdbuf();
-  c.text = ss.str();
+  return parse_campaign(ss.str(), path);
+}
+
+Campaign parse_campaign(const std::string& text, const std::string& path) {
+  Campaign c;
+  c.path = path;
+  c.text = text;
   toml::table t;
   try {
     t = toml::parse(c.text, path);
@@ -121,6 +125,8 @@ Campaign load_campaign(const std::string& path) {
   if (!axes.empty()) {
     sets.push_back({});
     for (const auto& [key, values] : axes) {
+      if (sets.size() * values.size() > 10000)
+        throw core::InputError(path + ": the grid has more than 10000 points; at most 10000");
       std::vector<std::vector<Assignment>> next;
       for (const auto& s : sets)
         for (const auto& v : values) {
@@ -143,6 +149,7 @@ Campaign load_campaign(const std::string& path) {
     }
   }
   if (sets.empty()) throw core::InputError(path + ": the grid is empty: give [grid] lists or [[points]]");
+  if (sets.size() > 10000) throw core::InputError(path + ": the grid has " + std::to_string(sets.size()) + " points; at most 10000");
 
   std::set<std::string> seen;
   for (const auto& s : sets) {

@@ -47,5 +47,7 @@ struct Campaign {
 
 // Throws core::InputError naming the file, the key and the problem (empty grid, unknown key, duplicate point...).
 Campaign load_campaign(const std::string& path);
+// The same from text; `path` names it in errors and anchors the relative scene path.
+Campaign parse_campaign(const std::string& text, const std::string& path);
 
 }  // namespace app

@@ -36,7 +36,7 @@ int bench_stability(const StabilityOptions& o) {
   std::vector<Cell> cells;
   for (double r : {0.2, 0.4})
     for (double dt : {2.5e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2})
-      for (double ratio : {0.0, 1.0, 10.0, 100.0, 1000.0}) cells.push_back({r, dt, ratio});
+      for (double ratio : {0.0, 1.0, 10.0, 100.0, 1000.0}) cells.push_back(Cell{r, dt, ratio, 0.0, 0.0, false, 0, {}});
   std::printf("siloscope %s, bench stability: %zu cells, %g s of discharge each, %d threads\n",
               io::version_string().c_str(), cells.size(), o.seconds, o.threads);
   std::atomic<size_t> next{0};

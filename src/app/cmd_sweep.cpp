@@ -124,7 +124,7 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
         ++done;
         continue;
       }
-      char scene[32];
+      char scene[48];
       std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
       j.line = quote(binary) + " run " + scene + " --seed " + std::to_string(c.realization_seed(p, k)) +
                " --quiet --out " + j.dir;

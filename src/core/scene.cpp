@@ -16,7 +16,6 @@
 namespace core {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string fmt_double(double v) {
   char buf[64];

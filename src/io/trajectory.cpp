@@ -99,6 +99,12 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
   std::ifstream in(p, std::ios::binary);
   if (!in) throw core::InputError(p + ": cannot open trajectory file");
   std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  parse(data, p);
+}
+
+Trajectory::Trajectory(const std::vector<unsigned char>& data, const std::string& name) { parse(data, name); }
+
+void Trajectory::parse(const std::vector<unsigned char>& data, const std::string& p) {
   if (data.size() < kFixedHeader || std::memcmp(data.data(), kMagic, 8) != 0)
     throw core::InputError(p + ": not a siloscope trajectory (no SILOTRAJ header)");
   const auto version = get<std::uint32_t>(data.data(), 8);
@@ -109,8 +115,9 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
   info_.n_particles = get<std::uint32_t>(data.data(), 16);
   const auto max_arch = get<std::uint32_t>(data.data(), 20);
   const auto fbytes = get<std::uint32_t>(data.data(), 24);
+  const size_t after_arrays = pad8(kFixedHeader + 5 * size_t(info_.n_particles));
   if (max_arch != kTrajectoryMaxArch || fbytes != TrajectoryWriter::frame_bytes(info_.n_particles) ||
-      header > data.size() || header < kFixedHeader + 5 * size_t(info_.n_particles) + 4)
+      header > data.size() || header < after_arrays + 4)
     throw core::InputError(p + ": corrupted trajectory header");
   info_.frame_interval = get<double>(data.data(), 32);
   info_.clog_timeout = get<double>(data.data(), 40);
@@ -121,9 +128,8 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
     info_.radius.push_back(get<float>(data.data(), kFixedHeader + 4 * i));
     info_.species.push_back(static_cast<core::Species>(data[kFixedHeader + 4 * n + i] ? 1 : 0));
   }
-  const size_t after_arrays = pad8(kFixedHeader + 5 * n);
   const auto meta = get<std::uint32_t>(data.data(), after_arrays);
-  if (after_arrays + 4 + meta > header) throw core::InputError(p + ": corrupted trajectory header (metadata)");
+  if (after_arrays + 4 + size_t(meta) > header) throw core::InputError(p + ": corrupted trajectory header (metadata)");
   info_.metadata.assign(reinterpret_cast<const char*>(&data[after_arrays + 4]), meta);
   const size_t body = data.size() - header, count = body / fbytes;
   truncated_ = body % fbytes != 0;

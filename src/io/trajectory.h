@@ -61,6 +61,8 @@ class Trajectory {
  public:
   // Throws core::InputError naming the file and what is wrong (missing, foreign, truncated header, version).
   explicit Trajectory(const std::filesystem::path& path);
+  // From bytes in memory; `name` names them in errors.
+  Trajectory(const std::vector<unsigned char>& data, const std::string& name);
   const TrajectoryInfo& info() const { return info_; }
   long size() const { return static_cast<long>(frames_.size()); }
   bool truncated() const { return truncated_; }  // a partial last frame was dropped
@@ -75,6 +77,7 @@ class Trajectory {
   std::vector<std::vector<unsigned char>> frames_;
   std::vector<int> long_arches_;
   bool truncated_ = false;
+  void parse(const std::vector<unsigned char>& data, const std::string& p);
 };
 
 }  // namespace io
