@@ -13,41 +13,16 @@
 #include <sstream>
 #include <thread>
 
+#include "helpers.h"
+
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kBin = SILOSCOPE_BINARY;
-const std::string kScene = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
-
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr
-};
-
-Result cli(const std::string& args) {
-  std::string cmd = kBin + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p);
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
-}
-
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("siloscope_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::cli;
+using test::kBin;
+using test::kScene;
+using test::slurp;
+fs::path temp_dir(const std::string& name) { return test::temp_dir("cli_" + name); }
 
 // Nothing at all under `dir` except the entries listed.
 bool only(const fs::path& dir, std::vector<std::string> names) {

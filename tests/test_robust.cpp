@@ -13,33 +13,16 @@
 #include <sstream>
 #include <thread>
 
+#include "helpers.h"
+
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
-const std::string kBin = SILOSCOPE_BINARY;
-const std::string kScene = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
-
-struct Result {
-  int code;
-  std::string output;
-};
-Result cli(const std::string& args) {
-  FILE* p = popen((kBin + " " + args + " 2>&1").c_str(), "r");
-  REQUIRE(p);
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::cli;
+using test::kBin;
+using test::kScene;
+using test::slurp;
 
 // A small tmpfs, unmounted when the test ends. Needs root (CI and the developers' machines run as root).
 struct SmallDisk {

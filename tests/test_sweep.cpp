@@ -13,33 +13,18 @@
 #include <thread>
 
 #include "app/campaign.h"
+#include "helpers.h"
 #include "core/error.h"
 #include "core/physics.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kBin = SILOSCOPE_BINARY;
+using test::kBin;
+using test::sh;
+using test::slurp;
 const std::string kScenes = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/";
-
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("siloscope_sweep_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-int sh(const std::string& cmd) {
-  int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+fs::path temp_dir(const std::string& name) { return test::temp_dir("sweep_" + name); }
 
 // A tiny campaign: 3 points x `n` realizations of 1 s (after 2 s of settling).
 fs::path tiny_campaign(const fs::path& dir, int n, const std::string& extra = "") {

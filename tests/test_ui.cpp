@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "helpers.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
 #include "render/context.h"
@@ -27,14 +28,9 @@ namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
-const std::string kBin = SILOSCOPE_BINARY;
-
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("siloscope_ui_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::kBin;
+using test::sh;
+fs::path temp_dir(const std::string& name) { return test::temp_dir("ui_" + name); }
 
 core::Scene two_disk_scene() {
   core::Scene s;
@@ -88,11 +84,6 @@ bool near(const unsigned char* px, render::Rgba c, int tol = 10) {
 render::OffscreenContext& gl() {
   static render::OffscreenContext ctx;
   return ctx;
-}
-
-int sh(const std::string& cmd) {
-  int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 }  // namespace
 
@@ -233,6 +224,15 @@ TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says
     }
   CHECK(red > 5000);
   CHECK(panel > 50000);
+  // The live simulation in a window: it settles, runs and draws the hopper beside its panel.
+  const std::string live = (d / "live.png").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' " + kBin + " live " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml --set settle_time=2 --screenshot " + live + " --frames 5") == 0);
+  const Png l = read_png(live);
+  long live_red = 0;
+  for (int y = 0; y < l.h; ++y)
+    for (int x = 0; x < 880; ++x) live_red += near(l.at(x, y), original, 12);
+  CHECK(live_red > 5000);
   // Without a display: a clear message pointing to the scripted mode, exit 2.
   CHECK(sh("env -u DISPLAY -u WAYLAND_DISPLAY " + kBin + " inspect " + (d / "rec").string() + " > " +
            (d / "err.txt").string() + " 2>&1") == 2);

@@ -1,5 +1,6 @@
 #include "analysis/stats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -35,6 +36,13 @@ double beta_fraction(double a, double b, double x) {
   return h;
 }
 }  // namespace
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 double incomplete_beta(double a, double b, double x) {
   if (x <= 0) return 0;

@@ -5,6 +5,9 @@
 
 namespace analysis {
 
+// Median of a sample (mean of the middle two for an even count); NaN when empty.
+double median(std::vector<double> v);
+
 // Regularized incomplete beta function I_x(a, b).
 double incomplete_beta(double a, double b, double x);
 // Cumulative distribution of Student's t with nu degrees of freedom.

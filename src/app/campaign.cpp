@@ -2,6 +2,8 @@
 
 #include <toml++/toml.h>
 
+#include <cctype>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -93,15 +95,32 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
       throw core::InputError(path + ": unknown key '" + std::string(k.str()) +
                              "'; known keys: name, scene, seed, realizations, duration, grid, points");
   c.name = t["name"].value_or(std::string(fs::path(path).stem()));
+  for (char ch : c.name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_'))
+      throw core::InputError(path + ": name = \"" + c.name + "\" may hold only letters, digits, - and _ (it names a directory)");
   auto scene_rel = t["scene"].value<std::string>();
   if (!scene_rel) throw core::InputError(path + ": scene = \"...\" (the base scene file) is missing");
   c.scene_path = fs::absolute(fs::path(path).parent_path() / *scene_rel).lexically_normal().string();
-  c.seed = static_cast<std::uint64_t>(t["seed"].value_or<int64_t>(1));
-  c.realizations = static_cast<int>(t["realizations"].value_or<int64_t>(0));
-  if (c.realizations < 1 || c.realizations > 100000)
-    throw core::InputError(path + ": realizations = " + std::to_string(c.realizations) + " must be from 1 to 100000");
+  // Whole numbers must be TOML integers: toml++ converts a float like 1e300 to int64 without a range check.
+  auto integer = [&](const char* key, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
+    const toml::node* n = t.get(key);
+    if (!n) return fallback;
+    const auto* i = n->as_integer();
+    if (!i || i->get() < lo || i->get() > hi)
+      throw core::InputError(path + ": " + key + " must be a whole number from " + std::to_string(lo) + " to " +
+                             std::to_string(hi));
+    return i->get();
+  };
+  c.seed = static_cast<std::uint64_t>(integer("seed", 1, 0, INT64_MAX));
+  c.realizations = static_cast<int>(integer("realizations", 0, 1, 100000));
   const core::Scene base = core::load_scene(c.scene_path);
-  c.duration = t["duration"].value_or(base.duration);
+  c.duration = base.duration;
+  if (const toml::node* n = t.get("duration")) {
+    if (auto f = n->as_floating_point()) c.duration = f->get();
+    else if (auto i = n->as_integer()) c.duration = static_cast<double>(i->get());
+    else throw core::InputError(path + ": duration must be a number of seconds");
+  }
+  if (!(c.duration <= 1e6)) throw core::InputError(path + ": duration must be at most 1e6 s");
   if (!(c.duration > 0)) throw core::InputError(path + ": duration must be > 0 s");
 
   // The grid: a Cartesian product, keys in file order.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "analysis/stats.h"
 #include "app/common.h"
 #include "core/error.h"
 #include "io/metadata.h"
@@ -22,10 +23,6 @@ struct ArchBenchOptions {
   std::string csv;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 int bench_arch(const ArchBenchOptions& o) {
   core::Scene scene = o.scene.load();
@@ -63,11 +60,11 @@ int bench_arch(const ArchBenchOptions& o) {
       if (interrupted()) return 130;
     }
   }
-  const double us = median(per_call), slow = median(detect_wall) / median(plain_wall) - 1.0;
+  const double us = analysis::median(per_call), slow = analysis::median(detect_wall) / analysis::median(plain_wall) - 1.0;
   std::printf("%-36s %10.1f  (target < 50)\n", "arch detection, us per call", us);
   std::printf("%-36s %9.1f%%\n", "frames with an arch found", 100.0 * calls_found / std::max(1L, calls));
-  std::printf("%-36s %10.2f\n", "wall s without detection (median)", median(plain_wall));
-  std::printf("%-36s %10.2f\n", "wall s with detection (median)", median(detect_wall));
+  std::printf("%-36s %10.2f\n", "wall s without detection (median)", analysis::median(plain_wall));
+  std::printf("%-36s %10.2f\n", "wall s with detection (median)", analysis::median(detect_wall));
   std::printf("%-36s %9.1f%%  (target < 5%%)\n", "slowdown from detection per frame", 100 * slow);
   if (!o.csv.empty()) {
     std::string s = "metric,value,unit\n";

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "analysis/stats.h"
 #include "app/common.h"
 #include "core/error.h"
 #include "io/metadata.h"
@@ -25,11 +26,6 @@ struct BenchOptions {
   std::string csv;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int bench_sim(const BenchOptions& o) {
   core::Scene scene = o.scene.load();
@@ -66,8 +62,8 @@ int bench_sim(const BenchOptions& o) {
     book.push_back(1e6 * (after.bookkeeping - before.bookkeeping) / o.steps);
     if (interrupted()) return 130;
   }
-  const double m_ours = median(us_ours), m_bare = median(us_bare);
-  const double stages[] = {median(box2d), median(dipoles), median(kicks), median(book)};
+  const double m_ours = analysis::median(us_ours), m_bare = analysis::median(us_bare);
+  const double stages[] = {analysis::median(box2d), analysis::median(dipoles), analysis::median(kicks), analysis::median(book)};
   const char* names[] = {"box2d_step", "dipoles", "kicks", "bookkeeping"};
   double stage_sum = 0;
   for (double s : stages) stage_sum += s;

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
+#include "render/camera.h"
 #include "render/context.h"
 #include "ui/inspector.h"
 #include "ui/window.h"
@@ -37,11 +38,6 @@ fs::path trajectory_path(const std::string& p) {
   return path;
 }
 
-void size_of(const std::string& s, int& w, int& h) {
-  char x = 0, extra = 0;
-  if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 320 || h < 240)
-    throw core::InputError("--size " + s + ": expected WIDTHxHEIGHT of at least 320x240");
-}
 
 int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -60,7 +56,7 @@ int inspect(const InspectOptions& o) {
     return 0;
   }
   ui::WindowOptions w;
-  size_of(o.size, w.width, w.height);
+  render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
   const double redraw = ui::run_inspector_window(insp, w);
@@ -71,7 +67,7 @@ int inspect(const InspectOptions& o) {
 int live(const LiveOptions& o) {
   core::Scene scene = o.scene.load();
   ui::WindowOptions w;
-  size_of(o.size, w.width, w.height);
+  render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
   ui::run_live_window(scene, w);

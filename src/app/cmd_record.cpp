@@ -42,12 +42,6 @@ struct Stages {
   double sim = 0, draw = 0, readback = 0, convert = 0, encode = 0, png = 0;
 };
 
-void parse_size(const std::string& s, int& w, int& h) {
-  char x = 0;
-  char extra = 0;
-  if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0)
-    throw core::InputError("--size " + s + ": expected WIDTHxHEIGHT in pixels, e.g. 1920x1080");
-}
 
 std::string num(double v) {
   char b[40];
@@ -61,7 +55,7 @@ int record_movie(const RecordOptions& o) {
   // --- everything the user typed is checked before any work starts ---
   core::Scene scene = o.scene.load();
   record::VideoSettings video;
-  parse_size(o.size, video.width, video.height);
+  render::parse_size(o.size, "--size", video.width, video.height);
   video.fps = o.fps;
   video.crf = o.crf;
   video.preset = o.preset;
@@ -88,14 +82,7 @@ int record_movie(const RecordOptions& o) {
   if (o.png_every > 0) fs::create_directory(dir.file("frames"));
 
   const long n_frames = std::max(1L, std::lround(scene.duration * o.fps / o.speed));
-  render::OverlayData odata;
-  odata.clog_timeout = scene.clog_timeout;
-  odata.clog_min_gap = scene.clog_min_gap;
-  odata.diameter = 2 * scene.radius_original;
-  char title[160];
-  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio, scene.chi,
-                scene.mu, static_cast<unsigned long long>(scene.seed));
-  odata.title = title;
+  const render::OverlayData odata = render::overlay_data_for(scene);
 
   io::RunInfo info;
   info.command = command_line();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -24,6 +25,13 @@ std::array<float, 9> View::world_to_clip() const {
   // clip = (x - cx) * sx, (y - cy) * sy
   return {static_cast<float>(sx), 0, 0, 0, static_cast<float>(sy), 0, static_cast<float>(-cam.cx * sx),
           static_cast<float>(-cam.cy * sy), 1};
+}
+
+void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w, int min_h) {
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < min_w || h < min_h)
+    throw core::InputError(option + " " + text + ": expected WIDTHxHEIGHT in pixels, at least " + std::to_string(min_w) +
+                           "x" + std::to_string(min_h) + ", e.g. 1920x1080");
 }
 
 Camera fit(double x0, double y0, double x1, double y1, int w, int h) {

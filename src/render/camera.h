@@ -31,6 +31,10 @@ struct View {
   std::array<float, 9> world_to_clip() const;
 };
 
+// Parse "WIDTHxHEIGHT" for `option` (named in the error), each side at least min_w x min_h pixels.
+// Throws core::InputError.
+void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w = 1, int min_h = 1);
+
 // A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels.
 Camera fit(double x0, double y0, double x1, double y1, int w, int h);
 

@@ -45,6 +45,18 @@ OverlayOptions parse_overlay(const std::string& spec) {
   return o;
 }
 
+OverlayData overlay_data_for(const core::Scene& scene) {
+  OverlayData d;
+  d.clog_timeout = scene.clog_timeout;
+  d.clog_min_gap = scene.clog_min_gap;
+  d.diameter = 2 * scene.radius_original;
+  char title[160];
+  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio, scene.chi,
+                scene.mu, static_cast<unsigned long long>(scene.seed));
+  d.title = title;
+  return d;
+}
+
 Overlay::Overlay() {
   IMGUI_CHECKVERSION();
   ImGuiContext* previous = ImGui::GetCurrentContext();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "core/scene.h"
 #include "render/camera.h"
 #include "render/palette.h"
 
@@ -26,6 +27,9 @@ struct OverlayData {
   double diameter = 0.13;     // m, of an original disk (the scale bar's unit)
   std::string title;          // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
 };
+
+// The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu, seed.
+OverlayData overlay_data_for(const core::Scene& scene);
 
 class Overlay {
  public:

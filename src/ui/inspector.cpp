@@ -15,11 +15,6 @@
 namespace ui {
 
 namespace {
-void parse_size(const std::string& s, int& w, int& h) {
-  char x = 0, extra = 0;
-  if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0)
-    throw core::InputError("size '" + s + "': expected WIDTHxHEIGHT, e.g. 3840x2160");
-}
 long to_long(const std::string& s, const char* what) {
   char* end = nullptr;
   long v = std::strtol(s.c_str(), &end, 10);
@@ -55,13 +50,7 @@ core::Image Painter::paint(const core::Frame& f, const core::Geometry& geo, cons
 Inspector::Inspector(const io::Trajectory& traj, const core::Scene& scene)
     : traj_(traj), scene_(scene), geo_(core::make_geometry(scene)) {
   if (traj_.size() == 0) throw core::InputError("the trajectory holds no complete frame");
-  overlay_data.clog_timeout = scene_.clog_timeout;
-  overlay_data.clog_min_gap = scene_.clog_min_gap;
-  overlay_data.diameter = 2 * scene_.radius_original;
-  char title[160];
-  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene_.size_ratio, scene_.chi,
-                scene_.mu, static_cast<unsigned long long>(scene_.seed));
-  overlay_data.title = title;
+  overlay_data = render::overlay_data_for(scene_);
   // Clogs: maximal stretches of frames whose clog timer is at least clog_min_gap.
   const double gap = traj_.info().clog_min_gap;
   for (long k = 0; k < traj_.size(); ++k) {
@@ -214,7 +203,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
   } else if (cmd == "snapshot") {
     if (a.size() < 2 || a.size() > 3) throw core::InputError("'" + line + "': usage: snapshot FILE.png [WxH]");
     int w = 1920, h = 1080;
-    if (a.size() == 3) parse_size(a[2], w, h);
+    if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
     if (!painter) throw core::InputError("'" + line + "': snapshot needs a renderer");
     record::write_png(a[1], render_current(*painter, w, h), true);
   } else if (cmd == "export") {
@@ -224,7 +213,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     record::VideoSettings v;
     v.width = 1280;
     v.height = 720;
-    if (a.size() >= 5) parse_size(a[4], v.width, v.height);
+    if (a.size() >= 5) render::parse_size(a[4], "export size", v.width, v.height);
     v.fps = a.size() == 6 ? static_cast<int>(to_long(a[5], "FPS"))
                           : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
     record::validate(v);

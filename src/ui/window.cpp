@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "analysis/stats.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "record/png.h"
@@ -116,11 +117,6 @@ void save_screenshot(const std::string& path, int w, int h) {
   record::write_png(path, img, true);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 // One window frame: the scene (renderer + in-frame overlay) on the left, ImGui panels over the rest.
 template <class Panels>
@@ -190,7 +186,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     // In tests, step through frames so redraw times are measured.
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
-  return median(redraws);
+  return redraws.empty() ? 0.0 : analysis::median(redraws);
 }
 
 double run_live_window(const core::Scene& base, const WindowOptions& o) {
@@ -224,10 +220,7 @@ double run_live_window(const core::Scene& base, const WindowOptions& o) {
       if (v.name != "hopper") v.cam.height /= zoom;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     painter.renderer().draw(f, hopper->geometry(), views, style, fw, fh);
-    render::OverlayData od;
-    od.clog_timeout = scene.clog_timeout;
-    od.clog_min_gap = scene.clog_min_gap;
-    od.diameter = 2 * scene.radius_original;
+    const render::OverlayData od = render::overlay_data_for(hopper->scene());
     painter.overlay().draw(f, od, overlay, views, style, scene_w, fh);
     ImGui::SetCurrentContext(win.imgui());
     ImGui_ImplOpenGL3_NewFrame();

@@ -1,0 +1,55 @@
+// Helpers shared by the tests that run the real `siloscope` binary or touch files.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace test {
+
+inline const std::string kBin = SILOSCOPE_BINARY;
+inline const std::string kScene = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+// Run `siloscope ARGS`, capturing its output and exit code.
+inline Result cli(const std::string& args) {
+  FILE* p = popen((kBin + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return {-1, "popen failed"};
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
+}
+
+// Run a shell command, returning its exit code.
+inline int sh(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A fresh, empty directory under the system's temporary directory.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("siloscope_test_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace test
