@@ -106,6 +106,14 @@ TEST_CASE("trajectories round-trip, a cut-off file reads up to its last whole fr
   std::ofstream(d / "foreign.sstraj") << "this is not a trajectory at all, just text";
   CHECK_THROWS_WITH(io::Trajectory(d / "foreign.sstraj"), Contains("not a siloscope trajectory"));
   CHECK_THROWS_WITH(io::Trajectory(d / "missing.sstraj"), Contains("cannot open"));
+  // A header whose frame interval is zero would make playback divide by zero: refused.
+  {
+    std::vector<unsigned char> bytes;
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    std::fill(bytes.begin() + 32, bytes.begin() + 40, 0);
+    CHECK_THROWS_WITH(io::Trajectory(bytes, "zero.sstraj"), Contains("out of range"));
+  }
   fs::resize_file(p, 40);
   CHECK_THROWS_AS(io::Trajectory(p), core::InputError);
 }

@@ -1,6 +1,7 @@
 #include "io/trajectory.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -123,6 +124,11 @@ void Trajectory::parse(const std::vector<unsigned char>& data, const std::string
   info_.clog_timeout = get<double>(data.data(), 40);
   info_.clog_min_gap = get<double>(data.data(), 48);
   info_.radius_original = get<double>(data.data(), 56);
+  // The inspector divides by these: they must be positive and finite.
+  for (double v : {info_.frame_interval, info_.clog_timeout, info_.radius_original})
+    if (!(v > 0 && v < 1e6)) throw core::InputError(p + ": corrupted trajectory header (a time or length out of range)");
+  if (!(info_.clog_min_gap >= 0 && info_.clog_min_gap < 1e6))
+    throw core::InputError(p + ": corrupted trajectory header (clog_min_gap)");
   const size_t n = info_.n_particles;
   for (size_t i = 0; i < n; ++i) {
     info_.radius.push_back(get<float>(data.data(), kFixedHeader + 4 * i));
