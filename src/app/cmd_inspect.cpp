@@ -50,6 +50,7 @@ int inspect(const InspectOptions& o) {
                  traj.truncated() ? " (cut off: a partial last frame was dropped)" : "", insp.clogs().size(), open_ms);
   if (!o.script.empty()) {
     render::OffscreenContext ctx;
+    if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", ctx.description().c_str());
     ui::Painter painter;
     const int n = ui::run_script(insp, painter, o.script);
     if (!o.quiet) std::fprintf(stderr, "script: %d commands done\n", n);

@@ -105,6 +105,7 @@ int record_movie(const RecordOptions& o) {
     try {
       render::OffscreenContext ctx;
       gl_renderer = ctx.description();
+      if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", gl_renderer.c_str());
       render::Renderer renderer;
       render::Overlay ov;
       render::Target target(video.width, video.height);
