@@ -176,3 +176,16 @@ TEST_CASE("kill -9 during record leaves nothing under the final names", "[app][r
   CHECK_FALSE(fs::exists(out + ".mp4"));
   CHECK_FALSE(fs::exists(d / "cut"));
 }
+
+TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal and nowhere else", "[app][record]") {
+  fs::path d = temp_dir("slowmo");
+  // Seed 1: the first clog is removed by the rule at t = 5.59 s; the slow window is 5.09 to 6.59 s.
+  const std::string common = "record " + kScene + " --duration 7 --size 160x120 --fps 10 --quiet --out ";
+  REQUIRE(cli(common + (d / "plain").string()).code == 0);
+  REQUIRE(cli(common + (d / "slow").string() + " --slowmo 4").code == 0);
+  CHECK_THAT(slurp(d / "plain" / "metadata.toml"), Catch::Matchers::Contains("frames = 70\n"));
+  const std::string slow = slurp(d / "slow" / "metadata.toml");
+  // 1.5 s at 4x: 45 extra frames (60 frames in the window instead of 15).
+  CHECK_THAT(slow, Catch::Matchers::Contains("frames = 115\n") && Catch::Matchers::Contains("slowmo_frames = 60\n"));
+  CHECK(cli(common + (d / "bad").string() + " --slowmo 0.5").code == 2);
+}

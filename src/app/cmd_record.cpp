@@ -33,7 +33,7 @@ struct RecordOptions {
   SceneOptions scene;
   std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species", overlay = "all";
   int fps = 30, crf = 20, png_every = 0;
-  double speed = 1.0;
+  double speed = 1.0, slowmo = 1.0;
   std::string preset = "veryfast";
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
@@ -61,6 +61,7 @@ int record_movie(const RecordOptions& o) {
   video.preset = o.preset;
   if (!o.no_movie) record::validate(video);
   if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
+  if (!(o.slowmo >= 1) || o.slowmo > 100) throw core::InputError("--slowmo " + num(o.slowmo) + ": allowed range is 1 (off) to 100");
   if (o.png_every < 0) throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0) throw core::InputError("--no-movie without --png-every would record nothing");
   if (o.fps < 1 || o.fps > 240) throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
@@ -81,7 +82,6 @@ int record_movie(const RecordOptions& o) {
   io::OutputDir dir(base, o.force);
   if (o.png_every > 0) fs::create_directory(dir.file("frames"));
 
-  const long n_frames = std::max(1L, std::lround(scene.duration * o.fps / o.speed));
   const render::OverlayData odata = render::overlay_data_for(scene);
 
   io::RunInfo info;
@@ -152,7 +152,9 @@ int record_movie(const RecordOptions& o) {
   });
 
   // --- the simulation, on this thread ---
-  Progress progress("record", static_cast<double>(n_frames), !o.quiet);
+  Progress progress("record", scene.duration, !o.quiet);
+  double last_t = 0;
+  long slow_frames = 0;
   auto wall0 = Clock::now();
   bool was_interrupted = false;
   std::exception_ptr sim_error;
@@ -163,11 +165,20 @@ int record_movie(const RecordOptions& o) {
     hopper = std::make_unique<sim::Hopper>(scene);
     io::TrajectoryInfo tinfo = trajectory_info(*hopper, o.speed / o.fps, video.comment.empty() ? io::metadata_toml(scene, info) : video.comment);
     trajectory = std::make_unique<io::TrajectoryWriter>(dir.file("trajectory.sstraj"), tinfo);
-    for (long k = 0; k < n_frames; ++k) {
-      hopper->advance_to(k * o.speed / o.fps);
+    // Frame times: every speed/fps simulated seconds, or slowmo times more often around a long-lasting arch's
+    // removal (from 0.5 s before the clog_timeout rule fires to 1 s after), both known from the current state.
+    double t_next = 0;
+    for (long k = 0; t_next <= scene.duration * (1 + 1e-12) - 0.5 * o.speed / o.fps || k == 0; ++k) {
+      hopper->advance_to(t_next);
       // Forces are summed only when they are shown or kept (the trajectory keeps them).
       core::Frame f = hopper->frame(true, true);
-      trajectory->add(f, static_cast<int>(hopper->events().arches.size()));
+      const auto& arches = hopper->events().arches;
+      const bool slow = o.slowmo > 1 && (f.since_last_exit >= scene.clog_timeout - 0.5 ||
+                                         (!arches.empty() && f.t - arches.back().t < 1.0));
+      t_next += o.speed / o.fps / (slow ? o.slowmo : 1.0);
+      last_t = f.t;
+      slow_frames += slow;
+      trajectory->add(f, static_cast<int>(arches.size()));
       st.sim += since(t0);
       if (!frames.push(std::move(f))) break;
       t0 = Clock::now();
@@ -176,9 +187,9 @@ int record_movie(const RecordOptions& o) {
         break;
       }
       char extra[96];
-      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld/%ld frames, %zu exits", hopper->time(), k + 1, n_frames,
+      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld frames, %zu exits", hopper->time(), k + 1,
                     hopper->events().exits.size());
-      progress.update(static_cast<double>(k + 1), extra);
+      progress.update(hopper->time(), extra);
     }
   } catch (...) {
     sim_error = std::current_exception();
@@ -200,7 +211,7 @@ int record_movie(const RecordOptions& o) {
     st.encode = mp4->encode_seconds();
   }
   hopper->finish();
-  const double shown = encoded > 0 ? (encoded - 1) * o.speed / o.fps : 0.0;
+  const double shown = last_t;  // simulated seconds shown
   const double analysed = was_interrupted ? std::max(hopper->time(), 1e-9) : scene.duration;
   const analysis::Measurements m = analysis::measure(hopper->events(), analysed);
   io::write_events(dir.file(""), hopper->events());
@@ -214,6 +225,8 @@ int record_movie(const RecordOptions& o) {
                 {"size", "\"" + std::to_string(video.width) + "x" + std::to_string(video.height) + "\""},
                 {"fps", std::to_string(o.fps)},
                 {"speed_sim_s_per_video_s", num(o.speed)},
+                {"slowmo", num(o.slowmo)},
+                {"slowmo_frames", std::to_string(slow_frames)},
                 {"camera", "\"" + o.camera + "\""},
                 {"palette", "\"" + o.palette + "\""},
                 {"color", "\"" + o.color + "\""},
@@ -258,6 +271,9 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")->capture_default_str();
   cmd->add_option("--fps", o->fps, "video frames per second")->capture_default_str();
   cmd->add_option("--speed", o->speed, "simulated seconds per video second (0.25 = 4x slow motion)")->capture_default_str();
+  cmd->add_option("--slowmo", o->slowmo,
+                  "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
+      ->capture_default_str();
   cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")->capture_default_str();
   cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")->capture_default_str();
   cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")->capture_default_str();
