@@ -53,3 +53,40 @@ inline std::string slurp(const std::filesystem::path& p) {
 }
 
 }  // namespace test
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+namespace test {
+
+// Start `siloscope record` of a long discharge into OUT (stdout and stderr discarded) and return once its movie
+// has grown past 20 kB: frames are being encoded. Returns the child's pid.
+inline pid_t start_long_record(const std::string& out) {
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2", "--size",
+          "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const std::string partial = out + ".mp4.partial";
+  for (int i = 0; i < 200; ++i) {
+    std::error_code ec;
+    if (std::filesystem::exists(partial, ec) && std::filesystem::file_size(partial, ec) > 20000) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return pid;
+}
+
+// Send `sig` and wait; returns the wait status.
+inline int signal_and_wait(pid_t pid, int sig) {
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+}  // namespace test

@@ -124,23 +124,10 @@ TEST_CASE("record makes NAME.mp4 and NAME/ with frames, events and metadata", "[
 TEST_CASE("Ctrl-C during record leaves a playable movie of what was recorded", "[app][record]") {
   fs::path d = temp_dir("sigint");
   const std::string out = (d / "cut").string();
-  pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    int devnull = ::open("/dev/null", 1);
-    dup2(devnull, 1);
-    dup2(devnull, 2);
-    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2", "--size",
-          "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  // Wait until frames are being encoded, then interrupt.
-  for (int i = 0; i < 200 && !(fs::exists(out + ".mp4.partial") && fs::file_size(out + ".mp4.partial") > 20000); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  pid_t pid = test::start_long_record(out);
+  REQUIRE(pid > 0);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status = test::signal_and_wait(pid, SIGINT);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   CHECK(fs::exists(out + ".mp4"));
@@ -158,21 +145,9 @@ TEST_CASE("Ctrl-C during record leaves a playable movie of what was recorded", "
 TEST_CASE("kill -9 during record leaves nothing under the final names", "[app][record]") {
   fs::path d = temp_dir("sigkill");
   const std::string out = (d / "cut").string();
-  pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    int devnull = ::open("/dev/null", 1);
-    dup2(devnull, 1);
-    dup2(devnull, 2);
-    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2", "--size",
-          "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  for (int i = 0; i < 200 && !(fs::exists(out + ".mp4.partial") && fs::file_size(out + ".mp4.partial") > 20000); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  kill(pid, SIGKILL);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  pid_t pid = test::start_long_record(out);
+  REQUIRE(pid > 0);
+  test::signal_and_wait(pid, SIGKILL);
   CHECK_FALSE(fs::exists(out + ".mp4"));
   CHECK_FALSE(fs::exists(d / "cut"));
 }

@@ -87,20 +87,9 @@ TEST_CASE("SIGTERM during record also leaves a playable movie", "[robust][app]")
   fs::remove_all(d);
   fs::create_directories(d);
   const std::string out = (d / "cut").string();
-  pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    freopen("/dev/null", "w", stdout);
-    freopen("/dev/null", "w", stderr);
-    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2", "--size",
-          "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  for (int i = 0; i < 200 && !(fs::exists(out + ".mp4.partial") && fs::file_size(out + ".mp4.partial") > 20000); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  kill(pid, SIGTERM);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  pid_t pid = test::start_long_record(out);
+  REQUIRE(pid > 0);
+  const int status = test::signal_and_wait(pid, SIGTERM);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   CHECK(fs::exists(out + ".mp4"));

@@ -1,4 +1,5 @@
 #include "analysis/aggregate.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -26,12 +27,6 @@ std::string point_label(const core::Scene& s) {
   return out;
 }
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
 
 Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*field) {
   std::vector<double> v;
@@ -115,12 +110,12 @@ std::string points_csv(const std::vector<Point>& points) {
       std::string v = core::field_text(p.scene, *core::find_field(k));
       s += v + ",";
     }
-    s += num(core::dipole_contact_force(p.scene) /
+    s += core::format_g(core::dipole_contact_force(p.scene) /
              (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) + ",";
     s += std::to_string(p.runs.size());
     for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
                               &p.fraction_broken_by_vibration, &p.q_tilde_over_qp})
-      s += "," + num(e->mean) + "," + num(e->half_width);
+      s += "," + core::format_g(e->mean) + "," + core::format_g(e->half_width);
     s += "\n";
   }
   return s;
@@ -141,7 +136,7 @@ std::string pooled_survival_csv(const std::vector<Point>& points) {
     std::string prefix;
     for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
     for (size_t i = 0; i < taus.size(); ++i)
-      s += prefix + num(taus[i]) + "," + num(surv[i]) + "," + std::to_string(gaps.size()) + "\n";
+      s += prefix + core::format_g(taus[i]) + "," + core::format_g(surv[i]) + "," + std::to_string(gaps.size()) + "\n";
   }
   return s;
 }

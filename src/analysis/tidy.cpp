@@ -1,4 +1,5 @@
 #include "analysis/tidy.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,12 +7,6 @@
 namespace analysis {
 
 namespace {
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
 std::string point_values(const core::Scene& s) {
   std::string out;
   for (const auto& k : point_keys()) {
@@ -38,12 +33,12 @@ std::string summary_header() {
 }
 
 std::string summary_row(const core::Scene& s, const Measurements& m) {
-  return point_values(s) + num(m.duration) + "," + std::to_string(m.exits) + "," + std::to_string(m.exits_original) +
-         "," + std::to_string(m.exits_added) + "," + num(m.q) + "," + num(m.q_tilde) + "," + num(m.chi_eff) + "," +
-         std::to_string(m.long_arches) + "," + num(m.long_arches_per_minute) + "," + num(m.added_per_long_arch) + "," +
-         num(m.members_per_long_arch) + "," + std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) +
+  return point_values(s) + core::format_g(m.duration) + "," + std::to_string(m.exits) + "," + std::to_string(m.exits_original) +
+         "," + std::to_string(m.exits_added) + "," + core::format_g(m.q) + "," + core::format_g(m.q_tilde) + "," + core::format_g(m.chi_eff) + "," +
+         std::to_string(m.long_arches) + "," + core::format_g(m.long_arches_per_minute) + "," + core::format_g(m.added_per_long_arch) + "," +
+         core::format_g(m.members_per_long_arch) + "," + std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) +
          "," + std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
-         std::to_string(m.clogs_run_end) + "," + num(m.fraction_broken_by_vibration);
+         std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration);
 }
 
 std::vector<double> survival_taus(const core::Scene& s) {
@@ -62,7 +57,7 @@ std::string survival_csv(const core::Scene& s, const std::vector<core::ExitEvent
   const auto p = survival(gaps, taus);
   const std::string pv = point_values(s);
   for (size_t i = 0; i < taus.size(); ++i)
-    out += pv + num(taus[i]) + "," + num(p[i]) + "," + std::to_string(gaps.size()) + "\n";
+    out += pv + core::format_g(taus[i]) + "," + core::format_g(p[i]) + "," + std::to_string(gaps.size()) + "\n";
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "analysis/stats.h"
+#include "core/format.h"
 #include "app/accuracy.h"
 #include "app/campaign.h"
 #include "app/common.h"
@@ -17,6 +18,7 @@
 namespace app {
 
 namespace {
+std::string num6(double v) { return core::format_g(v, 6); }
 namespace fs = std::filesystem;
 
 struct AccuracyOptions {
@@ -26,12 +28,6 @@ struct AccuracyOptions {
   bool quick = false;
 };
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 std::vector<NumericSetting> settings() {
   // The reference first: the finest setting we can afford. Then one change at a time around the default.
@@ -112,13 +108,13 @@ int bench_accuracy(const AccuracyOptions& o) {
                   within ? "yes" : "no", 100 * r.overlap_mean, 100 * r.overlap_max, ks, drift,
                   r.failures ? ("  FAILED " + std::to_string(r.failures) + "x: " + r.failure.substr(0, 80)).c_str() : "");
       std::fflush(stdout);
-      csv += st.name + "," + sc.name + "," + num(st.dt) + "," + std::to_string(st.velocity_iterations) + "," +
-             std::to_string(st.position_iterations) + "," + num(st.length_scale) + "," + (st.continuous ? "1" : "0") +
-             "," + num(cfg.dipole_cutoff) + "," + std::to_string(realizations) + "," + std::to_string(r.failures) +
-             "," + num(speed) + "," + num(speed / ref_speed) + "," + num(eq.mean) + "," + num(eq.half_width) + "," +
-             num(eqt.mean) + "," + num(eqt.half_width) + "," + num(rel) + "," + (within ? "1" : "0") + "," +
-             num(100 * r.overlap_mean) + "," + num(100 * r.overlap_max) + "," +
-             std::to_string(r.clog_durations.size()) + "," + num(ks) + "," + num(drift) + "\n";
+      csv += st.name + "," + sc.name + "," + num6(st.dt) + "," + std::to_string(st.velocity_iterations) + "," +
+             std::to_string(st.position_iterations) + "," + num6(st.length_scale) + "," + (st.continuous ? "1" : "0") +
+             "," + num6(cfg.dipole_cutoff) + "," + std::to_string(realizations) + "," + std::to_string(r.failures) +
+             "," + num6(speed) + "," + num6(speed / ref_speed) + "," + num6(eq.mean) + "," + num6(eq.half_width) + "," +
+             num6(eqt.mean) + "," + num6(eqt.half_width) + "," + num6(rel) + "," + (within ? "1" : "0") + "," +
+             num6(100 * r.overlap_mean) + "," + num6(100 * r.overlap_max) + "," +
+             std::to_string(r.clog_durations.size()) + "," + num6(ks) + "," + num6(drift) + "\n";
     }
   }
   fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".") : fs::path(o.csv).parent_path());

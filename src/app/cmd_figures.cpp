@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "app/common.h"
+#include "core/format.h"
 #include "core/error.h"
 #include "io/metadata.h"
 
@@ -19,11 +20,6 @@ struct FiguresOptions {
   std::string dir, out;
 };
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 int figures(const FiguresOptions& o) {
   // DIR may be a campaign's results directory (with analysis/) or an analysis directory itself.
@@ -42,7 +38,7 @@ int figures(const FiguresOptions& o) {
   tmp += ".partial";
   std::error_code ec;
   fs::remove_all(tmp, ec);
-  std::string cmd = python_interpreter() + " " + quote(script.string()) + " " + quote(src.string()) + " " + quote(tmp.string());
+  std::string cmd = python_interpreter() + " " + core::shell_quote(script.string()) + " " + core::shell_quote(src.string()) + " " + core::shell_quote(tmp.string());
   int status = std::system(cmd.c_str());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     fs::remove_all(tmp, ec);

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "analysis/measure.h"
+#include "core/format.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
 #include "app/queue.h"
@@ -26,6 +27,7 @@
 namespace app {
 
 namespace {
+std::string num6(double v) { return core::format_g(v, 6); }
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
@@ -43,11 +45,6 @@ struct Stages {
 };
 
 
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -60,8 +57,8 @@ int record_movie(const RecordOptions& o) {
   video.crf = o.crf;
   video.preset = o.preset;
   if (!o.no_movie) record::validate(video);
-  if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
-  if (!(o.slowmo >= 1) || o.slowmo > 100) throw core::InputError("--slowmo " + num(o.slowmo) + ": allowed range is 1 (off) to 100");
+  if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num6(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
+  if (!(o.slowmo >= 1) || o.slowmo > 100) throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
   if (o.png_every < 0) throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0) throw core::InputError("--no-movie without --png-every would record nothing");
   if (o.fps < 1 || o.fps > 240) throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
@@ -224,8 +221,8 @@ int record_movie(const RecordOptions& o) {
                 {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(scene.n_total)))},
                 {"size", "\"" + std::to_string(video.width) + "x" + std::to_string(video.height) + "\""},
                 {"fps", std::to_string(o.fps)},
-                {"speed_sim_s_per_video_s", num(o.speed)},
-                {"slowmo", num(o.slowmo)},
+                {"speed_sim_s_per_video_s", num6(o.speed)},
+                {"slowmo", num6(o.slowmo)},
                 {"slowmo_frames", std::to_string(slow_frames)},
                 {"camera", "\"" + o.camera + "\""},
                 {"palette", "\"" + o.palette + "\""},
@@ -235,15 +232,15 @@ int record_movie(const RecordOptions& o) {
                 {"preset", "\"" + o.preset + "\""},
                 {"png_every", std::to_string(o.png_every)},
                 {"interrupted", was_interrupted ? "true" : "false"},
-                {"simulated_s", num(hopper->time())},
+                {"simulated_s", num6(hopper->time())},
                 {"gl_renderer", "\"" + gl_renderer + "\""},
-                {"wall_s", num(wall)},
-                {"ms_per_frame_sim", num(st.sim * per)},
-                {"ms_per_frame_draw", num(st.draw * per)},
-                {"ms_per_frame_readback", num(st.readback * per)},
-                {"ms_per_frame_convert", num(st.convert * per)},
-                {"ms_per_frame_encode", num(st.encode * per)},
-                {"ms_per_frame_png", num(st.png * per)}};
+                {"wall_s", num6(wall)},
+                {"ms_per_frame_sim", num6(st.sim * per)},
+                {"ms_per_frame_draw", num6(st.draw * per)},
+                {"ms_per_frame_readback", num6(st.readback * per)},
+                {"ms_per_frame_convert", num6(st.convert * per)},
+                {"ms_per_frame_encode", num6(st.encode * per)},
+                {"ms_per_frame_png", num6(st.png * per)}};
   io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
   dir.commit();
 

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "analysis/measure.h"
+#include "core/format.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
 #include "core/error.h"
@@ -22,11 +23,6 @@ struct RunOptions {
   bool quiet = false;
 };
 
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
 
 int run(const RunOptions& o) {
   const core::Scene scene = o.scene.load();
@@ -85,11 +81,11 @@ int run(const RunOptions& o) {
   io::RunInfo info;
   info.command = command_line();
   info.facts = {{"steps", std::to_string(hopper.steps())},
-                {"settle_max_speed_m_per_s", num(hopper.settle_max_speed())},
+                {"settle_max_speed_m_per_s", core::format_g(hopper.settle_max_speed())},
                 {"arch_fallbacks", std::to_string(hopper.arch_fallbacks())},
-                {"wall_time_settle_s", num(settle_wall)},
-                {"wall_time_discharge_s", num(run_wall)},
-                {"speed_vs_real_time", num(scene.duration / std::max(run_wall, 1e-9))}};
+                {"wall_time_settle_s", core::format_g(settle_wall)},
+                {"wall_time_discharge_s", core::format_g(run_wall)},
+                {"speed_vs_real_time", core::format_g(scene.duration / std::max(run_wall, 1e-9))}};
   io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
   dir.commit();
 

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "app/campaign.h"
+#include "core/format.h"
 #include "app/common.h"
 #include "core/error.h"
 #include "io/metadata.h"
@@ -44,11 +45,6 @@ struct Job {
   std::string line;  // the shell command, run from the results directory
 };
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 std::string self_exe() {
   std::error_code ec;
@@ -126,7 +122,7 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
       }
       char scene[48];
       std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
-      j.line = quote(binary) + " run " + scene + " --seed " + std::to_string(c.realization_seed(p, k)) +
+      j.line = core::shell_quote(binary) + " run " + scene + " --seed " + std::to_string(c.realization_seed(p, k)) +
                " --quiet --out " + j.dir;
       jobs.push_back(j);
     }
@@ -161,7 +157,7 @@ pid_t spawn_job(const Job& j, const fs::path& dir) {
   // The same line a job list holds, run from the results directory, its output kept in logs/.
   char log[64];
   std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
-  std::string cmd = "cd " + quote(dir.string()) + " && exec " + j.line + " > " + log + " 2>&1";
+  std::string cmd = "cd " + core::shell_quote(dir.string()) + " && exec " + j.line + " > " + log + " 2>&1";
   const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
   pid_t pid = 0;
   int r = posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ);

@@ -1,4 +1,5 @@
 #include "io/events_csv.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -17,11 +18,6 @@ const char* kClogsHeader = "start_s,end_s,duration_s,ended_by,arrested";
 const char* kArchesHeader =
     "t_s,clog_duration_s,method,n_members,n_added,ids,species,span_m,height_m,max_angle_deg";
 
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -84,14 +80,14 @@ class CsvReader {
 
 std::string exits_csv(const core::Events& ev) {
   std::string s = std::string(kExitsHeader) + "\n";
-  for (const auto& e : ev.exits) s += num(e.t) + "," + std::to_string(e.id) + "," + core::species_name(e.species) + "\n";
+  for (const auto& e : ev.exits) s += core::format_g(e.t) + "," + std::to_string(e.id) + "," + core::species_name(e.species) + "\n";
   return s;
 }
 
 std::string clogs_csv(const core::Events& ev) {
   std::string s = std::string(kClogsHeader) + "\n";
   for (const auto& c : ev.clogs)
-    s += num(c.start) + "," + num(c.end) + "," + num(c.end - c.start) + "," + core::clog_end_name(c.ended_by) + "," +
+    s += core::format_g(c.start) + "," + core::format_g(c.end) + "," + core::format_g(c.end - c.start) + "," + core::clog_end_name(c.ended_by) + "," +
          (c.arrested ? "1" : "0") + "\n";
   return s;
 }
@@ -106,9 +102,9 @@ std::string arches_csv(const core::Events& ev) {
       sp += (k ? ";" : "") + std::string(core::species_name(a.species[k]));
       added += a.species[k] == core::Species::Added;
     }
-    s += num(a.t) + "," + num(a.clog_duration) + "," + a.method + "," + std::to_string(a.ids.size()) + "," +
-         std::to_string(added) + "," + ids + "," + sp + "," + num(a.geometry.span) + "," + num(a.geometry.height) +
-         "," + num(a.geometry.max_angle_deg) + "\n";
+    s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," + a.method + "," + std::to_string(a.ids.size()) + "," +
+         std::to_string(added) + "," + ids + "," + sp + "," + core::format_g(a.geometry.span) + "," + core::format_g(a.geometry.height) +
+         "," + core::format_g(a.geometry.max_angle_deg) + "\n";
   }
   return s;
 }

@@ -1,4 +1,5 @@
 #include "io/metadata.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,13 +12,6 @@
 namespace io {
 
 namespace {
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  std::string s = b;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
 std::string quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -41,16 +35,16 @@ std::vector<std::pair<std::string, std::string>> derived_facts(const core::Scene
   return {
       {"n_original", std::to_string(s.n_original())},
       {"n_added", std::to_string(s.n_added())},
-      {"radius_added_m", num(ra)},
-      {"mass_original_kg", num(core::mass_of(s.radius_original, s.density))},
-      {"mass_added_kg", num(ma)},
-      {"hopper_wall_angle_from_vertical_deg", num(g.wall_angle_from_vertical() * 180 / kPi)},
-      {"angle_between_hopper_walls_deg", num(2 * g.wall_angle_from_vertical() * 180 / kPi)},
-      {"aperture_over_original_diameter", num(s.aperture / (2 * s.radius_original))},
-      {"dipole_contact_force_over_weight", num(contact_force / (ma * s.gravity))},
-      {"dipole_safe_dt_s", std::isfinite(safe_dt) ? num(safe_dt) : "inf"},
+      {"radius_added_m", core::format_toml_float(ra)},
+      {"mass_original_kg", core::format_toml_float(core::mass_of(s.radius_original, s.density))},
+      {"mass_added_kg", core::format_toml_float(ma)},
+      {"hopper_wall_angle_from_vertical_deg", core::format_toml_float(g.wall_angle_from_vertical() * 180 / kPi)},
+      {"angle_between_hopper_walls_deg", core::format_toml_float(2 * g.wall_angle_from_vertical() * 180 / kPi)},
+      {"aperture_over_original_diameter", core::format_toml_float(s.aperture / (2 * s.radius_original))},
+      {"dipole_contact_force_over_weight", core::format_toml_float(contact_force / (ma * s.gravity))},
+      {"dipole_safe_dt_s", std::isfinite(safe_dt) ? core::format_toml_float(safe_dt) : "inf"},
       {"steps_per_kick", std::to_string(std::llround(s.kick_period / s.dt))},
-      {"box2d_linear_slop_m", num(0.005 / s.length_scale)},
+      {"box2d_linear_slop_m", core::format_toml_float(0.005 / s.length_scale)},
   };
 }
 

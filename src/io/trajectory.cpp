@@ -99,13 +99,12 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
   const std::string p = path.string();
   std::ifstream in(p, std::ios::binary);
   if (!in) throw core::InputError(p + ": cannot open trajectory file");
-  std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  parse(data, p);
+  parse(std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), p);
 }
 
 Trajectory::Trajectory(const std::vector<unsigned char>& data, const std::string& name) { parse(data, name); }
 
-void Trajectory::parse(const std::vector<unsigned char>& data, const std::string& p) {
+void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   if (data.size() < kFixedHeader || std::memcmp(data.data(), kMagic, 8) != 0)
     throw core::InputError(p + ": not a siloscope trajectory (no SILOTRAJ header)");
   const auto version = get<std::uint32_t>(data.data(), 8);
@@ -137,23 +136,23 @@ void Trajectory::parse(const std::vector<unsigned char>& data, const std::string
   const auto meta = get<std::uint32_t>(data.data(), after_arrays);
   if (after_arrays + 4 + size_t(meta) > header) throw core::InputError(p + ": corrupted trajectory header (metadata)");
   info_.metadata.assign(reinterpret_cast<const char*>(&data[after_arrays + 4]), meta);
-  const size_t body = data.size() - header, count = body / fbytes;
+  const size_t body = data.size() - header;
   truncated_ = body % fbytes != 0;
-  for (size_t k = 0; k < count; ++k) {
-    const unsigned char* f = &data[header + k * fbytes];
-    frames_.emplace_back(f, f + fbytes);
-    long_arches_.push_back(get<std::int32_t>(f, 32));
-  }
+  data_ = std::move(data);
+  header_ = header;
+  frame_bytes_ = fbytes;
+  count_ = static_cast<long>(body / fbytes);
+  for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
 }
 
-double Trajectory::time(long k) const { return get<double>(frames_[static_cast<size_t>(k)].data(), 0); }
-double Trajectory::since_last_exit(long k) const { return get<double>(frames_[static_cast<size_t>(k)].data(), 8); }
+double Trajectory::time(long k) const { return get<double>(record(k), 0); }
+double Trajectory::since_last_exit(long k) const { return get<double>(record(k), 8); }
 
 core::Frame Trajectory::frame(long k) const {
   if (k < 0 || k >= size())
     throw core::InputError("frame " + std::to_string(k) + " is out of range; the trajectory has frames 0 to " +
                            std::to_string(size() - 1));
-  const unsigned char* b = frames_[static_cast<size_t>(k)].data();
+  const unsigned char* b = record(k);
   core::Frame f;
   f.t = get<double>(b, 0);
   f.since_last_exit = get<double>(b, 8);

@@ -64,7 +64,7 @@ class Trajectory {
   // From bytes in memory; `name` names them in errors.
   Trajectory(const std::vector<unsigned char>& data, const std::string& name);
   const TrajectoryInfo& info() const { return info_; }
-  long size() const { return static_cast<long>(frames_.size()); }
+  long size() const { return count_; }
   bool truncated() const { return truncated_; }  // a partial last frame was dropped
   // Frame k as a core::Frame (arch, counters, positions, velocities, forces).
   core::Frame frame(long k) const;
@@ -74,10 +74,13 @@ class Trajectory {
 
  private:
   TrajectoryInfo info_;
-  std::vector<std::vector<unsigned char>> frames_;
+  std::vector<unsigned char> data_;  // the whole file; frames are read in place
+  size_t header_ = 0, frame_bytes_ = 0;
+  long count_ = 0;
   std::vector<int> long_arches_;
+  const unsigned char* record(long k) const { return data_.data() + header_ + static_cast<size_t>(k) * frame_bytes_; }
   bool truncated_ = false;
-  void parse(const std::vector<unsigned char>& data, const std::string& p);
+  void parse(std::vector<unsigned char> data, const std::string& p);
 };
 
 }  // namespace io

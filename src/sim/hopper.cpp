@@ -1,4 +1,5 @@
 #include "sim/hopper.h"
+#include "core/format.h"
 
 #include <box2d/box2d.h>
 
@@ -15,6 +16,7 @@
 namespace sim {
 
 namespace {
+std::string fmt4(double v) { return core::format_g(v, 4); }
 // Fixture user data: particle id + 1, or kWallTag + wall index.
 constexpr std::uintptr_t kWallTag = 1u << 30;
 // Overlap (fraction of the smaller radius of a pair) past which the integration is considered broken.
@@ -30,11 +32,6 @@ int decode(const b2Fixture* f) {
   std::uintptr_t u = const_cast<b2Fixture*>(f)->GetUserData().pointer;
   if (u >= kWallTag) return -1 - static_cast<int>(u - kWallTag);
   return static_cast<int>(u) - 1;
-}
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
 }
 }  // namespace
 
@@ -52,12 +49,12 @@ Hopper::Hopper(const core::Scene& scene)
   const double dipole_dt = core::dipole_safe_dt(scene_), kinematic_dt = core::kinematic_safe_dt(scene_);
   std::string refusal;
   if (scene_.dt > dipole_dt)
-    refusal = "dt = " + fmt(scene_.dt) + " s is too large for the dipole repulsion at mu = " + fmt(scene_.mu) +
-              " A*m^2 and r = " + fmt(scene_.size_ratio) + "; the largest safe time step is " +
-              fmt(std::min(dipole_dt, kinematic_dt)) + " s";
+    refusal = "dt = " + fmt4(scene_.dt) + " s is too large for the dipole repulsion at mu = " + fmt4(scene_.mu) +
+              " A*m^2 and r = " + fmt4(scene_.size_ratio) + "; the largest safe time step is " +
+              fmt4(std::min(dipole_dt, kinematic_dt)) + " s";
   else if (scene_.dt > kinematic_dt)
-    refusal = "dt = " + fmt(scene_.dt) + " s lets a falling disk move more than the smallest diameter per step " +
-              "(free fall from the top); the largest safe time step is " + fmt(kinematic_dt) + " s";
+    refusal = "dt = " + fmt4(scene_.dt) + " s lets a falling disk move more than the smallest diameter per step " +
+              "(free fall from the top); the largest safe time step is " + fmt4(kinematic_dt) + " s";
   if (!refusal.empty()) {
     if (!scene_.unsafe) throw core::InputError("scene: " + refusal + " (or pass --unsafe)");
     warn_unsafe(refusal);
@@ -189,9 +186,9 @@ void Hopper::settle() {
 void Hopper::open_aperture() {
   for (int i = 0; i < particle_count(); ++i)
     if (pos(i).y + radius_[i] > geo_.total_height)
-      throw core::InputError("scene: after settle_time = " + fmt(scene_.settle_time) + " s particle " +
+      throw core::InputError("scene: after settle_time = " + fmt4(scene_.settle_time) + " s particle " +
                              std::to_string(i) + " (" + core::species_name(species_[i]) +
-                             ") is still above the top of the container at y = " + fmt(pos(i).y) +
+                             ") is still above the top of the container at y = " + fmt4(pos(i).y) +
                              " m; raise settle_time or silo_height" +
                              (scene_.mu > 0 ? ", or lower mu (repelling disks float on the column)" : ""));
   walls_->DestroyFixture(ceiling_);
@@ -299,9 +296,9 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
     cause = "a disk faster than 10x (the free-fall speed from the top + 1 m/s)";
   if (!cause) return;
   std::ostringstream o;
-  o << "unstable integration at t = " << fmt(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt(p.x)
-    << " m, y = " << fmt(p.y) << " m, speed " << fmt(core::length(v)) << " m/s); try dt <= " << fmt(0.5 * scene_.dt)
-    << " s (now " << fmt(scene_.dt) << " s), more iterations, or continuous = true";
+  o << "unstable integration at t = " << fmt4(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt4(p.x)
+    << " m, y = " << fmt4(p.y) << " m, speed " << fmt4(core::length(v)) << " m/s); try dt <= " << fmt4(0.5 * scene_.dt)
+    << " s (now " << fmt4(scene_.dt) << " s), more iterations, or continuous = true";
   if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
     warn_unsafe(o.str());
     return;
@@ -325,9 +322,9 @@ void Hopper::check_overlaps() {
   overlaps_.max = std::max(overlaps_.max, worst);
   if (worst <= kMaxOverlapFraction) return;
   std::ostringstream o;
-  o << "unstable integration at t = " << fmt(t_) << " s: disks " << wa << " and " << wb << " overlap by "
-    << fmt(100 * worst) << "% of the smaller radius (bound " << fmt(100 * kMaxOverlapFraction)
-    << "%); try dt <= " << fmt(0.5 * scene_.dt) << " s (now " << fmt(scene_.dt) << " s) or more iterations";
+  o << "unstable integration at t = " << fmt4(t_) << " s: disks " << wa << " and " << wb << " overlap by "
+    << fmt4(100 * worst) << "% of the smaller radius (bound " << fmt4(100 * kMaxOverlapFraction)
+    << "%); try dt <= " << fmt4(0.5 * scene_.dt) << " s (now " << fmt4(scene_.dt) << " s) or more iterations";
   if (scene_.unsafe) {
     warn_unsafe(o.str());
     return;
@@ -424,7 +421,7 @@ void Hopper::reinject(int id) {
       return;
     }
   }
-  throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) + " at t = " + fmt(t_) + " s");
+  throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) + " at t = " + fmt4(t_) + " s");
 }
 
 core::ContactGraph Hopper::contact_graph() const {

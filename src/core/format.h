@@ -1,0 +1,32 @@
+// Numbers as text for CSV, TOML and messages: one formatter instead of one per file.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace core {
+
+// printf("%.{digits}g"), with NaN always written "nan".
+inline std::string format_g(double v, int digits = 9) {
+  if (std::isnan(v)) return "nan";
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*g", digits, v);
+  return b;
+}
+
+// The same, kept a TOML float: "20" becomes "20.0".
+inline std::string format_toml_float(double v, int digits = 9) {
+  std::string s = format_g(v, digits);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// A string quoted for /bin/sh.
+inline std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace core
