@@ -154,13 +154,14 @@ TEST_CASE("kill -9 during record leaves nothing under the final names", "[app][r
 
 TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal and nowhere else", "[app][record]") {
   fs::path d = temp_dir("slowmo");
-  // Seed 1: the first clog is removed by the rule at t = 5.59 s; the slow window is 5.09 to 6.59 s.
-  const std::string common = "record " + kScene + " --duration 7 --size 160x120 --fps 10 --quiet --out ";
+  // Seed 1: the first clog is removed by the rule at t = 6.521 s; the slow window is 6.021 to 7.521 s.
+  const std::string common = "record " + kScene + " --duration 8 --size 160x120 --fps 10 --quiet --out ";
   REQUIRE(cli(common + (d / "plain").string()).code == 0);
   REQUIRE(cli(common + (d / "slow").string() + " --slowmo 4").code == 0);
-  CHECK_THAT(slurp(d / "plain" / "metadata.toml"), Catch::Matchers::Contains("frames = 70\n"));
+  CHECK_THAT(slurp(d / "plain" / "metadata.toml"), Catch::Matchers::Contains("frames = 80\n"));
   const std::string slow = slurp(d / "slow" / "metadata.toml");
-  // 1.5 s at 4x: 45 extra frames (60 frames in the window instead of 15).
-  CHECK_THAT(slow, Catch::Matchers::Contains("frames = 115\n") && Catch::Matchers::Contains("slowmo_frames = 60\n"));
+  // Frames at 0, 0.1, ..., 6.0 (61); slow from 6.1 (the first frame past 6.021) every 0.025 s up to 7.5 (57);
+  // then 7.525, 7.625, ..., 7.925 (5): 123 frames, 57 of them slow.
+  CHECK_THAT(slow, Catch::Matchers::Contains("frames = 123\n") && Catch::Matchers::Contains("slowmo_frames = 57\n"));
   CHECK(cli(common + (d / "bad").string() + " --slowmo 0.5").code == 2);
 }

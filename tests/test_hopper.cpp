@@ -39,10 +39,10 @@ TEST_CASE("every disk that falls through the aperture gives exactly one exit eve
     h.step();
     std::vector<core::Vec2> after = h.positions();
     REQUIRE(static_cast<int>(after.size()) == n);  // the count never changes
-    // A re-injection moves a disk from the outlet region to the top in one step.
+    // A re-injection moves a disk up to the top of the column in one step (no disk rises 1 m in 1 ms otherwise).
     long step_jumps = 0;
     for (int i = 0; i < n; ++i)
-      if (before[i].y < 0.6 && after[i].y > before[i].y + 1.0) ++step_jumps;
+      if (after[i].y > before[i].y + 1.0) ++step_jumps;
     size_t new_exits = h.events().exits.size() - exits_seen;
     size_t new_rule = 0;
     for (; arches_seen < h.events().arches.size(); ++arches_seen) new_rule += h.events().arches[arches_seen].ids.size();

@@ -102,7 +102,7 @@ TEST_CASE("command-line overrides edit the same fields", "[sim][scene]") {
 TEST_CASE("a run's metadata file loads back as the same scene", "[sim][scene]") {
   core::Scene s;
   core::apply_overrides(s, {"mu=0.7", "size_ratio=0.25", "seed=99", "dt=0.0005", "arch_method=visible"});
-  io::RunInfo info{"siloscope run test", {{"steps", "10"}}};
+  io::RunInfo info{"siloscope run test", {{"steps", "10"}}, {}};
   auto p = write_temp("metadata.toml", io::metadata_toml(s, info));
   core::Scene back = core::load_scene(p);
   for (const auto& f : core::scene_fields()) CHECK(core::field_text(back, f) == core::field_text(s, f));

@@ -115,9 +115,15 @@ TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU paral
              " > /dev/null") == 0);
   CHECK(slurp(d / "gnu" / "analysis" / "points.csv") == points);
   // A results directory of another campaign is refused and left alone.
-  fs::path other = tiny_campaign(d, 3);
+  fs::path other = tiny_campaign(d, 2, "[[points]]\nchi = 0.2\n");
   CHECK(sh(kBin + " sweep " + other.string() + " --quiet --results " + (d / "one").string() + " 2> /dev/null") == 2);
   CHECK(count_runs(d / "one") == 6);
+  // The same campaign with more realizations extends it: the first ones are kept, not rerun.
+  const auto first_exits = slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv");
+  fs::path more = tiny_campaign(d, 3);
+  CHECK(sh(kBin + " sweep " + more.string() + " --quiet --up-to 3 --results " + (d / "one").string()) == 0);
+  CHECK(count_runs(d / "one") == 9);
+  CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") == first_exits);
 }
 
 TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization", "[campaign][app]") {

@@ -47,7 +47,7 @@ fs::path synthetic_trajectory(const fs::path& dir) {
   info.frame_interval = 1.0 / 30;
   info.radius = {0.065f, 0.026f};
   info.species = {core::Species::Original, core::Species::Added};
-  info.metadata = io::metadata_toml(s, {"test", {}});
+  info.metadata = io::metadata_toml(s, {"test", {}, {}});
   fs::path p = dir / "trajectory.sstraj";
   io::TrajectoryWriter w(p, info);
   for (int k = 0; k < 5; ++k) {

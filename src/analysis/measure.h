@@ -20,6 +20,10 @@ struct Measurements {
   long clogs = 0;                   // exit gaps >= clog_min_gap, any ending
   long clogs_spontaneous = 0, clogs_vibration = 0, clogs_rule = 0, clogs_run_end = 0;
   double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
+  // Health, from the run's metadata (not from the events): set by the caller.
+  long health_warnings = 0;         // --unsafe warnings
+  double airborne_fraction = 0;     // mean fraction of disks in flight above the column
+  bool ballistic = false;           // airborne_fraction above the ballistic threshold
 };
 
 Measurements measure(const core::Events& ev, double duration);

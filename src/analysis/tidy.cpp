@@ -29,7 +29,7 @@ std::string summary_header() {
   return h +
          "duration_s,exits,exits_original,exits_added,q_per_s,q_tilde_per_s,chi_eff,long_arches,"
          "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_vibration,"
-         "clogs_rule,clogs_run_end,fraction_broken_by_vibration";
+         "clogs_rule,clogs_run_end,fraction_broken_by_vibration,airborne_fraction,ballistic,health_warnings";
 }
 
 std::string summary_row(const core::Scene& s, const Measurements& m) {
@@ -38,7 +38,8 @@ std::string summary_row(const core::Scene& s, const Measurements& m) {
          std::to_string(m.long_arches) + "," + core::format_g(m.long_arches_per_minute) + "," + core::format_g(m.added_per_long_arch) + "," +
          core::format_g(m.members_per_long_arch) + "," + std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) +
          "," + std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
-         std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration);
+         std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration) + "," +
+         core::format_g(m.airborne_fraction) + "," + (m.ballistic ? "1" : "0") + "," + std::to_string(m.health_warnings);
 }
 
 std::vector<double> survival_taus(const core::Scene& s) {
@@ -72,7 +73,14 @@ std::string summary_text(const Measurements& m) {
                 m.duration, m.exits, m.exits_original, m.exits_added, m.q, m.q_tilde, m.chi_eff, m.long_arches,
                 m.long_arches_per_minute, m.added_per_long_arch, m.members_per_long_arch, m.clogs,
                 m.clogs_spontaneous, m.clogs_vibration, m.clogs_rule, m.clogs_run_end);
-  return b;
+  std::string out = b;
+  char h[256];
+  std::snprintf(h, sizeof h, "health      %s: %.2f%% of disks in flight on average, %ld warnings\n",
+                m.health_warnings > 0 ? "UNHEALTHY (--unsafe warnings)"
+                : m.ballistic         ? "WARNING ballistic (the kicks throw disks above the column)"
+                                      : "ok",
+                100.0 * m.airborne_fraction, m.health_warnings);
+  return out + h;
 }
 
 }  // namespace analysis

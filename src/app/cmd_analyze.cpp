@@ -1,10 +1,12 @@
 // siloscope analyze DIR... --out DIR: aggregate runs (from any machine) into tidy CSV with 95% intervals.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "analysis/aggregate.h"
 #include "app/common.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -18,6 +20,7 @@ struct AnalyzeOptions {
   std::vector<std::string> inputs;
   std::string out;
   bool force = false;
+  bool include_interrupted = false, include_unhealthy = false;
 };
 
 // Run directories (holding metadata.toml and exits.csv) at or below `root`, sorted.
@@ -38,8 +41,9 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out) {
 
 }  // namespace
 
-int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet) {
-  AnalyzeOptions o{inputs, out_dir, force};
+int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
+                 bool include_interrupted, bool include_unhealthy) {
+  AnalyzeOptions o{inputs, out_dir, force, include_interrupted, include_unhealthy};
   std::vector<fs::path> dirs;
   for (const auto& in : o.inputs) {
     size_t before = dirs.size();
@@ -50,20 +54,49 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::OutputDir out(o.out, o.force);
   std::vector<analysis::Run> runs;
   runs.reserve(dirs.size());
+  std::vector<std::string> left_out;
   for (const auto& d : dirs) {
     analysis::Run r;
     r.source = d.string();
-    r.scene = core::load_scene((d / "metadata.toml").string());
+    const std::string meta = (d / "metadata.toml").string();
+    r.scene = core::load_scene(meta);
     core::validate(r.scene);
+    const io::RunRecord rec = io::read_run_record(meta);
     r.events = io::read_events(d);
-    r.m = analysis::measure(r.events, r.scene.duration);
+    // A run counts for the discharge time it covered, not the time it planned.
+    double covered = rec.covered_s >= 0 ? std::min(rec.covered_s, r.scene.duration) : r.scene.duration;
+    if (covered <= 0)
+      throw core::InputError("analyze: " + r.source + " was stopped before the aperture opened (" +
+                             core::format_g(rec.covered_s) + " s of discharge); remove it or rerun it");
+    if (rec.interrupted && !o.include_interrupted) {
+      left_out.push_back(r.source + ": interrupted after " + core::format_g(covered, 4) + " of " +
+                         core::format_g(r.scene.duration, 4) + " s (--include-interrupted counts it for that time)");
+      continue;
+    }
+    if (rec.health_warnings > 0 && !o.include_unhealthy) {
+      left_out.push_back(r.source + ": unhealthy, " + std::to_string(rec.health_warnings) +
+                         " --unsafe warnings (--include-unhealthy counts it)");
+      continue;
+    }
+    r.m = analysis::measure(r.events, covered);
+    r.m.health_warnings = rec.health_warnings;
+    r.m.ballistic = rec.ballistic;
+    r.m.airborne_fraction = rec.airborne_fraction;
     runs.push_back(std::move(r));
   }
+  for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
+  if (runs.empty()) throw core::InputError("analyze: every run was left out (see above); nothing to aggregate");
   auto points = analysis::aggregate(runs);
   io::write_file_atomic(out.file("realizations.csv"), analysis::realizations_csv(runs));
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
   io::write_file_atomic(out.file("survival.csv"), analysis::pooled_survival_csv(points));
-  io::RunInfo info{command_line(), {{"runs", std::to_string(runs.size())}, {"points", std::to_string(points.size())}}};
+  io::RunInfo info{command_line(),
+                   {{"runs", std::to_string(runs.size())},
+                    {"points", std::to_string(points.size())},
+                    {"runs_left_out", std::to_string(left_out.size())},
+                    {"ballistic_runs", std::to_string(std::count_if(runs.begin(), runs.end(),
+                                                                    [](const analysis::Run& r) { return r.m.ballistic; }))}},
+                   {}};
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
   if (quiet) return 0;
@@ -87,7 +120,15 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->add_option("dirs", opts->inputs, "run directories, or directories holding them")->required();
   cmd->add_option("--out", opts->out, "output directory")->required();
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
-  cmd->callback([opts, &action] { action = [opts] { return analyze_runs(opts->inputs, opts->out, opts->force, false); }; });
+  cmd->add_flag("--include-interrupted", opts->include_interrupted,
+                "count interrupted recordings, for the discharge time each covered");
+  cmd->add_flag("--include-unhealthy", opts->include_unhealthy, "count runs that went on past --unsafe warnings");
+  cmd->callback([opts, &action] {
+    action = [opts] {
+      return analyze_runs(opts->inputs, opts->out, opts->force, false, opts->include_interrupted,
+                          opts->include_unhealthy);
+    };
+  });
 }
 
 }  // namespace app

@@ -210,7 +210,11 @@ int record_movie(const RecordOptions& o) {
   hopper->finish();
   const double shown = last_t;  // simulated seconds shown
   const double analysed = was_interrupted ? std::max(hopper->time(), 1e-9) : scene.duration;
-  const analysis::Measurements m = analysis::measure(hopper->events(), analysed);
+  analysis::Measurements m = analysis::measure(hopper->events(), analysed);
+  m.health_warnings = hopper->health_warnings();
+  m.airborne_fraction = hopper->airborne().mean();
+  m.ballistic = hopper->ballistic();
+  info.health = health_facts(*hopper);
   io::write_events(dir.file(""), hopper->events());
   io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper->events().exits));

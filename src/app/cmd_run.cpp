@@ -38,7 +38,7 @@ int run(const RunOptions& o) {
   std::unique_ptr<io::TrajectoryWriter> trajectory;
   long traj_frame = 0;
   if (o.trajectory_fps > 0) {
-    io::RunInfo tinfo{command_line(), {}};
+    io::RunInfo tinfo{command_line(), {}, {}};
     trajectory = std::make_unique<io::TrajectoryWriter>(
         dir.file("trajectory.sstraj"), trajectory_info(hopper, 1.0 / o.trajectory_fps, io::metadata_toml(scene, tinfo)));
   }
@@ -74,7 +74,10 @@ int run(const RunOptions& o) {
   const double settle_wall = std::chrono::duration<double>(wall1 - wall0).count();
   const double run_wall = std::chrono::duration<double>(wall2 - wall1).count();
 
-  const analysis::Measurements m = analysis::measure(hopper.events(), scene.duration);
+  analysis::Measurements m = analysis::measure(hopper.events(), scene.duration);
+  m.health_warnings = hopper.health_warnings();
+  m.airborne_fraction = hopper.airborne().mean();
+  m.ballistic = hopper.ballistic();
   io::write_events(dir.file(""), hopper.events());
   io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper.events().exits));
@@ -86,6 +89,7 @@ int run(const RunOptions& o) {
                 {"wall_time_settle_s", core::format_g(settle_wall)},
                 {"wall_time_discharge_s", core::format_g(run_wall)},
                 {"speed_vs_real_time", core::format_g(scene.duration / std::max(run_wall, 1e-9))}};
+  info.health = health_facts(hopper);
   io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
   dir.commit();
 

@@ -10,12 +10,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "app/campaign.h"
@@ -35,6 +37,7 @@ namespace fs = std::filesystem;
 struct SweepOptions {
   std::string campaign, results, binary;
   int workers = 0;
+  int up_to = 0;  // run only realizations 0..up_to-1 of every point (0: all)
   bool emit_jobs = false, dry_run = false, no_analyze = false, quiet = false;
 };
 
@@ -68,6 +71,19 @@ class ResultsLock {
   int fd_ = -1;
 };
 
+// A campaign file without its `realizations = N` line: raising (or lowering) the number of realizations keeps
+// every seed and directory of the realizations already run, so such a change may resume the same results.
+std::string without_realizations(const std::string& text) {
+  std::string out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    size_t a = line.find_first_not_of(" \t");
+    if (a != std::string::npos && line.compare(a, 12, "realizations") == 0) continue;
+    out += line + "\n";
+  }
+  return out;
+}
+
 // Prepare the results directory: the campaign file it belongs to, the scene of each point. Refuses a directory
 // that holds a different campaign.
 void prepare_results(const Campaign& c, const fs::path& dir) {
@@ -78,9 +94,11 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   if (fs::exists(stamp)) {
     std::ifstream in(stamp);
     std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (old != c.text)
+    if (without_realizations(old) != without_realizations(c.text))
       throw core::InputError("results directory " + dir.string() + " holds a different campaign (its campaign.toml "
-                             "differs from " + c.path + "); choose another --results directory");
+                             "differs from " + c.path + " in more than `realizations`); choose another --results "
+                             "directory");
+    if (old != c.text) io::write_file_atomic(stamp, c.text);
   } else {
     io::write_file_atomic(stamp, c.text);
   }
@@ -110,11 +128,15 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   }
 }
 
-std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std::string& binary, size_t& done) {
+// Realization-major: every point gets its k-th realization before any gets its (k+1)-th, so a campaign stopped
+// at any moment has nearly the same number of realizations at every point.
+std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std::string& binary, int up_to,
+                              size_t& done) {
   std::vector<Job> jobs;
   done = 0;
-  for (size_t p = 0; p < c.points.size(); ++p) {
-    for (int k = 0; k < c.realizations; ++k) {
+  const int last = up_to > 0 ? std::min(up_to, c.realizations) : c.realizations;
+  for (int k = 0; k < last; ++k) {
+    for (size_t p = 0; p < c.points.size(); ++p) {
       Job j{p, k, "runs/" + c.run_dir(p, k), ""};
       if (fs::exists(dir / j.dir / "metadata.toml")) {
         ++done;
@@ -186,8 +208,9 @@ int sweep(const SweepOptions& o) {
   prepare_results(c, dir);
   fs::create_directories(dir / "logs");
   size_t done = 0;
-  std::vector<Job> jobs = pending_jobs(c, dir, binary, done);
-  const size_t total = c.points.size() * static_cast<size_t>(c.realizations);
+  std::vector<Job> jobs = pending_jobs(c, dir, binary, o.up_to, done);
+  const size_t total =
+      c.points.size() * static_cast<size_t>(o.up_to > 0 ? std::min(o.up_to, c.realizations) : c.realizations);
   if (o.emit_jobs) {
     emit_jobs(c, dir, jobs);
     return 0;
@@ -256,7 +279,11 @@ void add_sweep_command(CLI::App& app, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("campaign", o->campaign, "campaign file, e.g. assets/campaigns/quick.toml")->required();
   cmd->add_option("--results", o->results, "results directory (default: results/NAME)");
-  cmd->add_option("--workers", o->workers, "parallel realizations (default: all cores)");
+  cmd->add_option("--workers", o->workers, "parallel realizations (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--up-to", o->up_to,
+                  "run only the first K realizations of every point (a first pass over the whole grid)")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--emit-jobs", o->emit_jobs, "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
   cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
   cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");

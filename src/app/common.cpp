@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "io/trajectory.h"
 #include "sim/hopper.h"
 
@@ -48,6 +49,17 @@ core::Scene SceneOptions::load() const {
 std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
 
 std::string command_line() { return g_command; }
+
+std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h) {
+  const bool ballistic = h.ballistic();
+  std::string status = h.health_warnings() > 0 ? "unsafe" : ballistic ? "ballistic" : "ok";
+  return {{"status", "\"" + status + "\""},
+          {"warnings", std::to_string(h.health_warnings())},
+          {"ballistic", ballistic ? "true" : "false"},
+          {"airborne_fraction_mean", core::format_toml_float(h.airborne().mean())},
+          {"airborne_fraction_max", core::format_toml_float(h.airborne().max)},
+          {"ballistic_threshold", core::format_toml_float(sim::Hopper::kBallisticFraction)}};
+}
 
 io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata) {
   io::TrajectoryInfo t;

@@ -24,6 +24,8 @@ namespace app {
 // The header of a trajectory of `h`: radii, species, the scene's clog settings, `metadata` (TOML text).
 io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata);
 
+// The [health] table of a run's metadata: warnings under --unsafe, disks in flight, the "ballistic" warning.
+std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h);
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {
   std::string path;
@@ -71,7 +73,9 @@ void add_sweep_command(CLI::App& app, Action& action);
 void add_inspect_command(CLI::App& app, Action& action);
 void add_figures_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
-int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet);
+// Interrupted and unhealthy runs are left out (named on stderr) unless included.
+int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
+                 bool include_interrupted = false, bool include_unhealthy = false);
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);

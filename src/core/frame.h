@@ -38,7 +38,7 @@ struct ExitEvent {
 
 enum class ClogEnd : std::uint8_t {
   Spontaneous,  // flow resumed before the outlet came to rest (a transient jam)
-  Vibration,    // the outlet had come to rest; a kick broke the arch
+  Vibration,    // the clog was arrested (arch standing, outlet held still) and flow resumed: a kick broke it
   Rule,         // nothing broke it: the clog_timeout rule removed the arch
   RunEnd,       // still clogged when the run ended (censored)
 };
@@ -48,7 +48,7 @@ struct ClogEvent {
   double start;     // s, the last exit before the gap
   double end;       // s, the next exit, the rule, or the end of the run
   ClogEnd ended_by;
-  bool arrested;    // the outlet region fell below arrest_speed during the clog
+  bool arrested;    // at some kick during the clog an arch stood and the outlet disks had held still
 };
 
 struct ArchGeometry {

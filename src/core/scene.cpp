@@ -79,13 +79,16 @@ const std::vector<Field>& scene_fields() {
       {"kick_impulse_max", &Scene::kick_impulse_max, "N*s", 0.0, 1e3, nullptr,
        "kick impulse magnitudes are uniform in [0, this]"},
       {"global_kick", &Scene::global_kick, "", 0, 0, nullptr, "also kick every particle by one shared impulse"},
+      {"settle_kicks", &Scene::settle_kicks, "", 0, 0, nullptr, "also kick while settling (aperture closed)"},
       {"settle_time", &Scene::settle_time, "s", 0.0, 1e4, nullptr, "settling with the aperture closed"},
       {"duration", &Scene::duration, "s", 0.0, 1e6, nullptr, "discharge time after the aperture opens"},
       {"clog_timeout", &Scene::clog_timeout, "s", 1e-3, 1e6, nullptr,
        "time without exits before the blocking arch is removed"},
       {"clog_min_gap", &Scene::clog_min_gap, "s", 0.0, 1e6, nullptr, "exit gaps this long are recorded as clogs"},
-      {"arrest_speed", &Scene::arrest_speed, "m/s", 0.0, 100.0, nullptr,
-       "outlet speed below which a clog counts as arrested"},
+      {"arrest_hold", &Scene::arrest_hold, "s", 1e-6, 1e4, nullptr,
+       "a clog is arrested when the outlet disks held still this long before a kick"},
+      {"arrest_shift", &Scene::arrest_shift, "1", 0.0, 10.0, nullptr,
+       "largest move, in disk radii, over arrest_hold that still counts as held still"},
       {"arch_wall_reach", &Scene::arch_wall_reach, "m", 1e-3, 100.0, nullptr,
        "wall contacts below this height anchor arches"},
       {"arch_method", &Scene::arch_method, "", 0, 0, "contact_path|visible",
@@ -199,6 +202,11 @@ void validate(const Scene& s) {
   if (steps_per_kick < 1.0 || std::abs(steps_per_kick - std::round(steps_per_kick)) > 1e-6)
     bad(origin, "kick_period", fmt_double(s.kick_period),
         "it must be a whole multiple of dt = " + fmt_double(s.dt) + " s");
+  const double hold_steps = std::round(s.arrest_hold / s.dt);
+  if (hold_steps < 1.0 || hold_steps >= std::round(steps_per_kick))
+    bad(origin, "arrest_hold", fmt_double(s.arrest_hold),
+        "it must be at least dt = " + fmt_double(s.dt) + " s and shorter than kick_period = " +
+            fmt_double(s.kick_period) + " s");
   if (s.clog_min_gap >= s.clog_timeout)
     bad(origin, "clog_min_gap", fmt_double(s.clog_min_gap),
         "it must be shorter than clog_timeout = " + fmt_double(s.clog_timeout) + " s");

@@ -37,13 +37,17 @@ struct Scene {
   double kick_period = 0.1;        // s, time between kicks
   double kick_impulse_max = 5e-5;  // N*s; impulse magnitudes uniform in [0, this]
   bool global_kick = true;         // one extra impulse, same law, applied to every particle at each kick
+  bool settle_kicks = false;       // also kick while settling with the aperture closed (strong kicks fling disks out)
 
   // --- protocol ---
   double settle_time = 4.0;      // s, settling with the aperture closed before t = 0
   double duration = 150.0;       // s of discharge after the aperture opens
   double clog_timeout = 5.0;     // s without an exit before the blocking arch is removed (the 5 s rule)
   double clog_min_gap = 0.5;     // s; an exit gap at least this long is recorded as a clog
-  double arrest_speed = 0.01;    // m/s; a clog whose outlet particles all fell below this is "arrested"
+  // A clog is "arrested" at a kick when a blocking arch stands and every disk near the outlet moved less than
+  // arrest_shift of its own radius over the arrest_hold seconds before the kick (see sim/clog.h).
+  double arrest_hold = 0.05;     // s; [dt, kick_period)
+  double arrest_shift = 0.1;     // fraction of a disk's radius; [0, 10]
   double arch_wall_reach = 1.36; // m; wall contacts below this height anchor arches (default: the hopper)
   std::string arch_method = "contact_path";  // contact_path | visible; how the 5 s rule picks the arch
   double reinject_gap = 0.05;    // m, clearance between a re-injected disk and the column top

@@ -5,6 +5,10 @@
 #include <cstdio>
 #include <ctime>
 
+#include <toml++/toml.h>
+
+#include "core/error.h"
+
 #include "core/geometry.h"
 #include "core/physics.h"
 #include "siloscope_version.h"
@@ -64,7 +68,27 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
     s += "\n[run]\n";
     for (const auto& [k, v] : info.facts) s += k + " = " + v + "\n";
   }
+  if (!info.health.empty()) {
+    s += "\n[health]\n";
+    for (const auto& [k, v] : info.health) s += k + " = " + v + "\n";
+  }
   return s;
+}
+
+RunRecord read_run_record(const std::string& path) {
+  toml::table t;
+  try {
+    t = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw core::InputError(path + ": malformed TOML: " + std::string(e.description()));
+  }
+  RunRecord r;
+  r.health_warnings = t["health"]["warnings"].value_or<std::int64_t>(0);
+  r.ballistic = t["health"]["ballistic"].value_or(false);
+  r.airborne_fraction = t["health"]["airborne_fraction_mean"].value_or(0.0);
+  r.interrupted = t["run"]["interrupted"].value_or(false);
+  if (r.interrupted) r.covered_s = t["run"]["simulated_s"].value_or(-1.0);
+  return r;
 }
 
 }  // namespace io

@@ -61,6 +61,7 @@ Hopper::Hopper(const core::Scene& scene)
   }
   kick_every_ = static_cast<std::uint64_t>(std::llround(scene_.kick_period / scene_.dt));
   open_step_ = static_cast<std::uint64_t>(std::llround(scene_.settle_time / scene_.dt));
+  hold_steps_ = static_cast<std::uint64_t>(std::llround(scene_.arrest_hold / scene_.dt));
 
   world_ = std::make_unique<b2World>(b2Vec2(0.0f, static_cast<float>(-scene_.gravity * L_)));
   world_->SetAllowSleeping(false);  // sleeping would freeze clogged arches between kicks
@@ -189,7 +190,10 @@ void Hopper::open_aperture() {
       throw core::InputError("scene: after settle_time = " + fmt4(scene_.settle_time) + " s particle " +
                              std::to_string(i) + " (" + core::species_name(species_[i]) +
                              ") is still above the top of the container at y = " + fmt4(pos(i).y) +
-                             " m; raise settle_time or silo_height" +
+                             " m; " +
+                             (scene_.settle_kicks && scene_.kick_impulse_max > 0
+                                  ? std::string("the kicks during settling throw disks out: set settle_kicks = false")
+                                  : std::string("raise settle_time or silo_height")) +
                              (scene_.mu > 0 ? ", or lower mu (repelling disks float on the column)" : ""));
   walls_->DestroyFixture(ceiling_);
   ceiling_ = nullptr;
@@ -252,14 +256,18 @@ void Hopper::apply_dipoles() {
 void Hopper::step() {
   Clock::time_point t0;
   if (profiling_) t0 = Clock::now();
-  const bool kick_due = ((static_cast<std::int64_t>(step_) - static_cast<std::int64_t>(open_step_)) %
-                         static_cast<std::int64_t>(kick_every_)) == 0;
+  const std::int64_t every = static_cast<std::int64_t>(kick_every_);
+  const std::int64_t phase =
+      (((static_cast<std::int64_t>(step_) - static_cast<std::int64_t>(open_step_)) % every) + every) % every;
+  const bool kick_due = phase == 0;
+  if (open_ && phase == every - static_cast<std::int64_t>(hold_steps_)) hold_pos_ = positions();
   if (kick_due) {
     if (open_) {
-      clogs_.on_rest_check(t_, outlet_at_rest());
+      clogs_.on_rest_check(t_, outlet_arrested());
       check_overlaps();
+      sample_airborne();
     }
-    if (scene_.kick_impulse_max > 0) apply_kicks();
+    if (scene_.kick_impulse_max > 0 && (open_ || scene_.settle_kicks)) apply_kicks();
   }
   Clock::time_point t1;
   if (profiling_) t1 = Clock::now(), times_.kicks += std::chrono::duration<double>(t1 - t0).count();
@@ -337,17 +345,55 @@ void Hopper::warn_unsafe(const std::string& msg) const {
   if (health_warnings_++ < 3) std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
 }
 
-bool Hopper::outlet_at_rest() const {
-  // Disks within 3 aperture widths of the outlet centre are the ones whose motion could end a clog.
-  const double range2 = 9.0 * scene_.aperture * scene_.aperture;
-  const double v2 = scene_.arrest_speed * scene_.arrest_speed;
+bool Hopper::outlet_arrested() const {
+  if (hold_pos_.size() != bodies_.size()) return false;
+  // Held up by an arch, and the arch and everything beneath it (the disks no farther from the outlet centre than
+  // its farthest member) held still: disks higher in the column may rattle under strong kicks without that
+  // changing whether the outlet is blocked.
+  const std::vector<int> arch = current_arch();
+  if (arch.empty()) return false;
+  double reach = 0;
+  for (int id : arch) reach = std::max(reach, core::length(pos(id)) + radius_[id]);
   for (int i = 0; i < particle_count(); ++i) {
     core::Vec2 p = pos(i);
-    if (core::dot(p, p) > range2) continue;
-    core::Vec2 v = vel(i);
-    if (core::dot(v, v) > v2) return false;
+    if (core::length(p) > reach) continue;
+    const double limit = scene_.arrest_shift * radius_[i];
+    core::Vec2 d = p - hold_pos_[i];
+    if (core::dot(d, d) > limit * limit) return false;
   }
   return true;
+}
+
+double Hopper::column_top(int except) const {
+  const double slab = 2.0 * scene_.radius_original;
+  const int n_slabs = static_cast<int>(std::ceil(geo_.total_height / slab)) + 1;
+  std::vector<double> covered(static_cast<size_t>(n_slabs), 0.0), top_edge(static_cast<size_t>(n_slabs), 0.0);
+  for (int j = 0; j < particle_count(); ++j) {
+    if (j == except) continue;
+    core::Vec2 p = pos(j);
+    if (p.y < 0) continue;
+    const int k = std::min(n_slabs - 1, static_cast<int>(p.y / slab));
+    covered[k] += core::kPi * radius_[j] * radius_[j];
+    top_edge[k] = std::max(top_edge[k], p.y + radius_[j]);
+  }
+  double top = 0;
+  for (int k = 0; k < n_slabs; ++k) {
+    const double mid = std::min((k + 0.5) * slab, geo_.total_height);
+    const double area = 2.0 * geo_.half_width_at(mid) * slab;
+    if (area > 0 && covered[k] >= 0.35 * area) top = std::max(top, top_edge[k]);
+  }
+  return top;
+}
+
+void Hopper::sample_airborne() {
+  const double top = column_top() + 4.0 * scene_.radius_original;
+  int n = 0;
+  for (int i = 0; i < particle_count(); ++i)
+    if (pos(i).y - radius_[i] > top) ++n;
+  const double f = static_cast<double>(n) / std::max(1, particle_count());
+  airborne_.sum += f;
+  airborne_.max = std::max(airborne_.max, f);
+  ++airborne_.samples;
 }
 
 void Hopper::handle_exits() {
@@ -392,12 +438,8 @@ void Hopper::apply_clog_rule() {
 
 void Hopper::reinject(int id) {
   const double r = radius_[id];
-  // The top of the column: the highest disk edge in the container, other than this one.
-  double top = 0;
-  for (int j = 0; j < particle_count(); ++j) {
-    if (j == id) continue;
-    top = std::max(top, pos(j).y + radius_[j]);
-  }
+  // Just above the packed column (disks in flight do not raise it; the free-space test below avoids them).
+  const double top = column_top(id);
   const double ceiling = geo_.total_height - r - 1e-4;
   const double y0 = std::min(top + scene_.reinject_gap + r, ceiling);
   // Bands one diameter apart: from just above the column up to the lid, then (rarely: disks flying high) below.

@@ -74,6 +74,20 @@ class Hopper {
     double mean() const { return samples ? sum / samples : 0.0; }
   };
   const OverlapStats& overlaps() const { return overlaps_; }
+  // Disks in flight: the fraction whose lower edge is more than two original diameters above the column top,
+  // sampled at every kick after the opening (mean and largest). A mean above kBallisticFraction is the named
+  // health warning "ballistic": the kicks throw disks about, and the flow is no longer a dense granular flow.
+  struct Airborne {
+    double sum = 0, max = 0;
+    long samples = 0;
+    double mean() const { return samples ? sum / samples : 0.0; }
+  };
+  static constexpr double kBallisticFraction = 0.01;
+  const Airborne& airborne() const { return airborne_; }
+  bool ballistic() const { return airborne_.mean() > kBallisticFraction; }
+  // The top of the packed column, m: the top edge of the highest horizontal slab (one original diameter thick)
+  // that disks cover by at least 35%; disks in flight above it do not count.
+  double column_top(int except = -1) const;
   // With scene.unsafe, health problems are warned about (the first few printed) and counted instead of stopping.
   long health_warnings() const { return health_warnings_; }
 
@@ -85,6 +99,8 @@ class Hopper {
   // Move disk `id` to p (m) at rest; tests use it to build arches by hand.
   void place(int id, core::Vec2 p);
   void set_velocity(int id, core::Vec2 v);  // m/s
+  // Change the kick strength from now on (N*s); tests stage a clog without kicks, then kick it.
+  void set_kick_impulse_max(double j) { scene_.kick_impulse_max = j; }
   // Run every health check now (they also run on their own: per disk every step, overlaps at every kick).
   void check_health();
 
@@ -101,7 +117,8 @@ class Hopper {
   void apply_clog_rule();
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
   void check_overlaps();
-  bool outlet_at_rest() const;
+  bool outlet_arrested() const;
+  void sample_airborne();
   void reinject(int id);
   core::Vec2 pos(int id) const;
   core::Vec2 vel(int id) const;
@@ -133,6 +150,9 @@ class Hopper {
   double settle_max_speed_ = 0;
   bool profiling_ = false;
   OverlapStats overlaps_;
+  Airborne airborne_;
+  std::uint64_t hold_steps_ = 1;      // arrest_hold in steps
+  std::vector<core::Vec2> hold_pos_;  // positions arrest_hold before the coming kick
   mutable long health_warnings_ = 0;
   void warn_unsafe(const std::string& msg) const;
   StageTimes times_;
