@@ -71,6 +71,7 @@ std::string Campaign::run_dir(size_t p, int k) const {
 }
 
 Campaign load_campaign(const std::string& path) {
+  core::check_text_file(path, "campaign file", "campaign.toml");
   std::ifstream in(path);
   if (!in) throw core::InputError(path + ": cannot open campaign file");
   std::stringstream ss;

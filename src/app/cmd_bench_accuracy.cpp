@@ -52,7 +52,7 @@ int bench_accuracy(const AccuracyOptions& o) {
   const int realizations = o.quick ? 3 : o.realizations;
   const double duration = o.quick ? 15 : o.scene.duration.value_or(60.0);
   if (realizations < 2 || !(duration > 0)) throw core::InputError("--realizations must be >= 2 and --duration > 0");
-  io::check_destination(o.csv, true, "CSV file");
+  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "setting,scene,dt_s,velocity_iterations,position_iterations,length_scale,continuous,dipole_cutoff_m,realizations,failures,sim_per_wall,speedup_vs_reference,q_per_s,q_ci95,q_tilde_per_s,q_tilde_ci95,q_tilde_rel_error,q_tilde_within_reference_ci,overlap_mean_pct,overlap_max_pct,clogs,clog_ks_distance,pair_energy_drift");
   base.duration = duration;
   core::Scene pure = base;
   pure.chi = 0;
@@ -133,8 +133,8 @@ void add_bench_accuracy_command(CLI::App& bench, Action& action) {
   auto* cmd = bench.add_subcommand("accuracy", "speed versus accuracy of every numerical setting against a reference");
   cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
-  cmd->add_option("--realizations", o->realizations, "seeds per setting and scene")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "realizations run side by side")->capture_default_str();
+  cmd->add_option("--realizations", o->realizations, "seeds per setting and scene")->check(whole_number(1, 1000))->capture_default_str();
+  cmd->add_option("--threads", o->threads, "realizations run side by side")->check(whole_number(1, 256))->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output")->capture_default_str();
   cmd->add_option("--chart", o->chart, "PNG chart (empty: none)")->capture_default_str();
   cmd->add_flag("--quick", o->quick, "3 realizations of 15 s: a smoke run of the whole grid (default: 6 of --duration, 60 s)");

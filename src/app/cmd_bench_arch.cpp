@@ -27,7 +27,7 @@ struct ArchBenchOptions {
 int bench_arch(const ArchBenchOptions& o) {
   core::Scene scene = o.scene.load();
   if (o.repeats < 1 || !(o.seconds > 0) || !(o.fps > 0)) throw core::InputError("--repeats, --seconds and --fps must be > 0");
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file");
+  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
   const long steps_per_frame = std::max(1L, std::lround(1.0 / (o.fps * scene.dt)));
   std::printf("siloscope %s, bench arch: %g s simulated per repeat, detection every %ld steps (%g fps)\n",
               io::version_string().c_str(), o.seconds, steps_per_frame, o.fps);
@@ -83,7 +83,7 @@ void add_bench_arch_command(CLI::App& bench, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd, false);
   cmd->add_option("--seconds", opts->seconds, "simulated seconds per repeat");
-  cmd->add_option("--repeats", opts->repeats, "repeats (median reported)");
+  cmd->add_option("--repeats", opts->repeats, "repeats (median reported)")->check(whole_number(1, 1000));
   cmd->add_option("--fps", opts->fps, "detections per simulated second");
   cmd->add_option("--csv", opts->csv, "write the table as CSV here");
   cmd->callback([opts, &action] { action = [opts] { return bench_arch(*opts); }; });

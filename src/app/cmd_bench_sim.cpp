@@ -30,7 +30,7 @@ struct BenchOptions {
 int bench_sim(const BenchOptions& o) {
   core::Scene scene = o.scene.load();
   if (o.repeats < 1 || o.steps < 1) throw core::InputError("--repeats and --steps must be >= 1");
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file");
+  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
   std::printf("siloscope %s, bench sim: %lld disks, r = %g, chi = %g, mu = %g A*m^2, dt = %g s, iterations (%lld, %lld), "
               "length_scale %g\n",
               io::version_string().c_str(), static_cast<long long>(scene.n_total), scene.size_ratio, scene.chi,
@@ -102,8 +102,8 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto* cmd = bench->add_subcommand("sim", "time the simulation step by stage against a bare Box2D loop");
   cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd, false);
-  cmd->add_option("--repeats", opts->repeats, "timed repeats (median reported)");
-  cmd->add_option("--steps", opts->steps, "steps per repeat");
+  cmd->add_option("--repeats", opts->repeats, "timed repeats (median reported)")->check(whole_number(1, 1000));
+  cmd->add_option("--steps", opts->steps, "steps per repeat")->check(whole_number(1, 100000000));
   cmd->add_option("--csv", opts->csv, "write the table as CSV here");
   cmd->callback([opts, &action] { action = [opts] { return bench_sim(*opts); }; });
   add_bench_arch_command(*bench, action);

@@ -32,7 +32,7 @@ struct Cell {
 };
 
 int bench_stability(const StabilityOptions& o) {
-  io::check_destination(o.csv, true, "CSV file");
+  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome");
   std::vector<Cell> cells;
   for (double r : {0.2, 0.4})
     for (double dt : {2.5e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2})
@@ -104,7 +104,7 @@ void add_bench_stability_command(CLI::App& bench, Action& action) {
   auto* cmd = bench.add_subcommand("stability", "map time step x dipole strength: refused by the check, broken in fact");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("--seconds", o->seconds, "s of discharge per cell")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "cells run side by side")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "cells run side by side")->check(whole_number(1, 256))->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output")->capture_default_str();
   cmd->add_option("--chart", o->chart, "PNG chart (empty: none)")->capture_default_str();
   cmd->callback([o, &action] { action = [o] { return bench_stability(*o); }; });

@@ -24,7 +24,7 @@ struct SweepBenchOptions {
 
 int bench_sweep(const SweepBenchOptions& o) {
   if (o.workers < 2) throw core::InputError("--workers must be >= 2 (compared with 1)");
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file");
+  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "workers,realizations,wall_s");
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   const fs::path tmp = fs::temp_directory_path() / ("siloscope_bench_sweep_" + std::to_string(::getpid()));
@@ -64,7 +64,7 @@ void add_bench_sweep_command(CLI::App& bench, Action& action) {
   auto* cmd = bench.add_subcommand("sweep", "throughput of a campaign with 1 and N workers");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("campaign", o->campaign, "campaign file")->required();
-  cmd->add_option("--workers", o->workers, "workers to compare with 1")->capture_default_str();
+  cmd->add_option("--workers", o->workers, "workers to compare with 1")->check(whole_number(1, 256))->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output");
   cmd->callback([o, &action] { action = [o] { return bench_sweep(*o); }; });
 }

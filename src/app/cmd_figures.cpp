@@ -10,6 +10,7 @@
 #include "core/format.h"
 #include "core/error.h"
 #include "io/metadata.h"
+#include "io/output.h"
 
 namespace app {
 
@@ -18,6 +19,7 @@ namespace fs = std::filesystem;
 
 struct FiguresOptions {
   std::string dir, out;
+  bool force = false;
 };
 
 
@@ -33,20 +35,22 @@ int figures(const FiguresOptions& o) {
   if (!fs::exists(script)) throw core::InputError("figures: the script " + script.string() + " is missing");
   if (std::system((python_interpreter() + " -c 'import matplotlib' 2>/dev/null").c_str()) != 0)
     throw core::RuntimeFault("figures: python3 with matplotlib is needed (Debian: apt-get install python3-matplotlib)");
-  // Drawn into a temporary directory, moved into place when complete.
-  fs::path tmp = out;
-  tmp += ".partial";
-  std::error_code ec;
-  fs::remove_all(tmp, ec);
-  std::string cmd = python_interpreter() + " " + core::shell_quote(script.string()) + " " + core::shell_quote(src.string()) + " " + core::shell_quote(tmp.string());
+  // Drawn into a temporary directory, moved into place when complete; an existing figures directory is replaced
+  // only with --force and only when siloscope made it (its metadata.toml says so).
+  io::OutputDir dir(out, o.force);
+  const fs::path tmp = dir.file("");
+  std::string cmd = python_interpreter() + " " + core::shell_quote(script.string()) + " " +
+                    core::shell_quote(src.string()) + " " + core::shell_quote(tmp.string());
   int status = std::system(cmd.c_str());
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    fs::remove_all(tmp, ec);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw core::RuntimeFault("figures: the matplotlib script failed (" + cmd + ")");
-  }
-  fs::remove_all(out, ec);
-  fs::rename(tmp, out, ec);
-  if (ec) throw core::RuntimeFault("figures: cannot move " + tmp.string() + " to " + out.string() + ": " + ec.message());
+  io::RunInfo info{command_line(), {{"source", core::toml_string(src.string())}}, {}};
+  std::string meta = "# siloscope figures metadata: made from the analysis in [run].source\n[siloscope]\n" +
+                     std::string("version = ") + core::toml_string(io::version_string()) + "\n" +
+                     "command = " + core::toml_string(info.command) + "\n\n[run]\nsource = " +
+                     core::toml_string(fs::absolute(src).string()) + "\n";
+  io::write_file_atomic(dir.file("metadata.toml"), meta);
+  dir.commit();
   std::printf("figures in %s\n", out.c_str());
   return 0;
 }
@@ -58,6 +62,7 @@ void add_figures_command(CLI::App& app, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("dir", o->dir, "a sweep's results directory, or an analysis directory (points.csv)")->required();
   cmd->add_option("--out", o->out, "output directory (default: next to the analysis, figures/)");
+  cmd->add_flag("--force", o->force, "replace an existing figures directory (only one siloscope made)");
   cmd->callback([o, &action] { action = [o] { return figures(*o); }; });
 }
 

@@ -84,7 +84,7 @@ void add_inspect_command(CLI::App& app, Action& action) {
   cmd->add_option("--script", o->script, "run inspector commands from FILE off-screen, no window (see docs/inspector.md)");
   cmd->add_option("--size", o->size, "window size")->capture_default_str();
   cmd->add_option("--screenshot", o->screenshot, "save the window's pixels to PNG after --frames frames, then close");
-  cmd->add_option("--frames", o->frames, "close the window after N frames (stepping one frame each)");
+  cmd->add_option("--frames", o->frames, "close the window after N frames (stepping one frame each)")->check(whole_number(0, 100000000));
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return inspect(*o); }; });
 
@@ -94,7 +94,7 @@ void add_inspect_command(CLI::App& app, Action& action) {
   l->scene.add_to(*lc);
   lc->add_option("--size", l->size, "window size")->capture_default_str();
   lc->add_option("--screenshot", l->screenshot, "save the window's pixels to PNG after --frames frames, then close");
-  lc->add_option("--frames", l->frames, "close the window after N frames");
+  lc->add_option("--frames", l->frames, "close the window after N frames")->check(whole_number(0, 100000000));
   lc->callback([l, &action] { action = [l] { return live(*l); }; });
 }
 

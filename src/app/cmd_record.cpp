@@ -75,8 +75,12 @@ int record_movie(const RecordOptions& o) {
   if (base.filename().empty()) throw core::InputError("--out " + o.out + ": expected recordings/NAME");
   fs::path movie_path = base;
   movie_path += ".mp4";
-  if (!o.no_movie) io::check_destination(movie_path, o.force, "movie");
+  // The directory's lock also guards NAME.mp4: one writer for both.
   io::OutputDir dir(base, o.force);
+  if (!o.no_movie) {
+    io::check_destination(movie_path, o.force, "movie", io::OutputKind::Movie);
+    io::remove_dead_leftovers(base, {movie_path.filename().string() + ".partial"});
+  }
   if (o.png_every > 0) fs::create_directory(dir.file("frames"));
 
   const render::OverlayData odata = render::overlay_data_for(scene);
@@ -219,25 +223,25 @@ int record_movie(const RecordOptions& o) {
   io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper->events().exits));
   const double per = 1e3 / std::max(1L, encoded);
-  info.facts = {{"movie", "\"" + (o.no_movie ? std::string() : movie_path.filename().string()) + "\""},
+  info.facts = {{"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
                 {"frames", std::to_string(encoded)},
                 {"trajectory", "\"trajectory.sstraj\""},
                 {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(scene.n_total)))},
-                {"size", "\"" + std::to_string(video.width) + "x" + std::to_string(video.height) + "\""},
+                {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
                 {"fps", std::to_string(o.fps)},
                 {"speed_sim_s_per_video_s", num6(o.speed)},
                 {"slowmo", num6(o.slowmo)},
                 {"slowmo_frames", std::to_string(slow_frames)},
-                {"camera", "\"" + o.camera + "\""},
-                {"palette", "\"" + o.palette + "\""},
-                {"color", "\"" + o.color + "\""},
-                {"overlay", "\"" + o.overlay + "\""},
+                {"camera", core::toml_string(o.camera)},
+                {"palette", core::toml_string(o.palette)},
+                {"color", core::toml_string(o.color)},
+                {"overlay", core::toml_string(o.overlay)},
                 {"crf", std::to_string(o.crf)},
-                {"preset", "\"" + o.preset + "\""},
+                {"preset", core::toml_string(o.preset)},
                 {"png_every", std::to_string(o.png_every)},
                 {"interrupted", was_interrupted ? "true" : "false"},
                 {"simulated_s", num6(hopper->time())},
-                {"gl_renderer", "\"" + gl_renderer + "\""},
+                {"gl_renderer", core::toml_string(gl_renderer)},
                 {"wall_s", num6(wall)},
                 {"ms_per_frame_sim", num6(st.sim * per)},
                 {"ms_per_frame_draw", num6(st.draw * per)},
@@ -270,14 +274,14 @@ void add_record_command(CLI::App& app, Action& action) {
   o->scene.add_to(*cmd);
   cmd->add_option("--out", o->out, "recordings/NAME: writes NAME.mp4 and the directory NAME/")->required();
   cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")->capture_default_str();
-  cmd->add_option("--fps", o->fps, "video frames per second")->capture_default_str();
+  cmd->add_option("--fps", o->fps, "video frames per second")->check(whole_number(1, 240))->capture_default_str();
   cmd->add_option("--speed", o->speed, "simulated seconds per video second (0.25 = 4x slow motion)")->capture_default_str();
   cmd->add_option("--slowmo", o->slowmo,
                   "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
       ->capture_default_str();
   cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")->capture_default_str();
-  cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")->capture_default_str();
-  cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")->capture_default_str();
+  cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")->check(whole_number(0, 1000000))->capture_default_str();
+  cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")->check(whole_number(0, 51))->capture_default_str();
   cmd->add_option("--preset", o->preset, "x264 preset, ultrafast .. veryslow")->capture_default_str();
   cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")->capture_default_str();
   cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();

@@ -243,9 +243,23 @@ int sweep(const SweepOptions& o) {
     }
     auto it = running.find(pid);
     if (it == running.end()) continue;
-    const Job& j = jobs[it->second];
+    const size_t job_index = it->second;
+    const Job& j = jobs[job_index];
     running.erase(it);
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit 75)
+    // or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run again.
+    if (!ok && !interrupted() && fs::exists(dir / j.dir / "metadata.toml")) ok = true;
+    if (!ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 75) {
+      if (!o.quiet) std::fprintf(stderr, "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n", j.dir.c_str());
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      if (fs::exists(dir / j.dir / "metadata.toml")) {
+        ok = true;
+      } else {
+        running[spawn_job(j, dir)] = job_index;  // the orphan may have died: try again
+        continue;
+      }
+    }
     if (!ok && !interrupted()) {
       char log[64];
       std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
@@ -280,10 +294,10 @@ void add_sweep_command(CLI::App& app, Action& action) {
   cmd->add_option("campaign", o->campaign, "campaign file, e.g. assets/campaigns/quick.toml")->required();
   cmd->add_option("--results", o->results, "results directory (default: results/NAME)");
   cmd->add_option("--workers", o->workers, "parallel realizations (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(whole_number(1, 4096));
   cmd->add_option("--up-to", o->up_to,
                   "run only the first K realizations of every point (a first pass over the whole grid)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(whole_number(1, 1000000));
   cmd->add_flag("--emit-jobs", o->emit_jobs, "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
   cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
   cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");

@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -27,7 +28,8 @@ void on_signal(int sig) {
 void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
   auto* opt = cmd.add_option("scene", path, "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
   if (scene_required) opt->required();
-  cmd.add_option("--seed", seed, "random seed (overrides the scene's)");
+  cmd.add_option("--seed", seed, "random seed (overrides the scene's)")
+      ->check(whole_number(0, 18446744073709551615.0L));
   cmd.add_option("--duration", duration, "seconds of discharge after the aperture opens (overrides the scene's)");
   cmd.add_option("--set", overrides, "override a scene key, e.g. --set mu=1.0 (repeatable)")->take_all();
   cmd.add_flag("--unsafe", unsafe, "let the health monitor warn instead of stopping (results may be garbage)");
@@ -50,10 +52,26 @@ std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 
 
 std::string command_line() { return g_command; }
 
+CLI::Validator whole_number(long double lo, long double hi) {
+  char range[96];
+  std::snprintf(range, sizeof range, "a whole number from %.0Lf to %.0Lf", lo, hi);
+  const std::string allowed = range;
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& s) -> std::string {
+        size_t start = (!s.empty() && s[0] == '-' && lo < 0) ? 1 : 0;
+        bool digits = s.size() > start && s.find_first_not_of("0123456789", start) == std::string::npos;
+        if (!digits) return "'" + s + "' is not allowed; expected " + allowed;
+        long double v = std::strtold(s.c_str(), nullptr);
+        if (v < lo || v > hi) return s + " is out of range; expected " + allowed;
+        return "";
+      },
+      "INT", "whole_number");
+}
+
 std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h) {
   const bool ballistic = h.ballistic();
   std::string status = h.health_warnings() > 0 ? "unsafe" : ballistic ? "ballistic" : "ok";
-  return {{"status", "\"" + status + "\""},
+  return {{"status", core::toml_string(status)},
           {"warnings", std::to_string(h.health_warnings())},
           {"ballistic", ballistic ? "true" : "false"},
           {"airborne_fraction_mean", core::format_toml_float(h.airborne().mean())},

@@ -26,6 +26,10 @@ io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, 
 
 // The [health] table of a run's metadata: warnings under --unsafe, disks in flight, the "ballistic" warning.
 std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h);
+// A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
+// "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
+CLI::Validator whole_number(long double lo, long double hi);
+
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {
   std::string path;

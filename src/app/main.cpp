@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
   }
   try {
     return action();
+  } catch (const core::OutputBusy& e) {
+    std::fprintf(stderr, "siloscope: busy: %s\n", e.what());
+    return 75;
   } catch (const core::InputError& e) {
     std::fprintf(stderr, "siloscope: error: %s\n", e.what());
     return 2;

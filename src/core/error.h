@@ -1,5 +1,5 @@
 // Error types shared by every layer. The application maps them to exit codes:
-// InputError (a bad scene, argument or file from the user) exits 2, RuntimeFault exits 1.
+// InputError (a bad scene, argument or file from the user) exits 2, OutputBusy 75, RuntimeFault 1.
 #pragma once
 
 #include <stdexcept>
@@ -17,6 +17,12 @@ class InputError : public std::runtime_error {
 class RuntimeFault : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// Another process is writing the same output right now (exit 75, EX_TEMPFAIL: try again later).
+class OutputBusy : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 }  // namespace core

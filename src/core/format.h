@@ -22,6 +22,10 @@ inline std::string format_toml_float(double v, int digits = 9) {
   return s;
 }
 
+// A TOML basic string with every character escaped as TOML requires (quotes, backslashes, control characters),
+// written by the TOML library: any path or command line round-trips through metadata.toml.
+std::string toml_string(const std::string& s);
+
 // A string quoted for /bin/sh.
 inline std::string shell_quote(const std::string& s) {
   std::string out = "'";

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/physics.h"
 
 namespace core {
@@ -119,7 +121,7 @@ std::string field_text(const Scene& s, const Field& f) {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, double>) return fmt_double(v);
         else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return "\"" + v + "\"";
+        else if constexpr (std::is_same_v<T, std::string>) return toml_string(v);
         else return std::to_string(v);
       },
       f.ptr);
@@ -220,7 +222,24 @@ void validate(const Scene& s) {
             fmt_double(area_box) + " m^2); raise silo_height or lower n_total");
 }
 
+void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  if (fs::is_directory(p, ec))
+    throw InputError(path + " is a directory, not a " + what + (dir_hint.empty() ? "" : "; did you mean " +
+                     (p / dir_hint).string() + "?"));
+  if (!fs::exists(p, ec)) throw InputError(path + ": cannot open " + what + ": no such file");
+  if (!fs::is_regular_file(p, ec))
+    throw InputError(path + ": a " + what + " must be a regular file (this is a device, pipe or socket)");
+  const auto size = fs::file_size(p, ec);
+  if (!ec && size > kMaxTextFileBytes)
+    throw InputError(path + ": " + std::to_string(size) + " bytes is too large for a " + what + " (at most " +
+                     std::to_string(kMaxTextFileBytes) + " bytes)");
+}
+
 Scene load_scene(const std::string& path) {
+  check_text_file(path, "scene file", "metadata.toml");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open scene file");
   std::stringstream text;

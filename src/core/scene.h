@@ -80,6 +80,11 @@ struct Field {
   const char* doc;
 };
 
+// Scene and campaign files are small text files: a regular file of at most this many bytes. A directory, a
+// device or a larger file is refused with a message that says which (a directory: "did you mean DIR/HINT?").
+constexpr std::uintmax_t kMaxTextFileBytes = 1u << 20;
+void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint);
+
 const std::vector<Field>& scene_fields();
 const Field* find_field(const std::string& key);
 

@@ -16,14 +16,7 @@
 namespace io {
 
 namespace {
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string quoted(const std::string& s) { return core::toml_string(s); }
 }  // namespace
 
 std::string version_string() {

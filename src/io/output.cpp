@@ -1,6 +1,11 @@
 #include "io/output.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <cerrno>
 #include <cstdio>
@@ -11,10 +16,69 @@
 
 namespace io {
 
-void check_destination(const fs::path& path, bool force, const std::string& what) {
+namespace {
+bool file_starts_with(const fs::path& p, const std::string& prefix) {
+  std::ifstream in(p, std::ios::binary);
+  std::string head(prefix.size(), '\0');
+  return in.read(head.data(), static_cast<std::streamsize>(head.size())) && head == prefix;
+}
+
+bool file_contains(const fs::path& p, const std::string& needle, size_t within) {
+  std::ifstream in(p, std::ios::binary);
+  std::string buf(within, '\0');
+  in.read(buf.data(), static_cast<std::streamsize>(within));
+  buf.resize(static_cast<size_t>(in.gcount()));
+  return buf.find(needle) != std::string::npos;
+}
+
+// A directory siloscope wrote carries metadata.toml with a [siloscope] table (runs, recordings, analyses,
+// figures) or a sweep's campaign.toml beside its scenes/.
+bool siloscope_directory(const fs::path& d) {
   std::error_code ec;
-  if (fs::exists(path, ec) && !force)
-    throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
+  const fs::path meta = d / "metadata.toml";
+  if (fs::is_regular_file(meta, ec) && file_contains(meta, "\n[siloscope]\n", 4096)) return true;
+  return fs::is_regular_file(d / "campaign.toml", ec) && fs::is_directory(d / "scenes", ec);
+}
+
+bool pid_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+}  // namespace
+
+std::string foreign_output(const fs::path& path, OutputKind kind, const std::string& csv_header) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(path, ec);
+  if (fs::is_symlink(st)) return "a symbolic link";
+  switch (kind) {
+    case OutputKind::Directory:
+      if (fs::is_regular_file(st)) return "a regular file, not a siloscope output directory";
+      if (!fs::is_directory(st)) return "not a regular file or directory";
+      if (!siloscope_directory(path)) return "a directory siloscope did not write (it holds no siloscope metadata.toml)";
+      return "";
+    case OutputKind::Movie:
+      if (fs::is_directory(st)) return "a directory, not a siloscope MP4";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      // The MP4's comment tag holds the run's metadata; +faststart puts it near the start of the file.
+      if (!file_contains(path, "siloscope run metadata", 8u << 20)) return "a file that is not a siloscope MP4";
+      return "";
+    case OutputKind::Csv:
+      if (fs::is_directory(st)) return "a directory, not a CSV file";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      if (!csv_header.empty() && !file_starts_with(path, csv_header + "\n"))
+        return "a file that is not this benchmark's CSV (its first line differs)";
+      return "";
+  }
+  return "";
+}
+
+void check_destination(const fs::path& path, bool force, const std::string& what, OutputKind kind,
+                       const std::string& csv_header) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(path, ec))) {
+    if (!force) throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
+    const std::string why = foreign_output(path, kind, csv_header);
+    if (!why.empty())
+      throw core::InputError(what + " " + path.string() + " is " + why +
+                             "; --force replaces only what siloscope wrote, so choose another path");
+  }
   fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec)) {
     // Missing parents are created, as `mkdir -p` would; a file in the way or no permission is an error.
@@ -27,13 +91,70 @@ void check_destination(const fs::path& path, bool force, const std::string& what
     throw core::InputError(what + " " + path.string() + ": directory " + parent.string() + " is not writable");
 }
 
+OutputLock::OutputLock(const fs::path& final_path) {
+  const fs::path parent = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
+  lock_path_ = parent / ("." + final_path.filename().string() + ".lock");
+  // The lock file is removed when the lock is released, so no litter stays beside the outputs. A process that
+  // opened the file just before its owner removed it would lock a file nobody else sees: after locking, check
+  // that the path still names the file that was locked, and start again if not.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    fd_ = ::open(lock_path_.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      throw core::InputError("output " + final_path.string() + ": cannot create the lock file " + lock_path_.string() +
+                             ": " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      throw core::OutputBusy("another siloscope process is writing " + final_path.string() +
+                             " right now; wait for it to finish or choose another --out");
+    }
+    struct stat held {}, named {};
+    if (::fstat(fd_, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev)
+      return;
+    ::close(fd_);
+    fd_ = -1;
+  }
+  throw core::OutputBusy("could not take the lock " + lock_path_.string() + " (it keeps being replaced)");
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  ::unlink(lock_path_.c_str());  // still holding the lock: nobody else can be between open and check
+  ::close(fd_);
+}
+
+void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::string>& extra) {
+  const fs::path parent = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
+  const std::string name = final_path.filename().string();
+  std::error_code ec;
+  std::vector<fs::path> dead;
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string f = e.path().filename().string();
+    for (const std::string tag : {".partial-", ".old-"}) {
+      const std::string prefix = name + tag;
+      if (f.size() <= prefix.size() || f.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string digits = f.substr(prefix.size());
+      if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+      if (!pid_alive(std::stol(digits))) dead.push_back(e.path());
+    }
+    for (const auto& x : extra)
+      if (f == x) dead.push_back(e.path());
+  }
+  for (const auto& p : dead) {
+    fs::remove_all(p, ec);
+    std::fprintf(stderr, "siloscope: removed %s, left by a siloscope process that died\n", p.c_str());
+  }
+}
+
 OutputDir::OutputDir(fs::path final_path, bool force) : final_(std::move(final_path)), force_(force) {
   if (final_.has_filename() == false) final_ = final_.parent_path();  // tolerate a trailing slash
   check_destination(final_, force, "output directory");
+  lock_ = std::make_unique<OutputLock>(final_);
+  remove_dead_leftovers(final_);
   tmp_ = final_;
   tmp_ += ".partial-" + std::to_string(::getpid());
   std::error_code ec;
-  fs::remove_all(tmp_, ec);
   if (!fs::create_directory(tmp_, ec))
     throw core::InputError("output directory " + final_.string() + ": cannot create " + tmp_.string() + ": " +
                            ec.message());
@@ -50,6 +171,10 @@ void OutputDir::commit() {
   fs::path old;
   if (fs::exists(final_, ec)) {
     if (!force_) throw core::RuntimeFault(final_.string() + " appeared while the run was going; not replacing it");
+    const std::string why = foreign_output(final_, OutputKind::Directory);
+    if (!why.empty())
+      throw core::RuntimeFault(final_.string() + " appeared while the run was going and is " + why +
+                               "; not replacing it");
     old = final_;
     old += ".old-" + std::to_string(::getpid());
     fs::rename(final_, old, ec);

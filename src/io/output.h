@@ -4,14 +4,48 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace io {
 
 namespace fs = std::filesystem;
 
-// Throws core::InputError if `path` exists and !force, or its parent directory is missing or unwritable.
-void check_destination(const fs::path& path, bool force, const std::string& what);
+// What an output is, for deciding whether --force may replace an existing one.
+enum class OutputKind {
+  Directory,  // a run, recording, analysis or figures directory: holds siloscope's metadata.toml
+  Movie,      // an MP4 whose comment tag holds siloscope's metadata
+  Csv,        // a benchmark table: its first line is the expected header
+};
+
+// Why --force may not replace `path`: empty when siloscope wrote it (as `kind`), otherwise what the path is
+// ("a directory without siloscope's metadata.toml", "a regular file that is not a siloscope MP4", ...).
+std::string foreign_output(const fs::path& path, OutputKind kind, const std::string& csv_header = "");
+
+// Throws core::InputError if `path` exists and !force, or exists and is not siloscope's own output of `kind`
+// (nothing a user made is ever replaced), or its parent directory cannot be created or written.
+void check_destination(const fs::path& path, bool force, const std::string& what,
+                       OutputKind kind = OutputKind::Directory, const std::string& csv_header = "");
+
+// One writer per output: an exclusive lock on PARENT/.NAME.lock, held for the object's life. A second process
+// aiming at the same output gets core::OutputBusy at once, before any work. The lock goes with the process, so a
+// killed writer never leaves it held.
+class OutputLock {
+ public:
+  explicit OutputLock(const fs::path& final_path);
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+ private:
+  fs::path lock_path_;
+  int fd_ = -1;
+};
+
+// Remove what a dead siloscope process left next to `final_path` (NAME.partial-PID, NAME.old-PID whose PID is
+// gone, and the `extra` names, e.g. NAME.mp4.partial), saying so on stderr. Call while holding its OutputLock.
+void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::string>& extra = {});
 
 class OutputDir {
  public:
@@ -27,6 +61,7 @@ class OutputDir {
 
  private:
   fs::path final_, tmp_;
+  std::unique_ptr<OutputLock> lock_;
   bool force_, committed_ = false;
 };
 

@@ -97,6 +97,11 @@ void TrajectoryWriter::close() {
 
 Trajectory::Trajectory(const std::filesystem::path& path) {
   const std::string p = path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw core::InputError(p + " is a directory; did you mean " + (path / "trajectory.sstraj").string() + "?");
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw core::InputError(p + ": a trajectory must be a regular file (this is a device, pipe or socket)");
   std::ifstream in(p, std::ios::binary);
   if (!in) throw core::InputError(p + ": cannot open trajectory file");
   parse(std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), p);
@@ -143,6 +148,24 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   frame_bytes_ = fbytes;
   count_ = static_cast<long>(body / fbytes);
   for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
+  for (size_t i = 0; i < n; ++i)
+    if (!(info_.radius[i] > 0 && info_.radius[i] < 1e6))
+      throw core::InputError(p + ": corrupted trajectory header (radius of particle " + std::to_string(i) + ")");
+  // Every number a frame holds must be finite: a corrupted frame is named, never drawn as an empty silo.
+  static const char* kFields[] = {"x", "y", "angle", "vx", "vy", "force"};
+  const size_t base = 40 + 4 * kTrajectoryMaxArch;
+  for (long k = 0; k < count_; ++k) {
+    const unsigned char* b = record(k);
+    for (size_t off : {size_t(0), size_t(8)})
+      if (!std::isfinite(get<double>(b, off)))
+        throw core::InputError(p + ": frame " + std::to_string(k) + " is corrupted: its " +
+                               (off == 0 ? "time" : "time since the last exit") + " is not a finite number");
+    for (size_t a = 0; a < 6; ++a)
+      for (size_t i = 0; i < n; ++i)
+        if (!std::isfinite(get<float>(b, base + 4 * (a * n + i))))
+          throw core::InputError(p + ": frame " + std::to_string(k) + " is corrupted: " + kFields[a] +
+                                 " of particle " + std::to_string(i) + " is not a finite number");
+  }
 }
 
 double Trajectory::time(long k) const { return get<double>(record(k), 0); }
