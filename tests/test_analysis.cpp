@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 
@@ -25,7 +27,7 @@ TEST_CASE("mean and 95% confidence interval of a small sample, by hand", "[analy
   CHECK(e.half_width == Approx(2.776445 * std::sqrt(2.5) / std::sqrt(5.0)).epsilon(1e-6));
   auto one = analysis::estimate({7, NAN});
   CHECK(one.n == 1);
-  CHECK(one.half_width == 0.0);
+  CHECK(std::isnan(one.half_width));  // one sample: no interval, never a zero-width one
 }
 
 TEST_CASE("survival of gaps between original exits, by hand", "[analysis]") {
@@ -128,4 +130,29 @@ TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes
   mixed[3].scene.dt = 5e-4;
   CHECK_THROWS_WITH(analysis::aggregate(mixed), Catch::Matchers::Contains("dt = 0.0005"));
   CHECK_THROWS_AS(analysis::aggregate({}), core::InputError);
+}
+
+TEST_CASE("with several kick strengths, Q~/Q_p compares each point with the pure system at its own kick",
+          "[analysis]") {
+  std::vector<analysis::Run> runs;
+  for (double kick : {5e-5, 5e-3}) {
+    const double scale = kick > 1e-3 ? 2.0 : 1.0;  // the stronger kick doubles every rate
+    for (std::uint64_t seed : {1, 2}) {
+      auto pure = synthetic_run(0.0, seed, 2.0 * scale + 0.5 * static_cast<double>(seed));
+      auto mixed = synthetic_run(0.4, seed, 3.0 * scale);
+      pure.scene.kick_impulse_max = mixed.scene.kick_impulse_max = kick;
+      runs.push_back(pure);
+      runs.push_back(mixed);
+    }
+  }
+  auto points = analysis::aggregate(runs);
+  REQUIRE(points.size() == 4);
+  for (const auto& p : points) {
+    INFO("kick " << p.scene.kick_impulse_max << " chi " << p.scene.chi);
+    const double scale = p.scene.kick_impulse_max > 1e-3 ? 2.0 : 1.0;
+    CHECK(p.q_p.mean == Approx(2.0 * scale + 0.75));
+    if (p.scene.chi > 0) CHECK(p.q_tilde_over_qp.mean == Approx(3.0 * scale / (2.0 * scale + 0.75)));
+  }
+  const std::string csv = analysis::points_csv(points);
+  CHECK_THAT(csv, Catch::Matchers::Contains("kick_dv_over_sqrt_g_ro") && Catch::Matchers::Contains("q_p_per_s"));
 }

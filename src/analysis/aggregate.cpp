@@ -62,16 +62,30 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
                              label + "); " + r.source + " duplicates an earlier run");
     by_label[label].runs.push_back(&r);
   }
-  // Q_p: the mean Q of the pure system, if present.
-  const Point* pure = nullptr;
-  for (auto& [label, p] : by_label)
-    if (p.scene.n_added() == 0) pure = &p;
-  Estimate qp;
-  if (pure) qp = estimate_of(pure->runs, &Measurements::q);
+  // Q_p: the mean Q of the pure system (chi = 0) at the same kick strength; a campaign over kicks has one pure
+  // point per kick.
+  auto pure_for = [&](const core::Scene& s) -> const Point* {
+    const Point* found = nullptr;
+    for (auto& [label, p] : by_label)
+      if (p.scene.n_added() == 0 && p.scene.kick_impulse_max == s.kick_impulse_max) found = &p;
+    return found;
+  };
 
   std::vector<Point> out;
   for (const auto& label : order) {
     Point p = by_label[label];
+    const Point* pure = pure_for(p.scene);
+    Estimate qp;
+    if (pure) qp = estimate_of(pure->runs, &Measurements::q);
+    p.q_p = qp;
+    p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
+    for (const Run* r : p.runs) {
+      p.clogs += r->m.clogs;
+      p.clogs_vibration += r->m.clogs_vibration;
+      p.clogs_rule += r->m.clogs_rule;
+      p.clogs_spontaneous += r->m.clogs_spontaneous;
+      p.ballistic_runs += r->m.ballistic;
+    }
     p.q = estimate_of(p.runs, &Measurements::q);
     p.q_tilde = estimate_of(p.runs, &Measurements::q_tilde);
     p.chi_eff = estimate_of(p.runs, &Measurements::chi_eff);
@@ -82,6 +96,7 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
     if (pure && qp.mean > 0) {
       // Ratio of two independent means; relative half-widths add in quadrature (first-order propagation).
       p.q_tilde_over_qp.mean = p.q_tilde.mean / qp.mean;
+      // NaN when either side has a single realization: no interval.
       double rel = std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
       p.q_tilde_over_qp.half_width = p.q_tilde_over_qp.mean * rel;
       p.q_tilde_over_qp.n = p.q_tilde.n;
@@ -100,9 +115,10 @@ std::string realizations_csv(const std::vector<Run>& runs) {
 std::string points_csv(const std::vector<Point>& points) {
   std::string s;
   for (const auto& k : kVaried) s += k + ",";
-  s += "dipole_force_ratio,n_runs";
+  s += "dipole_force_ratio,kick_dv_over_sqrt_g_ro,n_runs,n_runs_pure,clogs,clogs_vibration,clogs_rule,"
+       "clogs_spontaneous,ballistic_runs";
   const char* names[] = {"q_per_s", "q_tilde_per_s", "chi_eff", "long_arches_per_min", "added_per_long_arch",
-                         "fraction_broken_by_vibration", "q_tilde_over_qp"};
+                         "fraction_broken_by_vibration", "q_tilde_over_qp", "q_p_per_s", "airborne_fraction"};
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
   s += "\n";
   for (const auto& p : points) {
@@ -112,9 +128,15 @@ std::string points_csv(const std::vector<Point>& points) {
     }
     s += core::format_g(core::dipole_contact_force(p.scene) /
              (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) + ",";
-    s += std::to_string(p.runs.size());
+    // The kick's largest velocity change for an original disk, in units of sqrt(g r_o).
+    const core::Scene& sc = p.scene;
+    s += core::format_g(sc.kick_impulse_max / core::mass_of(sc.radius_original, sc.density) /
+                        std::sqrt(sc.gravity * sc.radius_original)) + ",";
+    s += std::to_string(p.runs.size()) + "," + std::to_string(p.q_p.n) + "," + std::to_string(p.clogs) + "," +
+         std::to_string(p.clogs_vibration) + "," + std::to_string(p.clogs_rule) + "," +
+         std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs);
     for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
-                              &p.fraction_broken_by_vibration, &p.q_tilde_over_qp})
+                              &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p, &p.airborne_fraction})
       s += "," + core::format_g(e->mean) + "," + core::format_g(e->half_width);
     s += "\n";
   }

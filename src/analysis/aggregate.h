@@ -26,6 +26,9 @@ struct Point {
   std::vector<const Run*> runs;
   Estimate q, q_tilde, chi_eff, long_arches_per_min, added_per_long_arch, fraction_broken_by_vibration;
   Estimate q_tilde_over_qp;  // NaN mean when no pure point exists
+  Estimate q_p;              // Q of the pure point this point is compared with (same kick strength)
+  Estimate airborne_fraction;
+  long clogs = 0, clogs_vibration = 0, clogs_rule = 0, clogs_spontaneous = 0, ballistic_runs = 0;
 };
 
 // Throws core::InputError when runs of different scenes are mixed or a seed repeats within a point.

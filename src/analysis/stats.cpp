@@ -81,7 +81,10 @@ Estimate estimate(const std::vector<double>& samples, double confidence) {
     return e;
   }
   e.mean = sum / e.n;
-  if (e.n < 2) return e;
+  if (e.n < 2) {
+    e.half_width = NAN;  // one sample: no interval (never a zero-width one)
+    return e;
+  }
   double ss = 0;
   for (double v : samples)
     if (!std::isnan(v)) ss += (v - e.mean) * (v - e.mean);

@@ -33,8 +33,13 @@ def read(path):
     return rows
 
 
+NOTE = ""
+
+
 def save(fig, out, name):
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    if NOTE and not fig.texts:
+        stamp(fig, NOTE)
     for ext in ("png", "svg", "pdf"):
         meta = {"Date": None} if ext in ("svg", "pdf") else {}
         if ext == "pdf":
@@ -58,11 +63,100 @@ def nearest(values, target):
     return min(values, key=lambda v: abs(v - target)) if values else None
 
 
+def planned_realizations(src):
+    """The campaign's planned realizations per point, from campaign.toml beside the analysis (None if unknown)."""
+    for path in (os.path.join(src, "..", "campaign.toml"), os.path.join(src, "campaign.toml")):
+        if os.path.exists(path):
+            with open(path) as f:
+                for line in f:
+                    key, _, value = line.partition("=")
+                    if key.strip() == "realizations":
+                        try:
+                            return int(value.split("#")[0])
+                        except ValueError:
+                            return None
+    return None
+
+
+def stats_note(points, planned):
+    """'n = 4-5 realizations per point (partial: 20 planned)': every figure says what stands behind it."""
+    ns = [int(p["n_runs"]) for p in points]
+    lo, hi = min(ns), max(ns)
+    text = f"n = {lo}" + (f"-{hi}" if hi != lo else "") + " realizations per point"
+    if planned and lo < planned:
+        text += f" (PARTIAL: {planned} planned)"
+    return text
+
+
+def stamp(fig, note):
+    fig.text(0.99, 0.005, note, ha="right", va="bottom", fontsize=7, color="#444444")
+
+
+def kick_figure(points, surv, out, note):
+    """The kick study: flow, Q~/Q_p, clogs broken by vibration, long arches and survival versus the kick."""
+    literal = min(p["kick_impulse_max"] for p in points)
+    fig, axes = plt.subplots(2, 3, figsize=(12, 6.8))
+    groups = [("pure", lambda p: p["chi"] == 0, "k"),
+              ("r = 0.4", lambda p: p["chi"] > 0 and abs(p["size_ratio"] - 0.4) < 1e-9, COLORS[0]),
+              ("r = 1.0", lambda p: p["chi"] > 0 and abs(p["size_ratio"] - 1.0) < 1e-9, COLORS[1])]
+
+    def panel(ax, key, label, which, ref=None):
+        for name, keep, color in groups:
+            if name not in which:
+                continue
+            rows = sorted((p for p in points if keep(p) and finite(p.get(key))), key=lambda p: p["kick_impulse_max"])
+            xs = [p["kick_impulse_max"] / literal for p in rows]
+            ys = [p[key] for p in rows]
+            es = [p[key + "_ci95"] if finite(p.get(key + "_ci95")) else 0.0 for p in rows]
+            ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=color, label=name)
+        if ref is not None:
+            ax.axhline(ref, color="k", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_xlabel("kick strength / literal kick (5e-5 N s at 1 kg/m$^2$)")
+        ax.set_ylabel(label)
+        ax.legend()
+        # Top axis: the largest velocity change of an original disk in units of sqrt(g r_o).
+        dv = [p["kick_dv_over_sqrt_g_ro"] / (p["kick_impulse_max"] / literal) for p in points][0]
+        top = ax.secondary_xaxis("top", functions=(lambda x: x * dv, lambda y: y / dv))
+        top.set_xlabel(r"$\Delta v_{max} / \sqrt{g r_o}$", fontsize=8)
+
+    panel(axes[0][0], "q_p_per_s", r"$Q_p$ [1/s] (pure system)", ["pure"])
+    panel(axes[0][1], "q_tilde_over_qp", r"$\tilde Q / Q_p$", ["r = 0.4", "r = 1.0"], ref=1.0)
+    panel(axes[0][2], "fraction_broken_by_vibration", "clogs broken by vibration\n(of vibration + 5 s rule)",
+          ["pure", "r = 0.4", "r = 1.0"])
+    panel(axes[1][0], "long_arches_per_min", "long-lasting arches per minute", ["pure", "r = 0.4", "r = 1.0"])
+    panel(axes[1][1], "airborne_fraction", "fraction of disks in flight\n(ballistic above 0.01)",
+          ["pure", "r = 0.4", "r = 1.0"], ref=0.01)
+    ax = axes[1][2]
+    if surv:
+        kicks = sorted({s["kick_impulse_max"] for s in surv})
+        cmap = plt.get_cmap("viridis")
+        for i, k in enumerate(kicks):
+            rows = sorted((s for s in surv if s["kick_impulse_max"] == k and s["chi"] == 0), key=lambda s: s["tau_s"])
+            taus = [s["tau_s"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
+            ps = [s["survival"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
+            ax.step(taus, ps, where="post", color=cmap(i / max(1, len(kicks) - 1)), label=f"{k / literal:g}x")
+        ax.set_yscale("log")
+        ax.set_xlabel(r"$\tau$ [s]")
+        ax.set_ylabel(r"$\tilde P(\Delta t \geq \tau)$, pure system")
+        ax.legend(title="kick", ncol=2)
+    fig.suptitle("The kick study: what the kick strength does to the clogging hopper", fontsize=11)
+    stamp(fig, note)
+    save(fig, out, "kicks")
+
+
 def main(src, out):
     os.makedirs(out, exist_ok=True)
     points = read(os.path.join(src, "points.csv"))
     if not points:
         sys.exit(f"figures: {src}/points.csv has no points")
+    note = stats_note(points, planned_realizations(src))
+    global NOTE
+    NOTE = note
+    surv_path = os.path.join(src, "survival.csv")
+    if len({p["kick_impulse_max"] for p in points}) > 1:
+        kick_figure(points, read(surv_path) if os.path.exists(surv_path) else [], out, note)
+        return
     chi0 = 0.4 if any(abs(p["chi"] - 0.4) < 1e-9 for p in points) else max(p["chi"] for p in points)
     mixed = [p for p in points if abs(p["chi"] - chi0) < 1e-9]
     ratios = sorted({round(p["dipole_force_ratio"], 6) for p in mixed})
