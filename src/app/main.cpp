@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   app::add_analyze_command(cli, action);
   app::add_sweep_command(cli, action);
   app::add_figures_command(cli, action);
+  app::add_export_command(cli, action);
+  app::add_scene_command(cli, action);
   app::add_inspect_command(cli, action);
   try {
     cli.parse(argc, argv);
@@ -28,7 +30,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,record,inspect,live,sweep,analyze,figures,bench} ... (see siloscope --help)\n", e.what());
+    std::fprintf(stderr, "siloscope: %s\nusage: siloscope {run,record,inspect,live,sweep,analyze,figures,export,scene,bench} ... (see siloscope --help)\n", e.what());
     return 2;
   }
   try {

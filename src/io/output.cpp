@@ -63,7 +63,12 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
       if (fs::is_directory(st)) return "a directory, not a CSV file";
       if (!fs::is_regular_file(st)) return "not a regular file";
       if (!csv_header.empty() && !file_starts_with(path, csv_header + "\n"))
-        return "a file that is not this benchmark's CSV (its first line differs)";
+        return "a file that is not siloscope's CSV of this kind (its first line differs)";
+      return "";
+    case OutputKind::Xyz:
+      if (fs::is_directory(st)) return "a directory, not an XYZ file";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      if (!file_contains(path, " siloscope=\"", 4096)) return "a file that is not a siloscope XYZ export";
       return "";
   }
   return "";

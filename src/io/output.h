@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 enum class OutputKind {
   Directory,  // a run, recording, analysis or figures directory: holds siloscope's metadata.toml
   Movie,      // an MP4 whose comment tag holds siloscope's metadata
-  Csv,        // a benchmark table: its first line is the expected header
+  Csv,        // a benchmark table or CSV export: its first line is the expected header
+  Xyz,        // an extended XYZ export: its first comment line carries siloscope="VERSION"
 };
 
 // Why --force may not replace `path`: empty when siloscope wrote it (as `kind`), otherwise what the path is

@@ -1,0 +1,122 @@
+// siloscope export RUN --format xyz|csv: a recording's trajectory for the field's tools. Extended XYZ (one frame
+// per trajectory frame) loads in OVITO and ASE; CSV (one row per disk and frame) in pandas, R or a spreadsheet.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "app/common.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "core/geometry.h"
+#include "io/metadata.h"
+#include "io/output.h"
+#include "io/trajectory.h"
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct ExportOptions {
+  std::string run, format = "xyz", frames, out;
+  bool force = false;
+};
+
+const char* kCsvHeader = "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch";
+
+// "K" or "A:B" (inclusive; either end may be left out) -> [first, last]; the whole trajectory when empty.
+void frame_range(const std::string& spec, long count, long& first, long& last) {
+  first = 0;
+  last = count - 1;
+  if (spec.empty()) return;
+  auto number = [&](const std::string& s, long fallback) {
+    if (s.empty()) return fallback;
+    if (s.find_first_not_of("0123456789") != std::string::npos)
+      throw core::InputError("--frames " + spec + ": expected K or A:B with whole numbers from 0 to " +
+                             std::to_string(count - 1));
+    return std::stol(s);
+  };
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos) {
+    first = last = number(spec, 0);
+  } else {
+    first = number(spec.substr(0, colon), 0);
+    last = number(spec.substr(colon + 1), count - 1);
+  }
+  if (first > last || last >= count)
+    throw core::InputError("--frames " + spec + ": the trajectory has frames 0 to " + std::to_string(count - 1));
+}
+
+std::string num(double v) { return core::format_g(v, 7); }
+
+int export_run(const ExportOptions& o) {
+  if (o.format != "xyz" && o.format != "csv")
+    throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv");
+  fs::path traj = o.run;
+  if (fs::is_directory(traj)) traj /= "trajectory.sstraj";
+  if (!fs::exists(traj))
+    throw core::InputError(o.run + ": no trajectory here (record writes one; run needs --trajectory-fps)");
+  io::Trajectory t(traj);
+  if (t.size() == 0) throw core::InputError(traj.string() + ": the trajectory holds no frames");
+  long first = 0, last = 0;
+  frame_range(o.frames, t.size(), first, last);
+  const core::Scene scene = core::parse_scene(t.info().metadata, traj.string() + " (its metadata)");
+  const core::Geometry geo = core::make_geometry(scene);
+
+  fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "export file", o.format == "csv" ? io::OutputKind::Csv : io::OutputKind::Xyz,
+                        o.format == "csv" ? kCsvHeader : "");
+
+  const size_t n = t.info().n_particles;
+  std::string text;
+  if (o.format == "csv") text = std::string(kCsvHeader) + "\n";
+  // The lattice is the container's bounding box (x from -W/2, y from the aperture line), z a unit thickness.
+  const double w = 2 * geo.half_width, h = geo.total_height;
+  for (long k = first; k <= last; ++k) {
+    const core::Frame f = t.frame(k);
+    std::vector<char> in_arch(n, 0);
+    for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
+    if (o.format == "xyz") {
+      text += std::to_string(n) + "\n";
+      text += "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(-0.5 * w) + " 0 0\" " +
+              "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1 Time=" + num(f.t) +
+              " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
+              " exits_added=" + std::to_string(f.exits_added) + " units=SI pbc=\"F F F\" siloscope=\"" +
+              io::version_string() + "\"\n";
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const core::Particle& p = f.particles[i];
+      // Species as chemical symbols, which ASE requires: H = original disk, He = added disk (docs/export.md).
+      const bool original = p.species == core::Species::Original;
+      if (o.format == "xyz")
+        text += std::string(original ? "H" : "He") + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) + " " +
+                num(p.vx) + " " + num(p.vy) + " 0 " + num(p.force) + " " + (in_arch[i] ? "1" : "0") + " " +
+                std::to_string(i) + "\n";
+      else
+        text += std::to_string(k) + "," + num(f.t) + "," + std::to_string(i) + "," +
+                (original ? "original" : "added") + "," + num(p.x) + "," + num(p.y) + "," + num(p.radius) + "," +
+                num(p.vx) + "," + num(p.vy) + "," + num(p.force) + "," + (in_arch[i] ? "1" : "0") + "\n";
+    }
+  }
+  io::write_file_atomic(out, text);
+  std::printf("%ld frames of %zu disks -> %s\n", last - first + 1, n, out.c_str());
+  return 0;
+}
+}  // namespace
+
+void add_export_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ExportOptions>();
+  auto* cmd = app.add_subcommand("export", "a recording's trajectory as extended XYZ (OVITO, ASE) or CSV");
+  cmd->set_version_flag("--version", io::version_string());
+  cmd->add_option("run", o->run, "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
+      ->required();
+  cmd->add_option("--format", o->format, "xyz (extended XYZ) or csv")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "K or A:B (inclusive; default: every frame)");
+  cmd->add_option("--out", o->out, "output file (default: RUN/trajectory.xyz or .csv)");
+  cmd->add_flag("--force", o->force, "replace an earlier export");
+  cmd->callback([o, &action] { action = [o] { return export_run(*o); }; });
+}
+
+}  // namespace app

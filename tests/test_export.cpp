@@ -1,0 +1,111 @@
+// Issue 16: export for the field's tools, and the scene command.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/scene.h"
+#include "helpers.h"
+#include "io/trajectory.h"
+
+namespace fs = std::filesystem;
+using test::cli;
+using test::kScene;
+using test::slurp;
+using test::temp_dir;
+
+namespace {
+fs::path recorded(const std::string& name) {
+  fs::path d = temp_dir(name);
+  REQUIRE(cli("record " + kScene + " --duration 2 --size 64x48 --quiet --out " + (d / "r").string()).code == 0);
+  return d / "r";
+}
+}  // namespace
+
+TEST_CASE("export --format xyz loads in ASE with the right atoms, radii and arch flags", "[export][app]") {
+  const fs::path r = recorded("export_xyz");
+  REQUIRE(cli("export " + r.string()).code == 0);
+  io::Trajectory t(r / "trajectory.sstraj");
+  long arch_members = 0;
+  for (long k = 0; k < t.size(); ++k) arch_members += static_cast<long>(t.frame(k).arch.size());
+  REQUIRE(arch_members > 0);  // the 2 s clip holds frames with an arch, so the flags are really tested
+  const core::Frame last = t.frame(t.size() - 1);
+  std::ostringstream py;
+  py << "import ase.io\n"
+     << "fr = ase.io.read('" << (r / "trajectory.xyz").string() << "', index=':')\n"
+     << "assert len(fr) == " << t.size() << ", len(fr)\n"
+     << "assert all(len(f) == 250 for f in fr)\n"
+     << "a = fr[-1]\n"
+     << "n_added = int((a.numbers == 2).sum())\n"
+     << "assert n_added == 100, n_added\n"
+     << "assert abs(a.arrays['radius'][a.numbers == 1][0] - 0.065) < 1e-9\n"
+     << "assert abs(a.arrays['radius'][a.numbers == 2][0] - 0.026) < 1e-9\n"
+     << "assert sum(int(f.arrays['arch'].sum()) for f in fr) == " << arch_members << "\n"
+     << "assert abs(a.positions[7][0] - (" << last.particles[7].x << ")) < 1e-5\n"
+     << "assert abs(a.info['Time'] - " << last.t << ") < 1e-6\n"
+     << "assert abs(a.cell[1][1] - 6.36) < 1e-9\n"
+     << "print('ase ok')\n";
+  std::ofstream(r / "check.py") << py.str();
+  REQUIRE(test::sh("/usr/bin/python3 " + (r / "check.py").string() + " > " + (r / "check.log").string() + " 2>&1") == 0);
+  CHECK_THAT(slurp(r / "check.log"), Catch::Matchers::Contains("ase ok"));
+}
+
+TEST_CASE("export --format csv writes one frame or a range, values equal to the trajectory frame", "[export][app]") {
+  const fs::path r = recorded("export_csv");
+  REQUIRE(cli("export " + r.string() + " --format csv --frames 10 --out " + (r / "f10.csv").string()).code == 0);
+  io::Trajectory t(r / "trajectory.sstraj");
+  const core::Frame f = t.frame(10);
+  std::istringstream in(slurp(r / "f10.csv"));
+  std::string line;
+  std::getline(in, line);
+  CHECK(line == "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch");
+  long rows = 0;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string cell;
+    std::vector<std::string> c;
+    while (std::getline(row, cell, ',')) c.push_back(cell);
+    REQUIRE(c.size() == 11);
+    const int id = std::stoi(c[2]);
+    CHECK(std::stol(c[0]) == 10);
+    CHECK(std::stod(c[1]) == Approx(f.t));
+    CHECK(c[3] == (f.particles[id].species == core::Species::Original ? "original" : "added"));
+    CHECK(std::stod(c[4]) == Approx(f.particles[id].x).margin(1e-6));
+    CHECK(std::stod(c[5]) == Approx(f.particles[id].y).margin(1e-6));
+    ++rows;
+  }
+  CHECK(rows == 250);
+  REQUIRE(cli("export " + r.string() + " --format csv --frames 2:4 --out " + (r / "range.csv").string()).code == 0);
+  const std::string range = slurp(r / "range.csv");
+  CHECK(std::count(range.begin(), range.end(), '\n') == 1 + 3 * 250);
+  // Bad input: a range past the end, a format, an output that is a user's file.
+  auto bad = cli("export " + r.string() + " --frames 5:9999 --format csv --out " + (r / "x.csv").string());
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.output, Catch::Matchers::Contains("frames 0 to"));
+  CHECK(cli("export " + r.string() + " --format pdb").code == 2);
+  std::ofstream(r / "mine.xyz") << "2\nmy own\nH 0 0 0\nH 1 0 0\n";
+  CHECK(cli("export " + r.string() + " --force --out " + (r / "mine.xyz").string()).code == 2);
+  CHECK(slurp(r / "mine.xyz") == "2\nmy own\nH 0 0 0\nH 1 0 0\n");
+}
+
+TEST_CASE("scene --keys lists exactly the field table; scene FILE resolves and validates", "[scene][app]") {
+  auto r = cli("scene --keys");
+  REQUIRE(r.code == 0);
+  std::istringstream in(r.output);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<std::string> keys;
+  while (std::getline(in, line)) keys.push_back(line.substr(0, line.find(' ')));
+  std::vector<std::string> table;
+  for (const auto& f : core::scene_fields()) table.push_back(f.key);
+  CHECK(keys == table);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("kick_impulse_max       N*s      5e-05"));
+  r = cli("scene " + kScene + " --set mu=0.5");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("\nmu = 0.5 ") && Catch::Matchers::Contains("dipole_safe_dt_s"));
+  r = cli("scene " + kScene + " --set chi=2");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("chi = 2.0 is not allowed"));
+}
