@@ -10,6 +10,8 @@ extern "C" {
 #define STB_IMAGE_STATIC
 #include <stb_image.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -40,7 +42,17 @@ struct Probe {
   int width = 0, height = 0, frames = 0;
   double duration = 0;
   std::string pix_fmt, codec, comment;
+  std::vector<double> times;        // presentation time of each decoded frame, s
+  std::vector<std::uint8_t> first;  // the first frame as RGB (BT.709, limited range, converted here)
+  double rate = 0;                  // the stream's average frame rate
 };
+
+// One yuv420p pixel to RGB by the BT.709 limited-range equations (independent of the encoder's code).
+void yuv_to_rgb(int y, int u, int v, std::uint8_t* rgb) {
+  const double Y = (y - 16) / 219.0, U = (u - 128) / 224.0, V = (v - 128) / 224.0;
+  const double r = Y + 1.5748 * V, g = Y - 0.1873 * U - 0.4681 * V, b = Y + 1.8556 * U;
+  for (double c : {r, g, b}) *rgb++ = static_cast<std::uint8_t>(std::clamp(c * 255.0 + 0.5, 0.0, 255.0));
+}
 
 // Decode a movie with libavformat/libavcodec and count what is really in it.
 Probe probe(const fs::path& path) {
@@ -57,8 +69,20 @@ Probe probe(const fs::path& path) {
   REQUIRE(avcodec_open2(c, dec, nullptr) == 0);
   AVPacket* pkt = av_packet_alloc();
   AVFrame* frame = av_frame_alloc();
+  p.rate = av_q2d(st->avg_frame_rate);
   auto receive = [&] {
-    while (avcodec_receive_frame(c, frame) == 0) ++p.frames;
+    while (avcodec_receive_frame(c, frame) == 0) {
+      p.times.push_back(frame->best_effort_timestamp * av_q2d(st->time_base));
+      if (p.frames == 0 && frame->format == AV_PIX_FMT_YUV420P) {
+        p.first.resize(static_cast<size_t>(frame->width) * frame->height * 3);
+        for (int y = 0; y < frame->height; ++y)
+          for (int x = 0; x < frame->width; ++x)
+            yuv_to_rgb(frame->data[0][y * frame->linesize[0] + x], frame->data[1][(y / 2) * frame->linesize[1] + x / 2],
+                       frame->data[2][(y / 2) * frame->linesize[2] + x / 2],
+                       &p.first[(static_cast<size_t>(y) * frame->width + x) * 3]);
+      }
+      ++p.frames;
+    }
   };
   while (av_read_frame(fmt, pkt) >= 0) {
     if (pkt->stream_index == si) {
@@ -155,4 +179,46 @@ TEST_CASE("a PNG read back equals the frame, alpha included", "[record]") {
   stbi_image_free(back);
   CHECK(fs::directory_iterator(dir) != fs::directory_iterator());
   for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename() == "f.png");  // no temporary left
+}
+
+#include "helpers.h"
+#include "io/trajectory.h"
+
+TEST_CASE("frames at exact times: whole steps per frame, the trajectory and the MP4 carry the same times",
+          "[record][app]") {
+  fs::path d = temp_dir("exact_times");
+  // 30 fps at dt = 1 ms: 33 steps per frame, 0.033 s of simulation per frame, 1000/33 frames per video second.
+  auto r = test::cli("record " + test::kScene + " --duration 2 --size 64x48 --png-every 1 --quiet --out " +
+                     (d / "m").string());
+  REQUIRE(r.code == 0);
+  const std::string meta = test::slurp(d / "m" / "metadata.toml");
+  CHECK_THAT(meta, Catch::Matchers::Contains("steps_per_frame = 33\n") &&
+                       Catch::Matchers::Contains("frame_interval_s = 0.033\n"));
+  io::Trajectory t(d / "m" / "trajectory.sstraj");
+  REQUIRE(t.size() == 61);  // 0, 0.033, ..., 1.98
+  for (long k = 0; k < t.size(); ++k) CHECK(t.time(k) == Approx(0.033 * k).margin(1e-9));
+  CHECK(t.info().frame_interval == Approx(0.033));
+  const Probe p = probe(d / "m.mp4");
+  REQUIRE(p.frames == 61);
+  CHECK(p.rate == Approx(1000.0 / 33.0).epsilon(1e-9));
+  for (size_t k = 0; k < p.times.size(); ++k) CHECK(p.times[k] == Approx(0.033 * k).margin(1e-6));
+  // The decoded first frame matches the RGBA frame it was made from (the PNG of the same frame).
+  int w = 0, h = 0, ch = 0;
+  unsigned char* png = stbi_load((d / "m" / "frames" / "frame_000000.png").c_str(), &w, &h, &ch, 4);
+  REQUIRE(png);
+  REQUIRE(p.first.size() == static_cast<size_t>(w) * h * 3);
+  double sum = 0;
+  for (int i = 0; i < w * h; ++i)
+    for (int c = 0; c < 3; ++c) sum += std::abs(int(png[i * 4 + c]) - int(p.first[static_cast<size_t>(i) * 3 + c]));
+  stbi_image_free(png);
+  const double mean_error = sum / (3.0 * w * h);
+  INFO("mean absolute error " << mean_error << " of 255");
+  CHECK(mean_error < 8.0);  // chroma subsampling at 64x48 blurs the disk edges; colours must agree
+
+  // A speed that no whole number of steps per frame gives closely is refused with the nearest good ones.
+  r = test::cli("record " + test::kScene + " --duration 1 --size 64x48 --speed 0.05 --quiet --out " +
+                (d / "bad").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("whole number") && Catch::Matchers::Contains("--speed 0.06"));
+  CHECK_FALSE(fs::exists(d / "bad"));
 }

@@ -47,6 +47,36 @@ struct Stages {
 
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo) {
+  FrameClock c;
+  const double wanted = speed / fps;  // simulated seconds per video frame asked for
+  const double exact = wanted / dt;
+  if (exact < 0.5)
+    throw core::InputError("--speed " + num6(speed) + " at --fps " + std::to_string(fps) + " asks for a frame every " +
+                           num6(wanted) + " s of simulation, less than one time step (dt = " + num6(dt) +
+                           " s); use --speed >= " + num6(fps * dt) + " or a lower --fps");
+  c.steps = std::max(1L, std::lround(exact));
+  // A whole number of steps per frame; the rate written into the movie follows it (33 steps of 1 ms at 30 fps:
+  // 1000/33 = 30.30 frames per video second), so video time stays equal to simulated time / speed.
+  if (std::abs(c.steps - exact) / exact > 0.05)
+    throw core::InputError("--speed " + num6(speed) + " at --fps " + std::to_string(fps) + " needs " + num6(exact) +
+                           " time steps per frame; the nearest whole number (" + std::to_string(c.steps) +
+                           ") would change the frame rate by more than 5%; use --speed " +
+                           num6(c.steps * dt * fps) + " or " + num6(std::max(1L, c.steps + (exact > c.steps ? 1 : -1)) * dt * fps));
+  c.slow_steps = std::max(1L, std::lround(c.steps / slowmo));
+  if (slowmo > 1 && c.steps / slowmo < 0.5)
+    throw core::InputError("--slowmo " + num6(slowmo) + " would need less than one time step per frame (" +
+                           std::to_string(c.steps) + " steps per frame at this --speed); the most is " +
+                           std::to_string(2 * c.steps));
+  c.frame_interval = c.steps * dt;
+  c.video_fps = speed / c.frame_interval;
+  c.effective_slowmo = static_cast<double>(c.steps) / static_cast<double>(c.slow_steps);
+  return c;
+}
+
+namespace {
 
 int record_movie(const RecordOptions& o) {
   // --- everything the user typed is checked before any work starts ---
@@ -59,6 +89,8 @@ int record_movie(const RecordOptions& o) {
   if (!o.no_movie) record::validate(video);
   if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num6(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
   if (!(o.slowmo >= 1) || o.slowmo > 100) throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
+  const FrameClock clock = make_frame_clock(scene.dt, o.fps, o.speed, o.slowmo);
+  video.frame_rate = clock.video_fps;
   if (o.png_every < 0) throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0) throw core::InputError("--no-movie without --png-every would record nothing");
   if (o.fps < 1 || o.fps > 240) throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
@@ -164,19 +196,21 @@ int record_movie(const RecordOptions& o) {
   try {
     auto t0 = Clock::now();
     hopper = std::make_unique<sim::Hopper>(scene);
-    io::TrajectoryInfo tinfo = trajectory_info(*hopper, o.speed / o.fps, video.comment.empty() ? io::metadata_toml(scene, info) : video.comment);
+    io::TrajectoryInfo tinfo = trajectory_info(*hopper, clock.frame_interval, video.comment.empty() ? io::metadata_toml(scene, info) : video.comment);
     trajectory = std::make_unique<io::TrajectoryWriter>(dir.file("trajectory.sstraj"), tinfo);
-    // Frame times: every speed/fps simulated seconds, or slowmo times more often around a long-lasting arch's
-    // removal (from 0.5 s before the clog_timeout rule fires to 1 s after), both known from the current state.
-    double t_next = 0;
-    for (long k = 0; t_next <= scene.duration * (1 + 1e-12) - 0.5 * o.speed / o.fps || k == 0; ++k) {
-      hopper->advance_to(t_next);
+    // Frames every clock.steps time steps, or every clock.slow_steps around a long-lasting arch's removal (from
+    // 0.5 s before the clog_timeout rule fires to 1 s after), both known from the current state. Whole steps:
+    // every frame shows the state at an exact multiple of dt, and the trajectory and the MP4 carry that time.
+    long next_steps = 0;
+    for (long k = 0; hopper->time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
+      for (long s = 0; s < next_steps; ++s) hopper->step();
+      if (k > 0 && hopper->time() > scene.duration - 0.5 * clock.frame_interval + 1e-9) break;
       // Forces are summed only when they are shown or kept (the trajectory keeps them).
       core::Frame f = hopper->frame(true, true);
       const auto& arches = hopper->events().arches;
       const bool slow = o.slowmo > 1 && (f.since_last_exit >= scene.clog_timeout - 0.5 ||
                                          (!arches.empty() && f.t - arches.back().t < 1.0));
-      t_next += o.speed / o.fps / (slow ? o.slowmo : 1.0);
+      next_steps = slow ? clock.slow_steps : clock.steps;
       last_t = f.t;
       slow_frames += slow;
       trajectory->add(f, static_cast<int>(arches.size()));
@@ -229,6 +263,10 @@ int record_movie(const RecordOptions& o) {
                 {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(scene.n_total)))},
                 {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
                 {"fps", std::to_string(o.fps)},
+                {"steps_per_frame", std::to_string(clock.steps)},
+                {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
+                {"video_fps", core::format_toml_float(clock.video_fps)},
+                {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
                 {"speed_sim_s_per_video_s", num6(o.speed)},
                 {"slowmo", num6(o.slowmo)},
                 {"slowmo_frames", std::to_string(slow_frames)},

@@ -30,6 +30,16 @@ std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper&
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);
 
+// When record takes a frame: a whole number of time steps per frame (refused with the nearest good --speed if
+// that would change the frame rate by more than 5%), and fewer around a clog's removal for --slowmo.
+struct FrameClock {
+  long steps = 1, slow_steps = 1;  // time steps per frame, normally and in slow motion
+  double frame_interval = 0;       // s of simulation per frame (steps * dt)
+  double video_fps = 0;            // frames per video second written into the movie (speed / frame_interval)
+  double effective_slowmo = 1;     // steps / slow_steps
+};
+FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo);
+
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {
   std::string path;

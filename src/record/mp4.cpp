@@ -104,10 +104,13 @@ Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& sett
     if (!m.stream || !m.c || !m.frame || !m.pkt) throw core::RuntimeFault("video encoder: out of memory");
     m.c->width = m.s.width;
     m.c->height = m.s.height;
-    m.c->time_base = AVRational{1, m.s.fps};
-    m.c->framerate = AVRational{m.s.fps, 1};
+    // The exact frame rate as a fraction (1000/33 for 33 steps of 1 ms per frame), so every timestamp is the
+    // real time of the state shown; x264 and MP4 take any rational rate.
+    const AVRational rate = m.s.frame_rate > 0 ? av_d2q(m.s.frame_rate, 100000) : AVRational{m.s.fps, 1};
+    m.c->time_base = AVRational{rate.den, rate.num};
+    m.c->framerate = rate;
     m.c->pix_fmt = AV_PIX_FMT_YUV420P;
-    m.c->gop_size = 2 * m.s.fps;  // a keyframe every 2 s: quick seeking in players and the inspector
+    m.c->gop_size = 2 * m.s.fps;  // keyframe interval in frames  // a keyframe every 2 s: quick seeking in players and the inspector
     m.c->color_primaries = AVCOL_PRI_BT709;
     m.c->color_trc = AVCOL_TRC_BT709;
     m.c->colorspace = AVCOL_SPC_BT709;

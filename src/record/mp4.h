@@ -14,7 +14,9 @@ namespace record {
 
 struct VideoSettings {
   int width = 1920, height = 1080;  // even, 16..8192
-  int fps = 30;
+  int fps = 30;                     // the requested rate (validated)
+  double frame_rate = 0;            // the rate written into the file, frames per video second (0: fps); the
+                                    // recorder makes it speed / (whole steps per frame * dt), e.g. 1000/33
   int crf = 20;                     // 0 (lossless) .. 51; lower is better quality
   std::string preset = "veryfast";  // x264 preset: ultrafast .. veryslow
   std::string comment;              // stored in the file's metadata (we put the run's metadata.toml here)
