@@ -222,3 +222,26 @@ TEST_CASE("frames at exact times: whole steps per frame, the trajectory and the 
   CHECK_THAT(r.output, Catch::Matchers::Contains("whole number") && Catch::Matchers::Contains("--speed 0.06"));
   CHECK_FALSE(fs::exists(d / "bad"));
 }
+
+#include "record/yuv.h"
+
+TEST_CASE("the RGBA to yuv420p converter gives BT.709 limited-range values for known colours", "[record]") {
+  struct Known {
+    std::uint8_t r, g, b;
+    int y, u, v;
+  };
+  // Y = 16 + 219 (0.2126 R + 0.7152 G + 0.0722 B) / 255; Cb, Cr = 128 + 224 (B - Y', R - Y') / (255 * 1.8556, 1.5748).
+  const Known known[] = {{255, 255, 255, 235, 128, 128}, {0, 0, 0, 16, 128, 128},  {255, 0, 0, 63, 102, 240},
+                         {0, 255, 0, 173, 42, 26},       {0, 0, 255, 32, 240, 118}, {128, 128, 128, 126, 128, 128}};
+  for (const auto& k : known) {
+    std::vector<std::uint8_t> rgba(4 * 4 * 2);
+    for (size_t i = 0; i < rgba.size(); i += 4) rgba[i] = k.r, rgba[i + 1] = k.g, rgba[i + 2] = k.b, rgba[i + 3] = 255;
+    std::uint8_t y[8], u[2], v[2];
+    record::rgba_to_yuv420p(rgba.data(), 4, 2, y, 4, u, 2, v, 2);
+    INFO("colour " << int(k.r) << "," << int(k.g) << "," << int(k.b));
+    CHECK(std::abs(y[0] - k.y) <= 1);
+    CHECK(std::abs(y[7] - k.y) <= 1);
+    CHECK(std::abs(u[1] - k.u) <= 1);
+    CHECK(std::abs(v[1] - k.v) <= 1);
+  }
+}

@@ -96,5 +96,6 @@ void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);
 void add_bench_sweep_command(CLI::App& bench, Action& action);
+void add_bench_record_command(CLI::App& bench, Action& action);
 
 }  // namespace app

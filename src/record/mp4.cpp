@@ -4,13 +4,13 @@ extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 #include <libavutil/opt.h>
-#include <libswscale/swscale.h>
 }
 
 #include <chrono>
 #include <cstdio>
 
 #include "core/error.h"
+#include "record/yuv.h"
 #include "io/output.h"
 
 namespace record {
@@ -53,7 +53,6 @@ struct Mp4Writer::Impl {
   AVStream* stream = nullptr;
   AVFrame* frame = nullptr;
   AVPacket* pkt = nullptr;
-  SwsContext* sws = nullptr;
   long frames = 0;
   bool finished = false, header_written = false;
   double convert_s = 0, encode_s = 0;
@@ -72,8 +71,6 @@ struct Mp4Writer::Impl {
   }
 
   void release() {
-    sws_freeContext(sws);
-    sws = nullptr;
     av_packet_free(&pkt);
     av_frame_free(&frame);
     avcodec_free_context(&c);
@@ -134,11 +131,6 @@ Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& sett
     m.frame->width = m.s.width;
     m.frame->height = m.s.height;
     check(av_frame_get_buffer(m.frame, 0), "av_frame_get_buffer");
-    m.sws = sws_getContext(m.s.width, m.s.height, AV_PIX_FMT_RGBA, m.s.width, m.s.height, AV_PIX_FMT_YUV420P,
-                           SWS_BILINEAR, nullptr, nullptr, nullptr);
-    if (!m.sws) throw core::RuntimeFault("video encoder: cannot create the RGBA to yuv420p converter");
-    const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-    sws_setColorspaceDetails(m.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
   } catch (...) {
     m.release();
     std::remove(m.partial_path.c_str());
@@ -159,9 +151,8 @@ void Mp4Writer::add(const core::Image& img) {
                              " in a " + std::to_string(m.s.width) + "x" + std::to_string(m.s.height) + " movie");
   auto t0 = Clock::now();
   check(av_frame_make_writable(m.frame), "av_frame_make_writable");
-  const uint8_t* src[1] = {img.rgba.data()};
-  const int stride[1] = {4 * img.width};
-  sws_scale(m.sws, src, stride, 0, img.height, m.frame->data, m.frame->linesize);
+  rgba_to_yuv420p(img.rgba.data(), img.width, img.height, m.frame->data[0], m.frame->linesize[0], m.frame->data[1],
+                  m.frame->linesize[1], m.frame->data[2], m.frame->linesize[2]);
   m.frame->pts = m.frames++;
   auto t1 = Clock::now();
   check(avcodec_send_frame(m.c, m.frame), "avcodec_send_frame");
