@@ -245,3 +245,43 @@ TEST_CASE("the RGBA to yuv420p converter gives BT.709 limited-range values for k
     CHECK(std::abs(v[1] - k.v) <= 1);
   }
 }
+
+TEST_CASE("events on screen: a rule removal stays marked >= 10 frames, the badge shows only while slowed",
+          "[record][app]") {
+  fs::path d = temp_dir("events_on_screen");
+  // Seed 1: the rule fires at t = 6.521 s; --slowmo 4 slows 6.021..7.521 s.
+  auto r = test::cli("record " + test::kScene + " --duration 7.2 --slowmo 4 --size 320x240 --png-every 1 " +
+                     "--no-movie --quiet --out " + (d / "m").string());
+  REQUIRE(r.code == 0);
+  io::Trajectory t(d / "m" / "trajectory.sstraj");
+  const std::string meta = test::slurp(d / "m" / "metadata.toml");
+  const auto at = meta.find("slowmo_frames = ");
+  REQUIRE(at != std::string::npos);
+  const long slow_frames = std::stol(meta.substr(at + 16));
+  long marked = 0, badged = 0, marked_before_rule = 0, first_marked = -1;
+  for (long k = 0; k < t.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06ld.png", k);
+    int w = 0, h = 0, ch = 0;
+    unsigned char* px = stbi_load((d / "m" / "frames" / name).c_str(), &w, &h, &ch, 4);
+    REQUIRE(px);
+    long ring = 0, badge = 0;
+    for (int i = 0; i < w * h; ++i) {
+      const unsigned char* p = px + 4 * i;
+      ring += std::abs(p[0] - 200) < 25 && p[1] < 40 && std::abs(p[2] - 160) < 25;   // the magenta rings/caption
+      // The badge's yellow text, in the top band where no arch (gold halo) can be.
+      badge += i / w < h / 8 && p[0] > 230 && std::abs(p[1] - 220) < 25 && p[2] < 40;
+    }
+    stbi_image_free(px);
+    if (ring > 20) {
+      ++marked;
+      if (first_marked < 0) first_marked = k;
+      if (t.time(k) < 6.521 - 1e-6) ++marked_before_rule;
+    }
+    badged += badge > 3;
+  }
+  INFO("marked " << marked << " first at frame " << first_marked << ", badged " << badged << " of " << slow_frames);
+  CHECK(marked >= 10);
+  CHECK(marked_before_rule == 0);
+  CHECK(badged == slow_frames);
+}

@@ -1,6 +1,7 @@
 // siloscope record SCENE --out recordings/NAME: a discharge movie (NAME.mp4) and, in NAME/, the events, the
 // measurements, the metadata and optional PNG frames. Three threads: the simulation produces Frames, the
 // renderer turns them into Images (OSMesa), the encoder writes them; bounded queues keep memory flat.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <thread>
@@ -36,6 +37,7 @@ struct RecordOptions {
   std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species", overlay = "all";
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
+  double color_max = 0;  // top of the speed (m/s) or force (N) colour scale; 0: the fixed default
   std::string preset = "veryfast";
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
@@ -48,6 +50,44 @@ struct Stages {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 }  // namespace
+
+void EventMarks::update(const sim::Hopper& h, core::Frame& f) {
+  const auto& arches = h.events().arches;
+  const auto& clogs = h.events().clogs;
+  if (arches.size() > arches_seen_) {
+    const core::ArchEvent& a = arches.back();
+    rings_.clear();
+    for (size_t k = 0; k < a.ids.size() && k < a.x.size(); ++k)
+      rings_.push_back({a.x[k], a.y[k], static_cast<float>(h.radii()[static_cast<size_t>(a.ids[k])])});
+    char text[96];
+    std::snprintf(text, sizeof text, "arch removed (%.0f s rule): %zu disks", h.scene().clog_timeout, a.ids.size());
+    start(text, a.t, true);
+    arches_seen_ = arches.size();
+  }
+  if (clogs.size() > clogs_seen_) {
+    const core::ClogEvent& c = clogs.back();
+    if (c.ended_by == core::ClogEnd::Vibration) {
+      char text[96];
+      std::snprintf(text, sizeof text, "clog broken by vibration after %.1f s", c.end - c.start);
+      start(text, c.end, false);
+    }
+    clogs_seen_ = clogs.size();
+  }
+  if (frames_left_ > 0 || f.t - since_ < kMinSeconds) {
+    f.marks.caption = caption_;
+    f.marks.removed = rings_;
+    if (frames_left_ > 0) --frames_left_;
+  } else {
+    rings_.clear();
+  }
+}
+
+void EventMarks::start(const std::string& caption, double t, bool keep_rings) {
+  caption_ = caption;
+  since_ = t;
+  frames_left_ = kMinFrames;
+  if (!keep_rings) rings_.clear();
+}
 
 FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo) {
   FrameClock c;
@@ -98,6 +138,13 @@ int record_movie(const RecordOptions& o) {
   style.palette = render::parse_palette(o.palette);
   style.color = render::parse_color_mode(o.color);
   style.transparent = o.transparent;
+  if (o.color_max < 0 || !std::isfinite(o.color_max))
+    throw core::InputError("--color-max " + num6(o.color_max) + ": expected a positive number (m/s or N)");
+  if (o.color_max > 0) {
+    if (style.color == render::ColorMode::Species)
+      throw core::InputError("--color-max applies to --color speed or force, not species");
+    (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = o.color_max;
+  }
   const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
   const core::Geometry geo = core::make_geometry(scene);
   const auto views = render::layout_views(o.camera, geo, video.width, video.height);
@@ -202,6 +249,9 @@ int record_movie(const RecordOptions& o) {
     // 0.5 s before the clog_timeout rule fires to 1 s after), both known from the current state. Whole steps:
     // every frame shows the state at an exact multiple of dt, and the trajectory and the MP4 carry that time.
     long next_steps = 0;
+    // Events on screen: the last rule removal's members stay ringed, and a caption says what happened, for at
+    // least 10 frames and at least 0.7 s of simulated time.
+    EventMarks marks;
     for (long k = 0; hopper->time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
       for (long s = 0; s < next_steps; ++s) hopper->step();
       if (k > 0 && hopper->time() > scene.duration - 0.5 * clock.frame_interval + 1e-9) break;
@@ -211,6 +261,8 @@ int record_movie(const RecordOptions& o) {
       const bool slow = o.slowmo > 1 && (f.since_last_exit >= scene.clog_timeout - 0.5 ||
                                          (!arches.empty() && f.t - arches.back().t < 1.0));
       next_steps = slow ? clock.slow_steps : clock.steps;
+      marks.update(*hopper, f);
+      f.marks.slowdown = (1.0 / o.speed) * (slow ? clock.effective_slowmo : 1.0);
       last_t = f.t;
       slow_frames += slow;
       trajectory->add(f, static_cast<int>(arches.size()));
@@ -273,6 +325,8 @@ int record_movie(const RecordOptions& o) {
                 {"camera", core::toml_string(o.camera)},
                 {"palette", core::toml_string(o.palette)},
                 {"color", core::toml_string(o.color)},
+                {"color_scale_max", core::format_toml_float(style.color == render::ColorMode::Speed ? style.speed_max
+                                                                                                  : style.force_max)},
                 {"overlay", core::toml_string(o.overlay)},
                 {"crf", std::to_string(o.crf)},
                 {"preset", core::toml_string(o.preset)},
@@ -327,6 +381,9 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
+  cmd->add_option("--color-max", o->color_max,
+                  "top of the colour scale for --color speed (m/s) or force (N); default: the fixed scale "
+                  "(0.5 m/s, 20 N), the same in every movie");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return record_movie(*o); }; });
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame.h"
 #include "core/scene.h"
 
 namespace sim {
@@ -39,6 +40,24 @@ struct FrameClock {
   double effective_slowmo = 1;     // steps / slow_steps
 };
 FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo);
+
+// The marks record puts on its frames (core::Marks): the members of the last rule removal, ringed where they
+// stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames and
+// kMinSeconds of simulated time.
+class EventMarks {
+ public:
+  static constexpr int kMinFrames = 10;
+  static constexpr double kMinSeconds = 0.7;
+  void update(const sim::Hopper& h, core::Frame& f);
+
+ private:
+  void start(const std::string& caption, double t, bool keep_rings);
+  size_t arches_seen_ = 0, clogs_seen_ = 0;
+  std::vector<core::Marks::Ring> rings_;
+  std::string caption_;
+  double since_ = -1e9;
+  int frames_left_ = 0;
+};
 
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {

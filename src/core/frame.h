@@ -20,6 +20,17 @@ struct Particle {
   Species species;
 };
 
+// What a movie frame should point out beyond the state itself (filled by the recorder from the events; empty
+// elsewhere): disks a rule removal took away, marked where they stood, a caption, a slow-motion badge.
+struct Marks {
+  struct Ring {
+    float x, y, radius;  // m
+  };
+  std::vector<Ring> removed;  // the members the 5 s rule removed, where they were
+  std::string caption;        // e.g. "arch removed (5 s rule)"
+  double slowdown = 1;        // > 1: the video runs this many times slower than real time
+};
+
 struct Frame {
   double t = 0;                        // s since the aperture opened (negative while settling)
   std::uint64_t step = 0;              // time steps since the start of settling
@@ -28,6 +39,7 @@ struct Frame {
   double since_last_exit = 0;          // s, the clog timer
   std::int64_t exits_original = 0;     // exits so far of each species
   std::int64_t exits_added = 0;
+  Marks marks;
 };
 
 struct ExitEvent {
@@ -65,6 +77,7 @@ struct ArchEvent {
   std::vector<Species> species;  // of each member
   ArchGeometry geometry;
   std::string method;            // how the members were found: contact_path, or the visible fallback
+  std::vector<float> x, y;       // m, where each member stood when it was removed
 };
 
 struct Events {

@@ -15,10 +15,21 @@ namespace render {
 
 struct OverlayOptions {
   bool time = true, counts = true, rate = true, timer = true, arch = true, legend = true, scale = true;
-  static OverlayOptions none() { return {false, false, false, false, false, false, false}; }
-  bool any() const { return time || counts || rate || timer || arch || legend || scale; }
+  bool events = true;     // rule removals marked and captioned, vibration breaks captioned, slow-motion badge
+  bool zoombox = true;    // the outlet panel's region outlined on the whole-hopper panel (split camera)
+  bool plot = false;      // cumulative exits of each species against time, clogs shaded (not in "all")
+  bool colorbar = false;  // only the colour bar (speed/force colouring), e.g. with nothing else
+  static OverlayOptions none() {
+    OverlayOptions o;
+    o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
+    return o;
+  }
+  bool any() const {
+    return time || counts || rate || timer || arch || legend || scale || events || zoombox || plot || colorbar;
+  }
 };
-// Parse "all", "none" or a comma list of time,counts,rate,timer,arch,legend,scale. Throws core::InputError.
+// Parse "all", "none" or a comma list of time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar
+// ("all+plot" is all of the default elements and the plot). Throws core::InputError.
 OverlayOptions parse_overlay(const std::string& spec);
 
 struct OverlayData {
@@ -45,7 +56,15 @@ class Overlay {
   void ensure_font(int h);
   void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
              const Style& style, int w, int h);
+  void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
   void* ctx_ = nullptr;
+  // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
+  struct Sample {
+    double t;
+    long original, added;
+    bool clogged;
+  };
+  std::vector<Sample> history_;
   int font_px_ = 0;
   bool laid_out_ = false;
 };

@@ -429,7 +429,11 @@ void Hopper::apply_clog_rule() {
     ev.method = scene_.arch_method == "visible" ? "contact_path" : "visible";
     ev.ids = ev.method == "visible" ? core::visible_from_aperture(p, radius_, range) : current_arch();
   }
-  for (int id : ev.ids) ev.species.push_back(species_[id]);
+  for (int id : ev.ids) {
+    ev.species.push_back(species_[id]);
+    ev.x.push_back(static_cast<float>(p[id].x));
+    ev.y.push_back(static_cast<float>(p[id].y));
+  }
   ev.geometry = core::arch_geometry(ev.ids, p, radius_);
   for (int id : ev.ids) reinject(id);
   events_.arches.push_back(std::move(ev));
