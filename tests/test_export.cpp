@@ -90,7 +90,7 @@ TEST_CASE("export --format csv writes one frame or a range, values equal to the 
   CHECK(slurp(r / "mine.xyz") == "2\nmy own\nH 0 0 0\nH 1 0 0\n");
 }
 
-TEST_CASE("scene --keys lists exactly the field table; scene FILE resolves and validates", "[scene][app]") {
+TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and validates", "[scene][app]") {
   auto r = cli("scene --keys");
   REQUIRE(r.code == 0);
   std::istringstream in(r.output);
