@@ -285,3 +285,51 @@ TEST_CASE("events on screen: a rule removal stays marked >= 10 frames, the badge
   CHECK(marked_before_rule == 0);
   CHECK(badged == slow_frames);
 }
+
+TEST_CASE("a comparison movie: panels side by side on one clock, each labelled, each its own exact run",
+          "[record][app]") {
+  fs::path d = temp_dir("compare");
+  const std::string common = test::kScene + " --duration 1.5 --set settle_time=2 --quiet ";
+  auto r = test::cli("record " + common + "--compare mu=0 --compare mu=2.2,friction=0.4 --size 320x240 " +
+                     "--png-every 45 --out " + (d / "c").string());
+  REQUIRE(r.code == 0);
+  const std::string meta = test::slurp(d / "c" / "metadata.toml");
+  CHECK_THAT(meta, Catch::Matchers::Contains("panels = 2\n") &&
+                       Catch::Matchers::Contains("panel_labels = [\"mu=0\", \"mu=2.2,friction=0.4\"]"));
+  CHECK_THAT(test::slurp(d / "c" / "panel1" / "metadata.toml"),
+             Catch::Matchers::Contains("\nmu = 2.2 ") && Catch::Matchers::Contains("\nfriction = 0.4 "));
+  // Each panel is exactly the run of its own scene: stepping in parallel changes nothing.
+  REQUIRE(test::cli("run " + common + "--set mu=2.2 --set friction=0.4 --out " + (d / "alone").string()).code == 0);
+  CHECK(test::slurp(d / "c" / "panel1" / "exits.csv") == test::slurp(d / "alone" / "exits.csv"));
+  // Layout: a dark separator down the middle, disks (red originals) in both halves, the info box in both.
+  int w = 0, h = 0, ch = 0;
+  unsigned char* px = stbi_load((d / "c" / "frames" / "frame_000000.png").c_str(), &w, &h, &ch, 4);
+  REQUIRE(px);
+  long separator = 0, red[2] = {0, 0};
+  for (int y = 0; y < h; ++y) {
+    bool dark = false;
+    for (int x = w / 2 - 2; x <= w / 2 + 1; ++x) {
+      const unsigned char* p = px + 4 * (y * w + x);
+      dark = dark || (p[0] < 60 && p[1] < 60 && p[2] < 60);
+    }
+    separator += dark;
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = px + 4 * (y * w + x);
+      if (p[0] > 180 && p[1] < 70 && p[2] < 70) ++red[x < w / 2 ? 0 : 1];
+    }
+  }
+  stbi_image_free(px);
+  CHECK(separator > 0.9 * h);
+  CHECK(red[0] > 200);
+  CHECK(red[1] > 200);
+  // Bad comparisons: five panels, a panel with another time step.
+  r = test::cli("record " + common + "--compare mu=0 --compare mu=1 --compare mu=2 --compare mu=3 --compare mu=4 " +
+                "--size 64x48 --out " + (d / "five").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("2 to 4"));
+  r = test::cli("record " + common + "--compare dt=0.0005 --size 64x48 --out " + (d / "dt").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("one clock"));
+  CHECK_FALSE(fs::exists(d / "five"));
+  CHECK_FALSE(fs::exists(d / "dt"));
+}

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
+#include <future>
+#include <sstream>
 #include <thread>
 
 #include "analysis/measure.h"
@@ -38,6 +41,7 @@ struct RecordOptions {
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
   double color_max = 0;  // top of the speed (m/s) or force (N) colour scale; 0: the fixed default
+  std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
@@ -118,9 +122,72 @@ FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo) {
 
 namespace {
 
+// One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
+struct Panel {
+  core::Scene scene;
+  std::string label;  // what differs, e.g. "mu=2.2" (empty for a single movie)
+  core::Geometry geo;
+  std::vector<render::View> views;
+  render::OverlayData odata;
+  std::unique_ptr<sim::Hopper> hopper;
+  std::unique_ptr<io::TrajectoryWriter> trajectory;
+  EventMarks marks;
+  std::string subdir;  // inside NAME/: "" for one panel, "panelK/" for a comparison
+};
+
+// The panels: the base scene alone, or one per --compare / --compare-scene (with a single one, the base scene
+// is the first panel so that the comparison has two sides).
+std::vector<Panel> make_panels(const RecordOptions& o) {
+  std::vector<Panel> panels;
+  const core::Scene base = o.scene.load();
+  auto add = [&](core::Scene s, const std::string& label) {
+    Panel p;
+    p.scene = std::move(s);
+    p.label = label;
+    panels.push_back(std::move(p));
+  };
+  const size_t n_compare = o.compare.size() + o.compare_scene.size();
+  if (n_compare == 0) {
+    add(base, "");
+    return panels;
+  }
+  if (n_compare == 1) add(base, "base: " + fs::path(o.scene.path).stem().string());
+  for (const auto& c : o.compare) {
+    core::Scene s = base;
+    std::vector<std::string> sets;
+    std::stringstream ss(c);
+    for (std::string item; std::getline(ss, item, ',');) sets.push_back(item);
+    if (sets.empty()) throw core::InputError("--compare '" + c + "': expected key=value[,key=value...], e.g. mu=2.2");
+    core::apply_overrides(s, sets);
+    if (o.scene.seed) s.seed = *o.scene.seed;
+    if (o.scene.duration) s.duration = *o.scene.duration;
+    core::validate(s);
+    add(s, c);
+  }
+  for (const auto& f : o.compare_scene) {
+    core::Scene s = core::load_scene(f);
+    core::apply_overrides(s, o.scene.overrides);
+    if (o.scene.seed) s.seed = *o.scene.seed;
+    s.duration = base.duration;
+    core::validate(s);
+    add(s, fs::path(f).stem().string());
+  }
+  if (panels.size() > 4)
+    throw core::InputError("--compare: " + std::to_string(panels.size()) + " panels; a comparison has 2 to 4");
+  for (const auto& p : panels)
+    if (p.scene.dt != base.dt || p.scene.duration != base.duration)
+      throw core::InputError("--compare " + p.label + ": dt and duration must equal the base scene's (dt = " +
+                             num6(base.dt) + " s, duration = " + num6(base.duration) +
+                             " s): the panels run on one clock");
+  for (size_t k = 0; k < panels.size(); ++k) panels[k].subdir = "panel" + std::to_string(k) + "/";
+  return panels;
+}
+
 int record_movie(const RecordOptions& o) {
   // --- everything the user typed is checked before any work starts ---
-  core::Scene scene = o.scene.load();
+  std::vector<Panel> panels = make_panels(o);
+  const core::Scene& scene = panels.front().scene;
+  const size_t n_panels = panels.size();
   record::VideoSettings video;
   render::parse_size(o.size, "--size", video.width, video.height);
   video.fps = o.fps;
@@ -146,8 +213,20 @@ int record_movie(const RecordOptions& o) {
     (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = o.color_max;
   }
   const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
-  const core::Geometry geo = core::make_geometry(scene);
-  const auto views = render::layout_views(o.camera, geo, video.width, video.height);
+  // Panels side by side, equal widths, the same camera (and so the same scales) in each.
+  const int panel_w = video.width / static_cast<int>(n_panels);
+  for (size_t k = 0; k < n_panels; ++k) {
+    Panel& p = panels[k];
+    p.geo = core::make_geometry(p.scene);
+    p.views = render::layout_views(o.camera, p.geo, panel_w, video.height);
+    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
+    p.odata = render::overlay_data_for(p.scene);
+    if (n_panels > 1) {
+      p.odata.title = p.label + "  |  " + p.odata.title;
+      p.odata.panel_x = static_cast<int>(k) * panel_w;
+      p.odata.panel_w = panel_w;
+    }
+  }
 
   fs::path base = o.out;
   if (base.extension() == ".mp4") base.replace_extension();
@@ -161,15 +240,15 @@ int record_movie(const RecordOptions& o) {
     io::remove_dead_leftovers(base, {movie_path.filename().string() + ".partial"});
   }
   if (o.png_every > 0) fs::create_directory(dir.file("frames"));
-
-  const render::OverlayData odata = render::overlay_data_for(scene);
+  for (const auto& p : panels)
+    if (!p.subdir.empty()) fs::create_directory(dir.file(p.subdir));
 
   io::RunInfo info;
   info.command = command_line();
   install_interrupt_handler();
 
   // --- the three stages ---
-  BoundedQueue<core::Frame> frames(8);
+  BoundedQueue<std::vector<core::Frame>> frames(8);
   BoundedQueue<core::Image> images(4);
   std::exception_ptr render_error, encode_error;
   Stages st;
@@ -187,18 +266,23 @@ int record_movie(const RecordOptions& o) {
       gl_renderer = ctx.description();
       if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", gl_renderer.c_str());
       render::Renderer renderer;
-      render::Overlay ov;
+      std::vector<std::unique_ptr<render::Overlay>> ov;
+      for (size_t k = 0; k < n_panels; ++k) ov.push_back(std::make_unique<render::Overlay>());
       render::Target target(video.width, video.height);
-      core::Frame f;
-      while (frames.pop(f)) {
+      std::vector<core::Frame> fs;
+      while (frames.pop(fs)) {
         auto t0 = Clock::now();
         target.bind();
-        renderer.draw(f, geo, views, style, video.width, video.height);
-        ov.draw(f, odata, overlay, views, style, video.width, video.height);
+        for (size_t k = 0; k < n_panels; ++k) {
+          render::Style panel_style = style;
+          panel_style.clear = k == 0;
+          renderer.draw(fs[k], panels[k].geo, panels[k].views, panel_style, video.width, video.height);
+          ov[k]->draw(fs[k], panels[k].odata, overlay, panels[k].views, style, video.width, video.height);
+        }
         auto t1 = Clock::now();
         core::Image img;
         target.read(img, style.transparent);
-        img.t = f.t;
+        img.t = fs[0].t;
         st.draw += std::chrono::duration<double>(t1 - t0).count();
         st.readback += since(t1);
         if (!images.push(std::move(img))) break;
@@ -231,52 +315,70 @@ int record_movie(const RecordOptions& o) {
     }
   });
 
-  // --- the simulation, on this thread ---
+  // --- the simulations, on this thread (the other panels' on threads of their own, in step) ---
   Progress progress("record", scene.duration, !o.quiet);
   double last_t = 0;
   long slow_frames = 0;
   auto wall0 = Clock::now();
   bool was_interrupted = false;
   std::exception_ptr sim_error;
-  std::unique_ptr<sim::Hopper> hopper;
-  std::unique_ptr<io::TrajectoryWriter> trajectory;
+  auto in_parallel = [&](const std::function<void(Panel&)>& job) {
+    std::vector<std::future<void>> others;
+    for (size_t k = 1; k < n_panels; ++k)
+      others.push_back(std::async(std::launch::async, [&, k] { job(panels[k]); }));
+    job(panels[0]);
+    for (auto& f : others) f.get();  // rethrows a panel's error
+  };
   try {
     auto t0 = Clock::now();
-    hopper = std::make_unique<sim::Hopper>(scene);
-    io::TrajectoryInfo tinfo = trajectory_info(*hopper, clock.frame_interval, video.comment.empty() ? io::metadata_toml(scene, info) : video.comment);
-    trajectory = std::make_unique<io::TrajectoryWriter>(dir.file("trajectory.sstraj"), tinfo);
+    in_parallel([&](Panel& p) {
+      p.hopper = std::make_unique<sim::Hopper>(p.scene);
+      const std::string meta = n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(p.scene, info);
+      p.trajectory = std::make_unique<io::TrajectoryWriter>(dir.file(p.subdir + "trajectory.sstraj"),
+                                                            trajectory_info(*p.hopper, clock.frame_interval, meta));
+    });
+    sim::Hopper& lead = *panels[0].hopper;
     // Frames every clock.steps time steps, or every clock.slow_steps around a long-lasting arch's removal (from
-    // 0.5 s before the clog_timeout rule fires to 1 s after), both known from the current state. Whole steps:
-    // every frame shows the state at an exact multiple of dt, and the trajectory and the MP4 carry that time.
+    // 0.5 s before the clog_timeout rule fires to 1 s after, in any panel), both known from the current state.
+    // Whole steps: every frame shows the state at an exact multiple of dt, and the trajectory and the MP4 carry
+    // that time. Events on screen: see EventMarks.
     long next_steps = 0;
-    // Events on screen: the last rule removal's members stay ringed, and a caption says what happened, for at
-    // least 10 frames and at least 0.7 s of simulated time.
-    EventMarks marks;
-    for (long k = 0; hopper->time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
-      for (long s = 0; s < next_steps; ++s) hopper->step();
-      if (k > 0 && hopper->time() > scene.duration - 0.5 * clock.frame_interval + 1e-9) break;
-      // Forces are summed only when they are shown or kept (the trajectory keeps them).
-      core::Frame f = hopper->frame(true, true);
-      const auto& arches = hopper->events().arches;
-      const bool slow = o.slowmo > 1 && (f.since_last_exit >= scene.clog_timeout - 0.5 ||
-                                         (!arches.empty() && f.t - arches.back().t < 1.0));
+    for (long k = 0; lead.time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
+      if (next_steps > 0)
+        in_parallel([&](Panel& p) {
+          for (long s = 0; s < next_steps; ++s) p.hopper->step();
+        });
+      if (k > 0 && lead.time() > scene.duration - 0.5 * clock.frame_interval + 1e-9) break;
+      std::vector<core::Frame> fs(n_panels);
+      bool slow = false;
+      for (size_t i = 0; i < n_panels; ++i) {
+        Panel& p = panels[i];
+        // Forces are summed only when they are shown or kept (the trajectory keeps them).
+        fs[i] = p.hopper->frame(true, true);
+        const auto& arches = p.hopper->events().arches;
+        slow = slow || (o.slowmo > 1 && (fs[i].since_last_exit >= p.scene.clog_timeout - 0.5 ||
+                                         (!arches.empty() && fs[i].t - arches.back().t < 1.0)));
+      }
       next_steps = slow ? clock.slow_steps : clock.steps;
-      marks.update(*hopper, f);
-      f.marks.slowdown = (1.0 / o.speed) * (slow ? clock.effective_slowmo : 1.0);
-      last_t = f.t;
+      for (size_t i = 0; i < n_panels; ++i) {
+        Panel& p = panels[i];
+        p.marks.update(*p.hopper, fs[i]);
+        fs[i].marks.slowdown = (1.0 / o.speed) * (slow ? clock.effective_slowmo : 1.0);
+        p.trajectory->add(fs[i], static_cast<int>(p.hopper->events().arches.size()));
+      }
+      last_t = fs[0].t;
       slow_frames += slow;
-      trajectory->add(f, static_cast<int>(arches.size()));
       st.sim += since(t0);
-      if (!frames.push(std::move(f))) break;
+      if (!frames.push(std::move(fs))) break;
       t0 = Clock::now();
       if (interrupted()) {
         was_interrupted = true;
         break;
       }
       char extra[96];
-      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld frames, %zu exits", hopper->time(), k + 1,
-                    hopper->events().exits.size());
-      progress.update(hopper->time(), extra);
+      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld frames, %zu exits", lead.time(), k + 1,
+                    lead.events().exits.size());
+      progress.update(lead.time(), extra);
     }
   } catch (...) {
     sim_error = std::current_exception();
@@ -291,57 +393,82 @@ int record_movie(const RecordOptions& o) {
   const double wall = since(wall0);
 
   // --- finish: movie into place first, then the directory that describes it ---
-  if (trajectory) trajectory->close();
+  for (auto& p : panels)
+    if (p.trajectory) p.trajectory->close();
   if (mp4) {
     mp4->finish();
     st.convert = mp4->convert_seconds();
     st.encode = mp4->encode_seconds();
   }
-  hopper->finish();
   const double shown = last_t;  // simulated seconds shown
-  const double analysed = was_interrupted ? std::max(hopper->time(), 1e-9) : scene.duration;
-  analysis::Measurements m = analysis::measure(hopper->events(), analysed);
-  m.health_warnings = hopper->health_warnings();
-  m.airborne_fraction = hopper->airborne().mean();
-  m.ballistic = hopper->ballistic();
-  info.health = health_facts(*hopper);
-  io::write_events(dir.file(""), hopper->events());
-  io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
-  io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper->events().exits));
   const double per = 1e3 / std::max(1L, encoded);
-  info.facts = {{"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
-                {"frames", std::to_string(encoded)},
-                {"trajectory", "\"trajectory.sstraj\""},
-                {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(scene.n_total)))},
-                {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
-                {"fps", std::to_string(o.fps)},
-                {"steps_per_frame", std::to_string(clock.steps)},
-                {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
-                {"video_fps", core::format_toml_float(clock.video_fps)},
-                {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
-                {"speed_sim_s_per_video_s", num6(o.speed)},
-                {"slowmo", num6(o.slowmo)},
-                {"slowmo_frames", std::to_string(slow_frames)},
-                {"camera", core::toml_string(o.camera)},
-                {"palette", core::toml_string(o.palette)},
-                {"color", core::toml_string(o.color)},
-                {"color_scale_max", core::format_toml_float(style.color == render::ColorMode::Speed ? style.speed_max
-                                                                                                  : style.force_max)},
-                {"overlay", core::toml_string(o.overlay)},
-                {"crf", std::to_string(o.crf)},
-                {"preset", core::toml_string(o.preset)},
-                {"png_every", std::to_string(o.png_every)},
-                {"interrupted", was_interrupted ? "true" : "false"},
-                {"simulated_s", num6(hopper->time())},
-                {"gl_renderer", core::toml_string(gl_renderer)},
-                {"wall_s", num6(wall)},
-                {"ms_per_frame_sim", num6(st.sim * per)},
-                {"ms_per_frame_draw", num6(st.draw * per)},
-                {"ms_per_frame_readback", num6(st.readback * per)},
-                {"ms_per_frame_convert", num6(st.convert * per)},
-                {"ms_per_frame_encode", num6(st.encode * per)},
-                {"ms_per_frame_png", num6(st.png * per)}};
-  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
+  std::vector<analysis::Measurements> ms;
+  for (auto& p : panels) {
+    sim::Hopper& h = *p.hopper;
+    h.finish();
+    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
+    analysis::Measurements m = analysis::measure(h.events(), analysed);
+    m.health_warnings = h.health_warnings();
+    m.airborne_fraction = h.airborne().mean();
+    m.ballistic = h.ballistic();
+    ms.push_back(m);
+    io::write_events(dir.file(p.subdir), h.events());
+    io::write_file_atomic(dir.file(p.subdir + "summary.csv"),
+                          analysis::summary_header() + "\n" + analysis::summary_row(p.scene, m) + "\n");
+    io::write_file_atomic(dir.file(p.subdir + "survival.csv"), analysis::survival_csv(p.scene, h.events().exits));
+    io::RunInfo pinfo = info;
+    pinfo.health = health_facts(h);
+    pinfo.facts = {{"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
+                   {"frames", std::to_string(encoded)},
+                   {"trajectory", "\"trajectory.sstraj\""},
+                   {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total)))},
+                   {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
+                   {"fps", std::to_string(o.fps)},
+                   {"steps_per_frame", std::to_string(clock.steps)},
+                   {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
+                   {"video_fps", core::format_toml_float(clock.video_fps)},
+                   {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
+                   {"speed_sim_s_per_video_s", num6(o.speed)},
+                   {"slowmo", num6(o.slowmo)},
+                   {"slowmo_frames", std::to_string(slow_frames)},
+                   {"camera", core::toml_string(o.camera)},
+                   {"palette", core::toml_string(o.palette)},
+                   {"color", core::toml_string(o.color)},
+                   {"color_scale_max", core::format_toml_float(style.color == render::ColorMode::Speed ? style.speed_max
+                                                                                                     : style.force_max)},
+                   {"overlay", core::toml_string(o.overlay)},
+                   {"crf", std::to_string(o.crf)},
+                   {"preset", core::toml_string(o.preset)},
+                   {"png_every", std::to_string(o.png_every)},
+                   {"panels", std::to_string(n_panels)},
+                   {"panel_label", core::toml_string(p.label)},
+                   {"interrupted", was_interrupted ? "true" : "false"},
+                   {"simulated_s", num6(h.time())},
+                   {"gl_renderer", core::toml_string(gl_renderer)},
+                   {"wall_s", num6(wall)},
+                   {"ms_per_frame_sim", num6(st.sim * per)},
+                   {"ms_per_frame_draw", num6(st.draw * per)},
+                   {"ms_per_frame_readback", num6(st.readback * per)},
+                   {"ms_per_frame_convert", num6(st.convert * per)},
+                   {"ms_per_frame_encode", num6(st.encode * per)},
+                   {"ms_per_frame_png", num6(st.png * per)}};
+    io::write_file_atomic(dir.file(p.subdir + "metadata.toml"), io::metadata_toml(p.scene, pinfo));
+  }
+  if (n_panels > 1) {
+    // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
+    io::RunInfo cinfo = info;
+    std::string labels;
+    for (const auto& p : panels) labels += std::string(labels.empty() ? "" : ", ") + core::toml_string(p.label);
+    cinfo.facts = {{"movie", core::toml_string(o.no_movie ? std::string() : movie_path.filename().string())},
+                   {"frames", std::to_string(encoded)},
+                   {"panels", std::to_string(n_panels)},
+                   {"panel_labels", "[" + labels + "]"},
+                   {"interrupted", was_interrupted ? "true" : "false"},
+                   {"simulated_s", num6(panels[0].hopper->time())},
+                   {"wall_s", num6(wall)}};
+    io::write_file_atomic(dir.file("metadata.toml"), "# a comparison movie: each panelK/ holds one panel's run\n" +
+                                                         io::metadata_toml(scene, cinfo));
+  }
   dir.commit();
 
   if (!o.quiet) {
@@ -351,7 +478,10 @@ int record_movie(const RecordOptions& o) {
     std::printf("per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f ms"
                 " (stages overlap)\n",
                 st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
-    std::printf("%s", analysis::summary_text(m).c_str());
+    for (size_t k = 0; k < n_panels; ++k) {
+      if (n_panels > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
+      std::printf("%s", analysis::summary_text(ms[k]).c_str());
+    }
     if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
     std::printf("run data    %s/\n", base.c_str());
   }
@@ -384,6 +514,10 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--color-max", o->color_max,
                   "top of the colour scale for --color speed (m/s) or force (N); default: the fixed scale "
                   "(0.5 m/s, 20 N), the same in every movie");
+  cmd->add_option("--compare", o->compare,
+                  "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "
+                  "one clock; with a single --compare the base scene is the first panel)");
+  cmd->add_option("--compare-scene", o->compare_scene, "a comparison panel from another scene file (repeatable)");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return record_movie(*o); }; });
 }

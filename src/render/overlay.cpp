@@ -264,7 +264,8 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   const bool panel = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   if (panel) {
     // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays visible.
-    ImGui::SetNextWindowPos(ImVec2(w - 0.6f * em, 0.6f * em), 0, ImVec2(1.0f, 0.0f));
+    const float right = d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w);
+    ImGui::SetNextWindowPos(ImVec2(right - 0.6f * em, 0.6f * em), 0, ImVec2(1.0f, 0.0f));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("info", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
@@ -337,6 +338,10 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
     dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
   }
+  // A bold line between panels of a comparison, thin separators between views.
+  if (d.panel_x > 0)
+    dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0), ImVec2(static_cast<float>(d.panel_x), static_cast<float>(h)),
+                IM_COL32(20, 20, 20, 255), std::max(3.0f, h / 300.0f));
   // Thin separators between views.
   for (size_t k = 1; k < views.size(); ++k)
     dl->AddLine(ImVec2(static_cast<float>(views[k].rect.x), 0), ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(h)),

@@ -37,6 +37,7 @@ struct OverlayData {
   double clog_min_gap = 0.5;  // s
   double diameter = 0.13;     // m, of an original disk (the scale bar's unit)
   std::string title;          // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
+  int panel_x = 0, panel_w = 0;  // the panel this overlay belongs to, pixels (panel_w = 0: the whole image)
 };
 
 // The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu, seed.

@@ -21,6 +21,7 @@ struct Style {
   double force_max = 20.0;  // N at the top of the colour scale (~99th percentile of the default scene)
   bool transparent = false;  // transparent background (PNG)
   bool show_arch = true;
+  bool clear = true;  // clear the image first (false: draw another panel into the same image)
 };
 
 // Parse "paper"/"colorblind" and "species"/"speed"/"force"; throw core::InputError naming the option.

@@ -143,7 +143,7 @@ void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const s
   glDisable(GL_SCISSOR_TEST);
   const Rgba bg = background_color(style);
   glClearColor(bg.r * bg.a, bg.g * bg.a, bg.b * bg.a, bg.a);
-  glClear(GL_COLOR_BUFFER_BIT);
+  if (style.clear) glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied alpha
   glDisable(GL_DEPTH_TEST);
