@@ -248,3 +248,21 @@ TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says
   std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK_THAT(err, Contains("no display") && Contains("--script"));
 }
+
+TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvfb, xdotool)", "[ui]") {
+  fs::path d = temp_dir("window_keys");
+  REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml --duration 2 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
+             (d / "rec").string()) == 0);
+  const std::string log = (d / "log.txt").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/tests/ui_keys.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log + " 2>&1") == 0);
+  std::ifstream in(log);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  INFO(text);
+  const auto at = text.find("idle_cpu_fraction ");
+  REQUIRE(at != std::string::npos);
+  const double idle = std::stod(text.substr(at + 18));
+  CHECK(idle < 0.05);  // was 0.75-0.93 when the window redrew continuously
+  CHECK_THAT(text, Contains("exit 0") && Contains("inspector closed at frame 5\n"));  // 5 quick taps, 5 steps
+}

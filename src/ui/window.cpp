@@ -9,8 +9,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "analysis/stats.h"
 #include "core/error.h"
@@ -34,6 +37,16 @@ constexpr float kPanelWidth = 400, kTimelineHeight = 48;
 
 void* glfw_proc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
 
+// Key presses as GLFW delivers them, queued, so that quick taps between two redraws are never lost (ImGui's
+// per-frame key state saw 2 of 5 quick taps). ImGui's own callback is chained after this one.
+struct KeyQueue {
+  std::vector<int> keys;
+};
+void on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) q->keys.push_back(action == GLFW_REPEAT ? -key : key);
+}
+
 // A GLFW window with a GL 3.3 core context and an ImGui context of its own.
 class Window {
  public:
@@ -52,6 +65,8 @@ class Window {
     }
     glfwMakeContextCurrent(win_);
     glfwSwapInterval(1);
+    glfwSetWindowUserPointer(win_, &queue_);
+    glfwSetKeyCallback(win_, on_key);  // before ImGui's, which chains to it
     render::load_gl(&glfw_proc);
     ctx_ = ImGui::CreateContext();
     ImGui::SetCurrentContext(ctx_);
@@ -70,8 +85,23 @@ class Window {
   }
   GLFWwindow* get() const { return win_; }
   ImGuiContext* imgui() const { return ctx_; }
+  // The key presses since the last call (negative: auto-repeat of a held key).
+  std::vector<int> take_keys() { return std::exchange(queue_.keys, {}); }
+  // Poll while something moves (playing, a test's frame budget, the few frames ImGui needs to settle after an
+  // event); otherwise sleep until the next event: an idle window costs no CPU.
+  void wait_or_poll(bool busy) {
+    if (busy || settle_ > 0) {
+      glfwPollEvents();
+      if (settle_ > 0) --settle_;
+    } else {
+      glfwWaitEvents();
+      settle_ = 3;
+    }
+  }
 
  private:
+  KeyQueue queue_;
+  int settle_ = 3;
   GLFWwindow* win_ = nullptr;
   ImGuiContext* ctx_ = nullptr;
 };
@@ -91,15 +121,24 @@ void mouse_view(Inspector& insp, float scene_w, float scene_h) {
   }
 }
 
-void keys(Inspector& insp, PanelState& ps, Painter* painter) {
+// Every queued key press, in order: arrows step (held: repeat), space plays, N/P next/previous clog, Home/End,
+// Q or Escape closes. Ignored while a text field has the keyboard.
+void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
+  const std::vector<int> pressed = win.take_keys();
   if (ImGui::GetIO().WantTextInput) return;
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) insp.set_frame(insp.frame_index() + 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) insp.set_frame(insp.frame_index() - 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) ps.playing = !ps.playing;
-  if (ImGui::IsKeyPressed(GLFW_KEY_N, false)) run_command(insp, ps, painter, "next clog");
-  if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) run_command(insp, ps, painter, "prev clog");
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Home), false)) run_command(insp, ps, painter, "goto start");
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_End), false)) run_command(insp, ps, painter, "goto end");
+  for (int k : pressed) {
+    const bool repeat = k < 0;
+    const int key = repeat ? -k : k;
+    if (key == GLFW_KEY_RIGHT) insp.set_frame(insp.frame_index() + 1);
+    else if (key == GLFW_KEY_LEFT) insp.set_frame(insp.frame_index() - 1);
+    else if (repeat) continue;
+    else if (key == GLFW_KEY_SPACE) ps.playing = !ps.playing;
+    else if (key == GLFW_KEY_N) run_command(insp, ps, painter, "next clog");
+    else if (key == GLFW_KEY_P) run_command(insp, ps, painter, "prev clog");
+    else if (key == GLFW_KEY_HOME) run_command(insp, ps, painter, "goto start");
+    else if (key == GLFW_KEY_END) run_command(insp, ps, painter, "goto end");
+    else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
+  }
 }
 
 void save_screenshot(const std::string& path, int w, int h) {
@@ -150,9 +189,10 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
   double play_acc = 0;
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
-    glfwPollEvents();
+    win.wait_or_poll(ps.playing || o.frames > 0);
     const auto now = Clock::now();
-    const double dt = std::chrono::duration<double>(now - last).count();
+    // At most 0.1 s per redraw: time spent waiting for an event does not fast-forward playback.
+    const double dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
     last = now;
     if (ps.playing) {
       // Play at the recording's own pace times the playback speed.
@@ -166,7 +206,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     const core::Frame f = insp.current();
     draw_frame(win, painter, f, insp, [&](float scene_w, float fw, float fh, float scene_h) {
       ImGui::SetCurrentContext(win.imgui());
-      keys(insp, ps, &painter);
+      keys(win, insp, ps, &painter);
       mouse_view(insp, scene_w, scene_h);
       draw_panels(insp, ps, &painter, scene_w, fw - scene_w, fh, scene_h, scene_w, fh - scene_h);
     });
@@ -186,6 +226,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     // In tests, step through frames so redraw times are measured.
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
+  std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
   return redraws.empty() ? 0.0 : analysis::median(redraws);
 }
 
