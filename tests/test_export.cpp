@@ -109,3 +109,33 @@ TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and v
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("chi = 2.0 is not allowed"));
 }
+
+TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a trajectory, in PDF, SVG and PNG",
+          "[gallery][app]") {
+  fs::path d = temp_dir("gallery");
+  REQUIRE(cli("run " + kScene + " --duration 18 --seed 4 --quiet --out " + (d / "run").string()).code == 0);
+  REQUIRE_FALSE(fs::exists(d / "run" / "trajectory.sstraj"));
+  std::istringstream arches(slurp(d / "run" / "arches.csv"));
+  std::string line;
+  long n = -1;
+  while (std::getline(arches, line)) ++n;
+  REQUIRE(n >= 2);
+  auto r = cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.svg").string() + " --tile 160");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains(std::to_string(n) + " arches"));
+  const std::string svg = slurp(d / "sheet.svg");
+  long images = 0;
+  for (size_t at = svg.find("<image"); at != std::string::npos; at = svg.find("<image", at + 1)) ++images;
+  CHECK(images == n);
+  CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.pdf").string() + " --tile 160").code == 0);
+  CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.png").string() + " --tile 160").code == 0);
+  // Its own sheet is replaced with --force; a user's file is not.
+  CHECK(cli("gallery " + (d / "run").string() + " --force --out " + (d / "sheet.png").string() + " --tile 160").code == 0);
+  std::ofstream(d / "poster.pdf") << "%PDF-1.4 my poster";
+  r = cli("gallery " + (d / "run").string() + " --force --out " + (d / "poster.pdf").string() + " --tile 160");
+  CHECK(r.code == 2);
+  CHECK(slurp(d / "poster.pdf") == "%PDF-1.4 my poster");
+  CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.jpg").string()).code == 2);
+  for (const auto& e : fs::directory_iterator(d))
+    CHECK(e.path().filename().string().find(".tiles-") == std::string::npos);  // no temporary tiles left
+}

@@ -65,6 +65,11 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
       if (!csv_header.empty() && !file_starts_with(path, csv_header + "\n"))
         return "a file that is not siloscope's CSV of this kind (its first line differs)";
       return "";
+    case OutputKind::Sheet:
+      if (fs::is_directory(st)) return "a directory, not a figure sheet";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      if (!file_contains(path, "siloscope gallery", 32u << 20)) return "a file that is not a siloscope gallery sheet";
+      return "";
     case OutputKind::Xyz:
       if (fs::is_directory(st)) return "a directory, not an XYZ file";
       if (!fs::is_regular_file(st)) return "not a regular file";

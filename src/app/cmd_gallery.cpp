@@ -1,0 +1,144 @@
+// siloscope gallery RUN --out arches.pdf|svg|png: one sheet with every long-lasting arch of a run, each a zoomed
+// outlet view just before the 5 s rule removed it, members highlighted, labelled with the time, the clog's
+// duration, the members and their species. The run is re-simulated from its metadata (runs are deterministic:
+// the trajectory is not needed), and each re-simulated removal is checked against the run's own arches.csv.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "app/common.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "io/events_csv.h"
+#include "io/metadata.h"
+#include "io/output.h"
+#include "record/png.h"
+#include "render/camera.h"
+#include "render/context.h"
+#include "render/renderer.h"
+#include "render/target.h"
+#include "sim/hopper.h"
+
+#ifndef SILOSCOPE_GALLERY_SCRIPT
+#define SILOSCOPE_GALLERY_SCRIPT "src/figures/gallery.py"
+#endif
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct GalleryOptions {
+  std::string run, out, palette = "paper";
+  int tile = 480, columns = 0, max_arches = 60;
+  bool force = false;
+};
+
+int gallery(const GalleryOptions& o) {
+  const fs::path run = o.run;
+  if (!fs::is_directory(run) || !fs::exists(run / "metadata.toml") || !fs::exists(run / "arches.csv"))
+    throw core::InputError("gallery: " + o.run + " is not a run directory (metadata.toml and arches.csv)");
+  const fs::path out = o.out;
+  const std::string ext = out.extension().string();
+  if (ext != ".pdf" && ext != ".svg" && ext != ".png")
+    throw core::InputError("--out " + o.out + ": the sheet is .pdf, .svg or .png");
+  if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
+    throw core::InputError("--tile " + std::to_string(o.tile) + ": allowed are even sizes from 120 to 2000 pixels");
+  const core::Scene scene = core::load_scene((run / "metadata.toml").string());
+  const core::Events recorded = io::read_events(run);
+  if (recorded.arches.empty()) throw core::InputError("gallery: " + o.run + " has no long-lasting arch (arches.csv is empty)");
+  const size_t n = std::min(recorded.arches.size(), static_cast<size_t>(o.max_arches));
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "gallery", io::OutputKind::Sheet);
+
+  // Tiles into a temporary directory beside the sheet, removed afterwards.
+  fs::path tmp = out;
+  tmp += ".tiles-" + std::to_string(::getpid());
+  fs::create_directories(tmp);
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } cleanup{tmp};
+
+  render::OffscreenContext ctx;
+  render::Renderer renderer;
+  render::Target target(o.tile, o.tile);
+  render::Style style;
+  style.palette = render::parse_palette(o.palette);
+  const core::Geometry geo = core::make_geometry(scene);
+  const auto views = render::layout_views("outlet", geo, o.tile, o.tile);
+  sim::Hopper h(scene);
+  std::string index = "tile,t_s,clog_s,members,added,species,method,span_m\n";
+  for (size_t k = 0; k < n; ++k) {
+    const core::ArchEvent& a = recorded.arches[k];
+    // The state one step before the rule fired: the clog as it stood.
+    h.advance_to(a.t - scene.dt);
+    core::Frame f = h.frame(false, false);
+    f.arch = a.ids;
+    f.since_last_exit = a.clog_duration;
+    target.bind();
+    renderer.draw(f, geo, views, style, o.tile, o.tile);
+    core::Image img;
+    target.read(img, false);
+    char name[32];
+    std::snprintf(name, sizeof name, "tile_%03zu.png", k);
+    record::write_png(tmp / name, img);
+    h.advance_to(a.t);
+    const auto& again = h.events().arches;
+    if (again.size() != k + 1 || again.back().ids != a.ids)
+      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " + std::to_string(k) +
+                               " at t = " + core::format_g(a.t, 6) + " s (a different build or physics?)");
+    int added = 0;
+    std::string species;
+    for (auto s : a.species) {
+      added += s == core::Species::Added;
+      species += std::string(species.empty() ? "" : ";") + core::species_name(s);
+    }
+    index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) + "," +
+             std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," + a.method + "," +
+             core::format_g(a.geometry.span, 4) + "\n";
+  }
+  io::write_file_atomic(tmp / "index.csv", index);
+  const std::string title = "long-lasting arches of " + fs::absolute(run).filename().string() + ": r = " +
+                            core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) + ", mu = " +
+                            core::format_g(scene.mu) + " A m^2, kick " + core::format_g(scene.kick_impulse_max) +
+                            " N s, seed " + std::to_string(scene.seed) + " (" + std::to_string(n) + " of " +
+                            std::to_string(recorded.arches.size()) + ")";
+  fs::path partial = out;
+  partial += ".partial" + ext;  // matplotlib picks the format from the extension
+  const std::string cmd = python_interpreter() + " " + core::shell_quote(SILOSCOPE_GALLERY_SCRIPT) + " " +
+                          core::shell_quote(tmp.string()) + " " + core::shell_quote(partial.string()) + " " +
+                          core::shell_quote(title) + " " + core::shell_quote(io::version_string()) + " " +
+                          std::to_string(o.columns);
+  const int status = std::system(cmd.c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::error_code ec;
+    fs::remove(partial, ec);
+    throw core::RuntimeFault("gallery: the matplotlib script failed (" + cmd + ")");
+  }
+  io::rename_into_place(partial, out);
+  std::printf("%zu arches -> %s\n", n, out.c_str());
+  return 0;
+}
+}  // namespace
+
+void add_gallery_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<GalleryOptions>();
+  auto* cmd = app.add_subcommand("gallery", "one sheet (PDF, SVG or PNG) with every long-lasting arch of a run");
+  cmd->set_version_flag("--version", io::version_string());
+  cmd->add_option("run", o->run, "a run or recording directory (metadata.toml, arches.csv)")->required();
+  cmd->add_option("--out", o->out, "the sheet: .pdf, .svg or .png")->required();
+  cmd->add_option("--tile", o->tile, "tile size in pixels")->check(whole_number(120, 2000))->capture_default_str();
+  cmd->add_option("--columns", o->columns, "tiles per row (0: about square)")->check(whole_number(0, 20));
+  cmd->add_option("--max", o->max_arches, "at most this many arches, the first ones")->check(whole_number(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--palette", o->palette, "paper or colorblind")->capture_default_str();
+  cmd->add_flag("--force", o->force, "replace an earlier gallery sheet");
+  cmd->callback([o, &action] { action = [o] { return gallery(*o); }; });
+}
+
+}  // namespace app

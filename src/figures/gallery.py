@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""The arch gallery sheet of `siloscope gallery`: tiles (PNG) and their index.csv -> one PDF, SVG or PNG.
+
+    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS]
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+plt.rcParams.update({"svg.hashsalt": "siloscope", "font.size": 8})
+
+
+def main(tiles, out, title, version, columns=0):
+    with open(os.path.join(tiles, "index.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    n = len(rows)
+    cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
+    nrows = math.ceil(n / cols)
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.2 * cols, 2.5 * nrows + 0.4), squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        ax.axis("off")
+        if k >= n:
+            continue
+        r = rows[k]
+        ax.imshow(mpimg.imread(os.path.join(tiles, r["tile"])))
+        members = r["species"].split(";")
+        ax.set_title(f"#{k + 1}  t = {float(r['t_s']):.2f} s, clog {float(r['clog_s']):.1f} s\n"
+                     f"{r['members']} disks ({r['added']} added), span {100 * float(r['span_m']):.0f} cm",
+                     fontsize=7)
+        del members
+    fig.suptitle(title, fontsize=9)
+    fig.text(0.99, 0.003, f"siloscope {version}; members gold, bonds dark; the state one time step before the "
+             f"5 s rule removed each arch", ha="right", va="bottom", fontsize=6, color="#444444")
+    fig.tight_layout(rect=(0, 0.02, 1, 0.97))
+    # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
+    tag = f"siloscope gallery {version}"
+    if out.endswith(".pdf"):
+        meta = {"CreationDate": None, "ModDate": None, "Creator": tag}
+    elif out.endswith(".svg"):
+        meta = {"Date": None, "Creator": tag}
+    else:
+        meta = {"Software": tag}
+    fig.savefig(out, dpi=150, metadata=meta)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 5:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0)
