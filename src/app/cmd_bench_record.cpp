@@ -31,7 +31,7 @@ const char* kHeader = "case,repeat,wall_s,ratio_to_run,frames,ms_sim,ms_draw,ms_
 struct RecordBenchOptions {
   SceneOptions scene;
   int repeats = 3;
-  std::string csv;
+  std::string csv, binary;  // binary: another siloscope to time (e.g. an older build), default this one
 };
 
 struct Case {
@@ -44,9 +44,11 @@ int bench_record(const RecordBenchOptions& o) {
   if (!(duration > 0 && duration <= 600)) throw core::InputError("--duration must be in (0, 600] s");
   const std::string scene = o.scene.path.empty() ? std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml"
                                                  : o.scene.path;
-  o.scene.load();  // validate before any work
+  if (o.binary.empty()) o.scene.load();  // validate before any work (another binary validates its own scenes)
   std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path self = o.binary.empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(o.binary);
+  if (!o.binary.empty() && ::access(o.binary.c_str(), X_OK) != 0)
+    throw core::InputError("--binary " + o.binary + ": not an executable file");
   const fs::path tmp = fs::temp_directory_path() / ("siloscope_bench_record_" + std::to_string(::getpid()));
   fs::create_directories(tmp);
   std::string common = " " + core::shell_quote(scene) + " --quiet";
@@ -94,8 +96,8 @@ int bench_record(const RecordBenchOptions& o) {
   }
   fs::remove_all(tmp, ec);
   const double run_wall = analysis::median(walls["run"]);
-  std::printf("siloscope %s, bench record: %s, %g s of discharge, medians of %d\n", io::version_string().c_str(),
-              scene.c_str(), duration, o.repeats);
+  std::printf("siloscope %s, bench record of %s: %s, %g s of discharge, medians of %d\n",
+              io::version_string().c_str(), self.c_str(), scene.c_str(), duration, o.repeats);
   std::printf("%-16s %10s %12s %9s %9s %11s %10s %10s %8s\n", "case", "wall [s]", "x run", "sim", "draw",
               "readback", "convert", "encode", "png");
   std::printf("%-16s %10s %12s %9s %9s %11s %10s %10s %8s\n", "", "", "", "ms/frame", "ms/frame", "ms/frame",
@@ -130,6 +132,7 @@ void add_bench_record_command(CLI::App& bench, Action& action) {
   cmd->add_option("--repeats", o->repeats, "repeats of each case (medians)")->check(whole_number(1, 100))
       ->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output (one row per case and repeat)");
+  cmd->add_option("--binary", o->binary, "time another siloscope binary (e.g. an older build) the same way");
   cmd->callback([o, &action] { action = [o] { return bench_record(*o); }; });
 }
 
