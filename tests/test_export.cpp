@@ -139,3 +139,54 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   for (const auto& e : fs::directory_iterator(d))
     CHECK(e.path().filename().string().find(".tiles-") == std::string::npos);  // no temporary tiles left
 }
+
+namespace {
+// A synthetic analysis/points.csv: r = 0.4 and 1.0 at F/W 0 and 10, the pure system; Q~/Q_p at r = 0.4 is
+// `small`, at r = 1 `large`, each +- 0.1 from 10 realizations.
+void synthetic_points(const fs::path& dir, double small, double large) {
+  fs::create_directories(dir);
+  std::ofstream f(dir / "points.csv");
+  f << "size_ratio,chi,mu,kick_impulse_max,dipole_force_ratio,n_runs,q_tilde_over_qp,q_tilde_over_qp_ci95,"
+       "q_tilde_per_s,q_tilde_per_s_ci95,chi_eff,chi_eff_ci95,long_arches_per_min,long_arches_per_min_ci95,"
+       "added_per_long_arch,added_per_long_arch_ci95\n";
+  for (double r : {0.4, 1.0})
+    for (double fr : {0.0, 10.0}) {
+      const double ratio = r < 0.5 ? small : large;
+      f << r << ",0.4," << fr << ",5e-05," << fr << ",10," << ratio << ",0.1," << 2 * ratio << ",0.2,"
+        << (fr > 0 ? 0.30 : 0.45) << ",0.02,9,0.5,0.5,0.1\n";
+    }
+  f << "0.4,0,0,5e-05,0,10,1,0.1,2,0.2,0,0,10,0.5,0,0\n";
+}
+}  // namespace
+
+TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not resolved)", "[claims][app]") {
+  fs::path d = temp_dir("claims");
+  synthetic_points(d / "good" / "analysis", 1.5, 0.6);  // C1's shape, resolved
+  synthetic_points(d / "bad" / "analysis", 0.6, 1.5);   // the opposite
+  auto r = cli("claims good=" + (d / "good").string() + " bad=" + (d / "bad").string() + " --out " +
+               (d / "claims.md").string());
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("good: C1 reproduced") &&
+                           Catch::Matchers::Contains("bad: C1 contradicted"));
+  // chi_eff 0.45 -> 0.30 with +- 0.02: C4 reproduced in both.
+  CHECK_THAT(r.output, Catch::Matchers::Contains("C4 reproduced"));
+  const std::string md = slurp(d / "claims.md");
+  CHECK_THAT(md, Catch::Matchers::Contains("| C1 non-magnetic") && Catch::Matchers::Contains("n = 10 realizations"));
+  // One realization per point: no interval, nothing resolved.
+  fs::path one = d / "one" / "analysis";
+  synthetic_points(one, 1.5, 0.6);
+  std::string text = slurp(one / "points.csv");
+  for (size_t at = text.find(",10,"); at != std::string::npos; at = text.find(",10,", at + 1)) text.replace(at, 4, ",1,");
+  std::ofstream(one / "points.csv") << text;
+  r = cli("claims one=" + (d / "one").string() + " --out " + (d / "one.md").string());
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("one: C1 not resolved"));
+  // Its own table is replaced with --force, a user's file is not; a missing analysis is named.
+  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "claims.md").string()).code == 0);
+  std::ofstream(d / "notes.md") << "# my notes\n";
+  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "notes.md").string()).code == 2);
+  CHECK(slurp(d / "notes.md") == "# my notes\n");
+  r = cli("claims x=" + (d / "nothing").string() + " --out " + (d / "x.md").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("holds no points.csv"));
+}

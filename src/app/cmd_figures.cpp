@@ -56,6 +56,57 @@ int figures(const FiguresOptions& o) {
 }
 }  // namespace
 
+namespace {
+struct ClaimsOptions {
+  std::vector<std::string> results;
+  std::string out;
+  bool force = false;
+};
+
+int claims(const ClaimsOptions& o) {
+  std::vector<std::string> specs;
+  for (const auto& r : o.results) {
+    const auto eq = r.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw core::InputError("claims: '" + r + "': expected LABEL=RESULTS, e.g. literal=docs/campaigns/paper");
+    fs::path dir = r.substr(eq + 1);
+    if (!fs::exists(dir / "points.csv") && fs::exists(dir / "analysis" / "points.csv")) dir /= "analysis";
+    if (!fs::exists(dir / "points.csv"))
+      throw core::InputError("claims: " + r.substr(eq + 1) + " holds no points.csv (run `siloscope analyze` first)");
+    specs.push_back(r.substr(0, eq) + "=" + dir.string());
+  }
+  const fs::path out = o.out;
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "claims table", io::OutputKind::Csv,
+                        "# The paper's seven claims against siloscope's results");
+  fs::path partial = out;
+  partial += ".partial";
+  std::string cmd = python_interpreter() + " " + core::shell_quote(SILOSCOPE_CLAIMS_SCRIPT) + " " +
+                    core::shell_quote(partial.string()) + " " + core::shell_quote(io::version_string());
+  for (const auto& s : specs) cmd += " " + core::shell_quote(s);
+  const int status = std::system(cmd.c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::error_code ec;
+    fs::remove(partial, ec);
+    throw core::RuntimeFault("claims: the script failed (" + cmd + ")");
+  }
+  io::rename_into_place(partial, out);
+  std::printf("claims table in %s\n", out.c_str());
+  return 0;
+}
+}  // namespace
+
+void add_claims_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ClaimsOptions>();
+  auto* cmd = app.add_subcommand("claims", "the paper's seven claims against campaign results: a verdict table");
+  cmd->set_version_flag("--version", io::version_string());
+  cmd->add_option("results", o->results, "LABEL=RESULTS (a campaign's results or analysis directory), one per preset")
+      ->required();
+  cmd->add_option("--out", o->out, "the Markdown table, e.g. docs/campaigns/paper/claims.md")->required();
+  cmd->add_flag("--force", o->force, "replace an earlier claims table");
+  cmd->callback([o, &action] { action = [o] { return claims(*o); }; });
+}
+
 void add_figures_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<FiguresOptions>();
   auto* cmd = app.add_subcommand("figures", "the paper's figures (PNG, SVG, PDF) from a campaign's tidy CSV");

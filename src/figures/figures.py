@@ -53,10 +53,22 @@ def finite(x):
     return isinstance(x, float) and math.isfinite(x)
 
 
+FRACTIONS = {"chi_eff", "fraction_broken_by_vibration", "airborne_fraction"}
+
+
+def bounded(ys, hs, key):
+    """Error bars that stop at the physical bounds: rates, counts and ratios are >= 0, fractions also <= 1."""
+    lo = [min(h, y) for y, h in zip(ys, hs)]
+    hi = [min(h, 1.0 - y) if key in FRACTIONS else h for y, h in zip(ys, hs)]
+    return [lo, hi]
+
+
 def series(rows, x, y, key):
-    """Points sorted by x, with finite y, as (xs, ys, errs)."""
+    """Points sorted by x, with finite y, as (xs, ys, [lower, upper] error bars bounded at 0 (and 1))."""
     rows = sorted((r for r in rows if finite(r.get(y))), key=lambda r: r[x])
-    return [r[x] for r in rows], [r[y] for r in rows], [r.get(key, 0.0) if finite(r.get(key)) else 0.0 for r in rows]
+    hs = [r.get(key, 0.0) if finite(r.get(key)) else 0.0 for r in rows]
+    ys = [r[y] for r in rows]
+    return [r[x] for r in rows], ys, bounded(ys, hs, y)
 
 
 def nearest(values, target):
@@ -107,7 +119,7 @@ def kick_figure(points, surv, out, note):
             rows = sorted((p for p in points if keep(p) and finite(p.get(key))), key=lambda p: p["kick_impulse_max"])
             xs = [p["kick_impulse_max"] / literal for p in rows]
             ys = [p[key] for p in rows]
-            es = [p[key + "_ci95"] if finite(p.get(key + "_ci95")) else 0.0 for p in rows]
+            es = bounded(ys, [p[key + "_ci95"] if finite(p.get(key + "_ci95")) else 0.0 for p in rows], key)
             ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=color, label=name)
         if ref is not None:
             ax.axhline(ref, color="k", lw=0.8, ls="--")
@@ -165,6 +177,8 @@ def main(src, out):
     qkey, qlabel = ("q_tilde_over_qp", r"$\tilde Q / Q_p$") if has_qp else ("q_tilde_per_s", r"$\tilde Q$ [1/s]")
 
     # Q~/Q_p versus r, one curve per dipole strength.
+    if len(sizes) < 2:
+        print(f"skipped qtilde_vs_r: the grid has one size ratio at chi = {chi0:g}")
     fig, ax = plt.subplots(figsize=(5, 3.6))
     for i, fr in enumerate(ratios):
         xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio", qkey, qkey + "_ci95")
@@ -188,6 +202,9 @@ def main(src, out):
               ("long_arches_per_min", "long-lasting arches per minute", "long_arches_vs_mu"),
               ("added_per_long_arch", "added disks per long-lasting arch", "added_per_arch_vs_mu")]
     for key, label, name in panels:
+        if len(ratios) < 2:
+            print(f"skipped {name}: the grid has one dipole strength")
+            continue
         fig, ax = plt.subplots(figsize=(5, 3.6))
         for i, r in enumerate(picks):
             xs, ys, es = series([p for p in mixed if p["size_ratio"] == r], "mu", key, key + "_ci95")
@@ -203,6 +220,8 @@ def main(src, out):
 
     # Q~ versus chi_eff (magnetic) beside Q~ versus chi (non-magnetic), at r near 0.4.
     r4 = nearest(sizes, 0.4)
+    if not any(p["size_ratio"] == r4 and p["mu"] == 0 and 0 < p["chi"] for p in points if abs(p["chi"] - chi0) > 1e-9):
+        print(f"note qtilde_vs_chi_eff: no other non-magnetic chi at r = {r4:g}, the chi curve has one point")
     fig, ax = plt.subplots(figsize=(5, 3.6))
     nonmag = [p for p in points if p["size_ratio"] == r4 and p["mu"] == 0 and p["chi"] > 0]
     xs, ys, es = series(nonmag, "chi", "q_tilde_per_s", "q_tilde_per_s_ci95")
@@ -216,30 +235,44 @@ def main(src, out):
     ax.legend()
     save(fig, out, "qtilde_vs_chi_eff")
 
-    # Survival functions: the pure system, and r near 0.4 for each mu.
+    # Survival functions: one panel per size ratio (every curve of the grid), each with the pure system.
     surv_path = os.path.join(src, "survival.csv")
-    if os.path.exists(surv_path):
-        surv = read(surv_path)
-        fig, ax = plt.subplots(figsize=(5, 3.6))
-        groups = {}
-        for s in surv:
-            groups.setdefault((s["size_ratio"], s["chi"], s["mu"]), []).append(s)
-        i = 0
-        for (r, chi, mu), rows in sorted(groups.items()):
-            pure = chi == 0
-            if not pure and not (r == r4 and abs(chi - chi0) < 1e-9):
-                continue
-            rows.sort(key=lambda s: s["tau_s"])
+    if not os.path.exists(surv_path):
+        print("skipped survival: no survival.csv")
+        return
+    surv = read(surv_path)
+    groups = {}
+    for s in surv:
+        groups.setdefault((s["size_ratio"], s["chi"], s["mu"]), []).append(s)
+    pure = [rows for (r, chi, mu), rows in groups.items() if chi == 0]
+    rs = sorted({r for (r, chi, mu) in groups if chi > 0 and abs(chi - chi0) < 1e-9})
+    if not rs:
+        print(f"skipped survival: no points at chi = {chi0:g}")
+        return
+    cols = min(3, len(rs))
+    nrows = math.ceil(len(rs) / cols)
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.2 * cols, 3.2 * nrows), squeeze=False)
+    for ax, r in zip(axes.flat, rs):
+        def curve(rows, **kw):
+            rows = sorted(rows, key=lambda s: s["tau_s"])
             taus = [s["tau_s"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
             ps = [s["survival"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
-            label = "pure" if pure else rf"r = {r:g}, $\mu$ = {mu:.3g}"
-            ax.step(taus, ps, where="post", color="k" if pure else COLORS[i % len(COLORS)], lw=1.6 if pure else 1.1, label=label)
-            i += 0 if pure else 1
+            ax.step(taus, ps, where="post", **kw)
+        for rows in pure:
+            curve(rows, color="k", lw=1.6, label="pure")
+        i = 0
+        for (rr, chi, mu), rows in sorted(groups.items()):
+            if rr == r and abs(chi - chi0) < 1e-9:
+                curve(rows, color=COLORS[i % len(COLORS)], lw=1.1, label=rf"$\mu$ = {mu:.3g}")
+                i += 1
         ax.set_yscale("log")
+        ax.set_title(f"r = {r:g}")
         ax.set_xlabel(r"$\tau$ [s]")
         ax.set_ylabel(r"$\tilde P(\Delta t \geq \tau)$")
-        ax.legend()
-        save(fig, out, "survival")
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(rs):]:
+        ax.axis("off")
+    save(fig, out, "survival")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,210 @@
+#!/usr/bin/env python3
+"""The paper's seven claims (../shared/model.md, C1-C7) against campaign results: a verdict per claim and preset.
+
+    python3 claims.py OUT.md VERSION LABEL=ANALYSIS_DIR [LABEL=ANALYSIS_DIR ...]
+
+Each ANALYSIS_DIR holds points.csv of `siloscope analyze` (a campaign over size_ratio x dipole strength at
+chi = 0.4, the pure system, and non-magnetic chi points at r = 0.4). A difference counts only when it exceeds the
+combined 95% half-widths (sqrt(h1^2 + h2^2)); a point from one realization has no interval and settles nothing.
+Verdicts: reproduced (every resolved comparison agrees, at least one per part of the claim), contradicted (a
+resolved comparison disagrees), not resolved (the intervals overlap, or the grid lacks the points).
+"""
+import csv
+import math
+import os
+import sys
+
+CHI0 = 0.4
+
+
+class Est:
+    def __init__(self, mean, half, n):
+        self.m = mean
+        self.h = half if (isinstance(half, float) and math.isfinite(half) and n >= 2) else math.inf
+        self.n = n
+
+    def __str__(self):
+        if not math.isfinite(self.m):
+            return "n/a"
+        if math.isinf(self.h):
+            return f"{self.m:.3g} (n = {self.n}: no interval)"
+        return f"{self.m:.3g} +- {self.h:.2g} (n = {self.n})"
+
+
+def diff(a, b):
+    """+1 if a > b beyond the intervals, -1 if a < b, 0 if not resolved."""
+    if not (math.isfinite(a.m) and math.isfinite(b.m)):
+        return 0
+    h = math.hypot(a.h, b.h)
+    if math.isinf(h):
+        return 0
+    return 1 if a.m - b.m > h else (-1 if b.m - a.m > h else 0)
+
+
+def one(x):
+    return Est(1.0, 0.0, 10**6)
+
+
+def load(path):
+    with open(os.path.join(path, "points.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k, v in list(r.items()):
+            try:
+                r[k] = float(v)
+            except (TypeError, ValueError):
+                pass
+    return rows
+
+
+def est(p, key):
+    return Est(p[key], p.get(key + "_ci95", float("nan")), int(p["n_runs"]))
+
+
+def pick(rows, r=None, fr=None, chi=CHI0):
+    out = [p for p in rows if abs(p["chi"] - chi) < 1e-9 and (r is None or abs(p["size_ratio"] - r) < 1e-9)
+           and (fr is None or abs(p["dipole_force_ratio"] - fr) < 1e-6)]
+    return out
+
+
+def verdict(agree, disagree, parts_ok=True):
+    if disagree:
+        return "contradicted"
+    if agree and parts_ok:
+        return "reproduced"
+    return "not resolved"
+
+
+def claims(rows):
+    """[(claim, verdict, evidence)] for one preset."""
+    out = []
+    sizes = sorted({p["size_ratio"] for p in pick(rows)})
+    frs = sorted({round(p["dipole_force_ratio"], 6) for p in pick(rows)})
+    fr_max = max(frs) if frs else 0
+    pure = [p for p in rows if p["chi"] == 0]
+
+    def ratio(r, fr=0.0):
+        ps = pick(rows, r, fr)
+        return est(ps[0], "q_tilde_over_qp") if ps else Est(float("nan"), float("nan"), 0)
+
+    def q(r, fr, key="q_tilde_per_s"):
+        ps = pick(rows, r, fr)
+        return est(ps[0], key) if ps else Est(float("nan"), float("nan"), 0)
+
+    # C1: non-magnetic Q~ > Q_p for r < 0.7, < Q_p for r > 0.7, maximum near 0.4.
+    small = [r for r in sizes if r < 0.7 - 1e-9]
+    large = [r for r in sizes if r > 0.7 + 1e-9]
+    agree = sum(diff(ratio(r), one(r)) == 1 for r in small) + sum(diff(ratio(r), one(r)) == -1 for r in large)
+    disagree = sum(diff(ratio(r), one(r)) == -1 for r in small) + sum(diff(ratio(r), one(r)) == 1 for r in large)
+    both = any(diff(ratio(r), one(r)) == 1 for r in small) and any(diff(ratio(r), one(r)) == -1 for r in large)
+    best = max(sizes, key=lambda r: ratio(r).m if math.isfinite(ratio(r).m) else -1) if sizes else float("nan")
+    ev = "; ".join(f"r = {r:g}: {ratio(r)}" for r in sizes) + f"; largest mean at r = {best:g}"
+    out.append(("C1 non-magnetic: Q~/Q_p > 1 below r = 0.7, < 1 above, maximum near r = 0.4",
+                verdict(agree, disagree, both), ev))
+
+    # C2: for r > 0.6 Q~ grows with mu, for r < 0.6 it falls (strongest dipole against none).
+    up = [r for r in sizes if r > 0.6 + 1e-9]
+    down = [r for r in sizes if r < 0.6 - 1e-9]
+    d = {r: diff(q(r, fr_max), q(r, 0.0)) for r in sizes}
+    agree = sum(d[r] == 1 for r in up) + sum(d[r] == -1 for r in down)
+    disagree = sum(d[r] == -1 for r in up) + sum(d[r] == 1 for r in down)
+    both = any(d[r] == 1 for r in up) and any(d[r] == -1 for r in down)
+    ev = "; ".join(f"r = {r:g}: Q~ {q(r, 0.0)} -> {q(r, fr_max)}" for r in sizes)
+    out.append((f"C2 magnetic (F/W = 0 -> {fr_max:g}): Q~ rises with mu for r > 0.6, falls for r < 0.6",
+                verdict(agree, disagree, both), ev))
+
+    # C3: at r = 1 Q~ never exceeds Q_p at any mu.
+    r1 = [ratio(1.0, fr) for fr in frs if pick(rows, 1.0, fr)]
+    agree = sum(diff(e, one(0)) == -1 for e in r1)
+    disagree = sum(diff(e, one(0)) == 1 for e in r1)
+    ev = "; ".join(f"F/W = {fr:g}: {ratio(1.0, fr)}" for fr in frs if pick(rows, 1.0, fr))
+    out.append(("C3 at r = 1 Q~/Q_p < 1 at every dipole strength", verdict(agree, disagree, agree == len(r1) and r1),
+                ev or "no r = 1 points"))
+
+    # C4: chi_eff falls as mu grows.
+    d = {r: diff(q(r, fr_max, "chi_eff"), q(r, 0.0, "chi_eff")) for r in sizes}
+    ev = "; ".join(f"r = {r:g}: {q(r, 0.0, 'chi_eff')} -> {q(r, fr_max, 'chi_eff')}" for r in sizes)
+    out.append(("C4 chi_eff falls with mu", verdict(sum(v == -1 for v in d.values()), sum(v == 1 for v in d.values())),
+                ev))
+
+    # C5: magnetic Q~ versus chi_eff follows non-magnetic Q~ versus chi (r = 0.4).
+    nonmag = sorted(((p["chi"], est(p, "q_tilde_per_s")) for p in rows
+                     if abs(p["size_ratio"] - 0.4) < 1e-9 and p["mu"] == 0 and p["chi"] > 0), key=lambda t: t[0])
+    mags = [p for p in pick(rows, 0.4) if p["mu"] > 0]
+    agree = disagree = 0
+    parts = []
+    if len(nonmag) >= 2:
+        for p in mags:
+            x = p["chi_eff"]
+            for (x0, e0), (x1, e1) in zip(nonmag, nonmag[1:]):
+                if x0 <= x <= x1:
+                    w = (x - x0) / (x1 - x0)
+                    ref = Est((1 - w) * e0.m + w * e1.m, max(e0.h, e1.h), min(e0.n, e1.n))
+                    v = diff(est(p, "q_tilde_per_s"), ref)
+                    agree += v == 0 and math.isfinite(math.hypot(ref.h, est(p, "q_tilde_per_s").h))
+                    disagree += v != 0
+                    parts.append(f"F/W = {p['dipole_force_ratio']:g}: chi_eff {x:.3f}, Q~ {est(p, 'q_tilde_per_s')} "
+                                 f"vs non-magnetic {ref}")
+    ev = "; ".join(parts) or "the magnetic chi_eff fall outside the non-magnetic chi range, or too few chi points"
+    out.append(("C5 magnetic Q~(chi_eff) follows non-magnetic Q~(chi) at r = 0.4",
+                verdict(agree, disagree, agree == len(parts) and parts), ev))
+
+    # C6: at r = 0.4 long clogs: pure > non-magnetic; mu makes them more frequent again; pure the most.
+    la = lambda r, fr: q(r, fr, "long_arches_per_min")  # noqa: E731
+    pure_la = est(pure[0], "long_arches_per_min") if pure else Est(float("nan"), float("nan"), 0)
+    a1 = diff(pure_la, la(0.4, 0.0))
+    a2 = diff(la(0.4, fr_max), la(0.4, 0.0))
+    a3 = diff(pure_la, la(0.4, fr_max))
+    ev = f"long arches per minute: pure {pure_la}; r = 0.4 non-magnetic {la(0.4, 0.0)}; F/W = {fr_max:g} {la(0.4, fr_max)}"
+    out.append(("C6 r = 0.4: long clogs rarer with small additive than pure, more frequent again with mu, pure the most",
+                verdict((a1 == 1) + (a2 == 1) + (a3 == 1), (a1 == -1) + (a2 == -1) + (a3 == -1),
+                        a1 == 1 and a2 == 1 and a3 == 1), ev))
+
+    # C7: long arches fall as r gets smaller, rise with mu; added disks per long arch fall with mu.
+    b1 = diff(la(max(sizes), 0.0), la(min(sizes), 0.0)) if sizes else 0
+    b2 = diff(la(0.4, fr_max), la(0.4, 0.0))
+    b3 = diff(q(0.4, 0.0, "added_per_long_arch"), q(0.4, fr_max, "added_per_long_arch"))
+    ev = (f"long arches/min non-magnetic r = {min(sizes):g}: {la(min(sizes), 0.0)}, r = {max(sizes):g}: "
+          f"{la(max(sizes), 0.0)}; r = 0.4 F/W = {fr_max:g}: {la(0.4, fr_max)}; added per long arch at r = 0.4: "
+          f"{q(0.4, 0.0, 'added_per_long_arch')} -> {q(0.4, fr_max, 'added_per_long_arch')}") if sizes else "no points"
+    out.append(("C7 long arches/min fall as r shrinks and rise with mu; added disks per long arch fall with mu",
+                verdict((b1 == 1) + (b2 == 1) + (b3 == 1), (b1 == -1) + (b2 == -1) + (b3 == -1),
+                        b1 == 1 and b2 == 1 and b3 == 1), ev))
+    return out
+
+
+def main(out, version, specs):
+    presets = []
+    for spec in specs:
+        label, _, path = spec.partition("=")
+        if not path:
+            sys.exit(f"claims: expected LABEL=ANALYSIS_DIR, got '{spec}'")
+        rows = load(path)
+        ns = [int(p["n_runs"]) for p in rows]
+        presets.append((label, path, rows, claims(rows), min(ns), max(ns)))
+    lines = ["# The paper's seven claims against siloscope's results", "",
+             f"Generated by `siloscope claims` ({version}) from " +
+             ", ".join(f"`{label}` = `{path}`" for label, path, *_ in presets) + ".",
+             "A difference counts only beyond the combined 95% half-widths; one realization gives no interval.", ""]
+    for label, path, rows, cs, lo, hi in presets:
+        lines.append(f"**{label}**: n = {lo}" + (f"-{hi}" if hi != lo else "") + " realizations per point.")
+    lines += ["", "| claim | " + " | ".join(label for label, *_ in presets) + " |",
+              "|---|" + "---|" * len(presets)]
+    for k in range(7):
+        lines.append(f"| {presets[0][3][k][0]} | " + " | ".join(p[3][k][1] for p in presets) + " |")
+    lines.append("")
+    for label, path, rows, cs, lo, hi in presets:
+        lines += [f"## {label}", ""]
+        for claim, v, ev in cs:
+            lines.append(f"- **{claim}: {v}.** {ev}")
+        lines.append("")
+    with open(out, "w") as f:
+        f.write("\n".join(lines))
+    for label, path, rows, cs, lo, hi in presets:
+        print(f"{label}: " + ", ".join(f"C{k + 1} {c[1]}" for k, c in enumerate(cs)))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 4:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2], sys.argv[3:])
