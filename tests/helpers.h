@@ -2,6 +2,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace test {
 
@@ -37,11 +39,29 @@ inline int sh(const std::string& cmd) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// A fresh, empty directory under the system's temporary directory.
+// The test directories of this process, removed when it exits normally (set SILOSCOPE_KEEP_TEST_DIRS=1 to keep
+// them for a look after a failure).
+struct TempDirs {
+  std::vector<std::filesystem::path> dirs;
+  ~TempDirs() {
+    if (std::getenv("SILOSCOPE_KEEP_TEST_DIRS")) return;
+    std::error_code ec;
+    for (const auto& d : dirs) std::filesystem::remove_all(d, ec);
+  }
+};
+inline TempDirs& temp_dirs() {
+  static TempDirs t;
+  return t;
+}
+
+// A fresh, empty directory under the system's temporary directory, unique to this process: two suites running
+// at once on one machine (a developer's loop beside CI) never share one.
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("siloscope_test_" + name);
+  auto d = std::filesystem::temp_directory_path() /
+           ("siloscope_test_" + name + "_" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
+  temp_dirs().dirs.push_back(d);
   return d;
 }
 

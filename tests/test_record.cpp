@@ -13,6 +13,7 @@ extern "C" {
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 
 #include "core/error.h"
@@ -107,7 +108,7 @@ Probe probe(const fs::path& path) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("siloscope_test_" + name);
+  fs::path d = fs::temp_directory_path() / ("siloscope_test_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
