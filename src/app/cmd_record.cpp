@@ -340,10 +340,7 @@ int record_movie(const RecordOptions& o) {
     sim::Hopper& h = *p.hopper;
     h.finish();
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
-    analysis::Measurements m = analysis::measure(h.events(), analysed);
-    m.health_warnings = h.health_warnings();
-    m.airborne_fraction = h.airborne().mean();
-    m.ballistic = h.ballistic();
+    const analysis::Measurements m = measure_run(h, analysed);
     ms.push_back(m);
     io::write_events(dir.file(p.subdir), h.events());
     io::write_file_atomic(dir.file(p.subdir + "summary.csv"),

@@ -74,10 +74,7 @@ int run(const RunOptions& o) {
   const double settle_wall = std::chrono::duration<double>(wall1 - wall0).count();
   const double run_wall = std::chrono::duration<double>(wall2 - wall1).count();
 
-  analysis::Measurements m = analysis::measure(hopper.events(), scene.duration);
-  m.health_warnings = hopper.health_warnings();
-  m.airborne_fraction = hopper.airborne().mean();
-  m.ballistic = hopper.ballistic();
+  const analysis::Measurements m = measure_run(hopper, scene.duration);
   io::write_events(dir.file(""), hopper.events());
   io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper.events().exits));

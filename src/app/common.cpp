@@ -52,6 +52,14 @@ std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 
 
 std::string command_line() { return g_command; }
 
+analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
+  analysis::Measurements m = analysis::measure(h.events(), duration);
+  m.health_warnings = h.health_warnings();
+  m.airborne_fraction = h.airborne().mean();
+  m.ballistic = h.ballistic();
+  return m;
+}
+
 CLI::Validator whole_number(long double lo, long double hi) {
   char range[96];
   std::snprintf(range, sizeof range, "a whole number from %.0Lf to %.0Lf", lo, hi);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/measure.h"
 #include "core/frame.h"
 #include "core/scene.h"
 
@@ -27,6 +28,8 @@ io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, 
 
 // The [health] table of a run's metadata: warnings under --unsafe, disks in flight, the "ballistic" warning.
 std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h);
+// A finished run's measurements over `duration` s of discharge, with its health (for summary.csv).
+analysis::Measurements measure_run(const sim::Hopper& h, double duration);
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);

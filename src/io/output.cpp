@@ -7,6 +7,7 @@
 
 #include <csignal>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +25,10 @@ bool file_starts_with(const fs::path& p, const std::string& prefix) {
 }
 
 bool file_contains(const fs::path& p, const std::string& needle, size_t within) {
+  std::error_code ec;
+  const auto size = fs::file_size(p, ec);
+  if (ec) return false;
+  within = std::min(within, static_cast<size_t>(size));
   std::ifstream in(p, std::ios::binary);
   std::string buf(within, '\0');
   in.read(buf.data(), static_cast<std::streamsize>(within));
