@@ -41,6 +41,18 @@ TEST_CASE("survival of gaps between original exits, by hand", "[analysis]") {
   CHECK(p == std::vector<double>{1.0, 1.0, 0.75, 0.5, 0.25, 0.0});
 }
 
+TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
+  // Gaps: 0.1 0.1 | 0.6 | 0.2 | 1.0 | 0.1 0.1 0.1 -> avalanches 3, 2, 4 (cut short by the end: left out).
+  std::vector<core::ExitEvent> exits;
+  int id = 0;
+  for (double t : {1.0, 1.1, 1.2, 1.8, 2.0, 3.0, 3.1, 3.2, 3.3}) exits.push_back({t, id++, Species::Original});
+  exits[4].species = Species::Added;  // both species count
+  CHECK(analysis::avalanche_sizes(exits, 0.5) == std::vector<double>{3, 2});
+  CHECK(analysis::avalanche_sizes(exits, 0.15) == std::vector<double>{3, 1, 1});
+  CHECK(analysis::avalanche_sizes(exits, 2.0).empty());  // never clogged: the only avalanche is cut short
+  CHECK(analysis::avalanche_sizes({}, 0.5).empty());
+}
+
 TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   core::Events ev;
   for (int i = 0; i < 30; ++i) ev.exits.push_back({0.5 + i, i, i % 3 == 0 ? Species::Added : Species::Original});

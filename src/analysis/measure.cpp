@@ -52,6 +52,21 @@ std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits) {
   return gaps;
 }
 
+std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits, double min_gap) {
+  std::vector<double> sizes;
+  long current = 0;
+  double last = NAN;
+  for (const auto& e : exits) {
+    if (!std::isnan(last) && e.t - last >= min_gap) {
+      sizes.push_back(static_cast<double>(current));
+      current = 0;
+    }
+    ++current;
+    last = e.t;
+  }
+  return sizes;  // `current`, the avalanche the run's end cut short, is left out
+}
+
 std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus) {
   std::sort(gaps.begin(), gaps.end());
   std::vector<double> out;

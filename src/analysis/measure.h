@@ -31,6 +31,11 @@ Measurements measure(const core::Events& ev, double duration);
 // Gaps between consecutive exits of original disks, s (added disks may exit in between).
 std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);
 
+// Avalanche sizes: the number of disks (both species) that exit between two clogs, a clog being an exit gap of
+// at least `min_gap` s. The last avalanche is left out (the end of the run cuts it short); a run that never clogs
+// gives none. Many samples per run, so it tells numerical settings apart where Q~ per run cannot.
+std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits, double min_gap);
+
 // Survival function P(dt >= tau) of `gaps` at each tau.
 std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus);
 

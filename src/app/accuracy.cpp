@@ -50,6 +50,10 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
         out.sim_seconds += s.duration;
         out.wall_seconds += wall;
         out.runs.push_back(analysis::measure(h.events(), s.duration));
+        auto av = analysis::avalanche_sizes(h.events().exits, s.clog_min_gap);
+        out.avalanche_sizes.insert(out.avalanche_sizes.end(), av.begin(), av.end());
+        auto gaps = analysis::original_gaps(h.events().exits);
+        out.original_gaps.insert(out.original_gaps.end(), gaps.begin(), gaps.end());
         for (const auto& c : h.events().clogs)
           if (c.ended_by != core::ClogEnd::RunEnd) out.clog_durations.push_back(c.end - c.start);
         overlap_sum += h.overlaps().sum;
@@ -113,6 +117,11 @@ double ks_distance(std::vector<double> a, std::vector<double> b) {
     d = std::max(d, std::abs(static_cast<double>(i) / a.size() - static_cast<double>(j) / b.size()));
   }
   return d;
+}
+
+double ks_critical_95(size_t n, size_t m) {
+  if (n == 0 || m == 0) return NAN;
+  return 1.358 * std::sqrt(static_cast<double>(n + m) / (static_cast<double>(n) * static_cast<double>(m)));
 }
 
 }  // namespace app

@@ -24,6 +24,8 @@ struct SettingResult {
   double sim_seconds = 0, wall_seconds = 0;
   std::vector<analysis::Measurements> runs;
   std::vector<double> clog_durations;  // every clog's duration, pooled over realizations
+  std::vector<double> avalanche_sizes; // disks per avalanche between clogs, pooled (analysis::avalanche_sizes)
+  std::vector<double> original_gaps;   // s between consecutive original exits, pooled
   double overlap_mean = 0, overlap_max = 0;  // fraction of the smaller radius
   int failures = 0;
   std::string failure;  // the first health-monitor message
@@ -38,5 +40,9 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
 
 // Two-sample Kolmogorov-Smirnov distance sup |F_a - F_b|.
 double ks_distance(std::vector<double> a, std::vector<double> b);
+
+// The distance two samples of sizes n and m drawn from one distribution exceed with probability 5% (asymptotic
+// two-sample KS, c(0.05) = 1.358): a KS distance below it cannot tell the two apart. NaN if either is empty.
+double ks_critical_95(size_t n, size_t m);
 
 }  // namespace app
