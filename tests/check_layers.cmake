@@ -1,5 +1,6 @@
 # Fails if a layer includes what it must not know (see README, "Conventions"):
 #   sim knows no GL, ImGui, FFmpeg or stb; render knows no Box2D; record knows no GL or Box2D; core knows none.
+#   ui knows no Box2D, simulation or analysis: the app owns the live simulation and feeds the window frames.
 function(forbid dir pattern what)
   file(GLOB_RECURSE files ${SRC}/${dir}/*.h ${SRC}/${dir}/*.cpp)
   foreach(f ${files})
@@ -14,6 +15,7 @@ forbid(core "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/|render/|record/" "a libr
 forbid(render "box2d|sim/|libav|libsw|record/" "Box2D, the simulation or the recorder")
 forbid(record "box2d|GL/|glad|imgui|sim/|render/" "GL, Box2D or the simulation")
 forbid(analysis "box2d|GL/|glad|imgui|libav|sim/|render/|record/" "a library or an upper layer")
+forbid(ui "box2d|sim/|analysis/" "Box2D, the simulation or the analysis (the app feeds it frames)")
 file(GLOB_RECURSE osmesa_users ${SRC}/*.cpp ${SRC}/*.h)
 foreach(f ${osmesa_users})
   file(STRINGS ${f} hits REGEX "#include *<GL/osmesa.h>")

@@ -266,3 +266,36 @@ TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvf
   CHECK(idle < 0.05);  // was 0.75-0.93 when the window redrew continuously
   CHECK_THAT(text, Contains("exit 0") && Contains("inspector closed at frame 5\n"));  // 5 quick taps, 5 steps
 }
+
+TEST_CASE("the live window pauses without CPU, steps one frame and snapshots without overwriting (Xvfb, xdotool)",
+          "[ui]") {
+  fs::path d = temp_dir("live_keys");
+  const std::string log = (d / "log.txt").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) + "/tests/ui_live.sh " +
+             kBin + " " + std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml " + d.string() + " > " + log +
+             " 2>&1") == 0);
+  std::ifstream in(log);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  INFO(text);
+  const auto at = text.find("paused_cpu_fraction ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(text.substr(at + 20)) < 0.05);
+  CHECK_THAT(text, Contains("exit 0"));
+  // Two snapshots while paused share a time: the second gets -2, the first is kept. Three steps later: +0.1 s.
+  std::vector<std::string> shots;
+  for (size_t p = text.find("snapshot "); p != std::string::npos; p = text.find("snapshot ", p + 1))
+    shots.push_back(text.substr(p + 9, text.find('\n', p) - p - 9));
+  REQUIRE(shots.size() == 3);
+  auto time_of = [](const std::string& name) { return std::stod(name.substr(6)); };  // live-tSSS.SSSs...
+  auto second = std::find_if(shots.begin(), shots.end(), [](const std::string& n) { return n.find("s-2.png") != n.npos; });
+  REQUIRE(second != shots.end());
+  const std::string first = second->substr(0, second->size() - 6) + ".png";
+  CHECK(std::count(shots.begin(), shots.end(), first) == 1);
+  std::string later;
+  for (const auto& n : shots)
+    if (n != first && n != *second) later = n;
+  CHECK(time_of(later) - time_of(first) == Approx(0.1).margin(3.5e-3));  // each step rounds up to whole dt
+  const Png img = read_png((d / first).string());
+  CHECK(img.w == 1920);
+  CHECK(img.h == 1080);
+}

@@ -16,8 +16,7 @@
 #include "record/png.h"
 #include "render/camera.h"
 #include "render/context.h"
-#include "render/renderer.h"
-#include "render/target.h"
+#include "render/painter.h"
 #include "sim/hopper.h"
 
 #ifndef SILOSCOPE_GALLERY_SCRIPT
@@ -65,8 +64,7 @@ int gallery(const GalleryOptions& o) {
   } cleanup{tmp};
 
   render::OffscreenContext ctx;
-  render::Renderer renderer;
-  render::Target target(o.tile, o.tile);
+  render::Painter painter;
   render::Style style;
   style.palette = render::parse_palette(o.palette);
   const core::Geometry geo = core::make_geometry(scene);
@@ -80,10 +78,8 @@ int gallery(const GalleryOptions& o) {
     core::Frame f = h.frame(false, false);
     f.arch = a.ids;
     f.since_last_exit = a.clog_duration;
-    target.bind();
-    renderer.draw(f, geo, views, style, o.tile, o.tile);
-    core::Image img;
-    target.read(img, false);
+    const render::OverlayData no_overlay;
+    core::Image img = painter.paint(f, geo, views, style, render::OverlayOptions::none(), no_overlay, o.tile, o.tile);
     char name[32];
     std::snprintf(name, sizeof name, "tile_%03zu.png", k);
     record::write_png(tmp / name, img);

@@ -10,6 +10,9 @@
 #include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/context.h"
+#include "render/overlay.h"
+#include "sim/hopper.h"
+#include "core/physics.h"
 #include "ui/inspector.h"
 #include "ui/window.h"
 
@@ -65,13 +68,49 @@ int inspect(const InspectOptions& o) {
   return 0;
 }
 
+// The live window's simulation: a Hopper the window never sees (ui knows no simulation).
+class LiveHopper final : public ui::LiveSource {
+ public:
+  explicit LiveHopper(const core::Scene& scene) : scene_(scene), hopper_(std::make_unique<sim::Hopper>(scene)) {}
+  void advance(double seconds) override { hopper_->advance_to(hopper_->time() + seconds); }
+  core::Frame frame(bool forces) const override { return hopper_->frame(true, forces); }
+  const core::Geometry& geometry() const override { return hopper_->geometry(); }
+  render::OverlayData overlay_data() const override { return render::overlay_data_for(hopper_->scene()); }
+  ui::LiveParams params() const override {
+    // The dipole force grows with mu^2: the ratio of this mu is (mu / mu at ratio 1)^2.
+    const double unit = core::mu_for_force_ratio(scene_, 1.0);
+    const double ratio = unit > 0 ? (scene_.mu / unit) * (scene_.mu / unit) : 0.0;
+    return {scene_.size_ratio, scene_.chi, ratio, scene_.kick_impulse_max};
+  }
+  double mu_for(const ui::LiveParams& p) const override { return core::mu_for_force_ratio(with(p), p.force_ratio); }
+  void restart(const ui::LiveParams& p) override {
+    core::Scene s = with(p);
+    s.mu = core::mu_for_force_ratio(s, p.force_ratio);
+    core::validate(s);
+    hopper_ = std::make_unique<sim::Hopper>(s);
+    scene_ = s;
+  }
+
+ private:
+  core::Scene with(const ui::LiveParams& p) const {
+    core::Scene s = scene_;
+    s.size_ratio = p.size_ratio;
+    s.chi = p.chi;
+    s.kick_impulse_max = p.kick_impulse_max;
+    return s;
+  }
+  core::Scene scene_;
+  std::unique_ptr<sim::Hopper> hopper_;
+};
+
 int live(const LiveOptions& o) {
   core::Scene scene = o.scene.load();
   ui::WindowOptions w;
   render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
-  ui::run_live_window(scene, w);
+  LiveHopper source(scene);
+  ui::run_live_window(source, w);
   return 0;
 }
 }  // namespace

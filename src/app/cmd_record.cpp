@@ -25,8 +25,7 @@
 #include "render/camera.h"
 #include "render/context.h"
 #include "render/overlay.h"
-#include "render/renderer.h"
-#include "render/target.h"
+#include "render/painter.h"
 #include "sim/hopper.h"
 
 namespace app {
@@ -198,26 +197,14 @@ int record_movie(const RecordOptions& o) {
       render::OffscreenContext ctx;
       gl_renderer = ctx.description();
       if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", gl_renderer.c_str());
-      render::Renderer renderer;
-      std::vector<std::unique_ptr<render::Overlay>> ov;
-      for (size_t k = 0; k < n_panels; ++k) ov.push_back(std::make_unique<render::Overlay>());
-      render::Target target(video.width, video.height);
+      render::Painter painter;
       std::vector<core::Frame> fs;
       while (frames.pop(fs)) {
-        auto t0 = Clock::now();
-        target.bind();
-        for (size_t k = 0; k < n_panels; ++k) {
-          render::Style panel_style = style;
-          panel_style.clear = k == 0;
-          renderer.draw(fs[k], panels[k].geo, panels[k].views, panel_style, video.width, video.height);
-          ov[k]->draw(fs[k], panels[k].odata, overlay, panels[k].views, style, video.width, video.height);
-        }
-        auto t1 = Clock::now();
-        core::Image img;
-        target.read(img, style.transparent);
-        img.t = fs[0].t;
-        st.draw += std::chrono::duration<double>(t1 - t0).count();
-        st.readback += since(t1);
+        std::vector<render::PanelInput> in;
+        for (size_t k = 0; k < n_panels; ++k) in.push_back({&fs[k], &panels[k].geo, &panels[k].views, &panels[k].odata});
+        core::Image img = painter.paint(in, style, overlay, video.width, video.height);
+        st.draw = painter.timing().draw_s;
+        st.readback = painter.timing().readback_s;
         if (!images.push(std::move(img))) break;
       }
     } catch (...) {

@@ -35,17 +35,22 @@ Target::~Target() {
 
 void Target::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_); }
 
-void Target::read(core::Image& out, bool straight_alpha) const {
-  const size_t row = static_cast<size_t>(w_) * 4;
-  scratch_.resize(row * h_);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch) {
+  const size_t row = static_cast<size_t>(w) * 4;
+  scratch.resize(row * h);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  if (fbo == 0) glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, scratch_.data());
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, scratch.data());
   check_gl("glReadPixels");
-  out.width = w_;
-  out.height = h_;
-  out.rgba.resize(row * h_);
-  for (int y = 0; y < h_; ++y) std::memcpy(&out.rgba[row * y], &scratch_[row * (h_ - 1 - y)], row);
+  out.width = w;
+  out.height = h;
+  out.rgba.resize(row * h);
+  for (int y = 0; y < h; ++y) std::memcpy(&out.rgba[row * y], &scratch[row * (h - 1 - y)], row);
+}
+
+void Target::read(core::Image& out, bool straight_alpha) const {
+  read_framebuffer(fbo_, w_, h_, out, scratch_);
   if (!straight_alpha) return;
   for (size_t i = 0; i < out.rgba.size(); i += 4) {
     const unsigned a = out.rgba[i + 3];

@@ -1,9 +1,16 @@
 // An off-screen framebuffer of any size, and its read-back into a core::Image (rows from the top).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/image.h"
 
 namespace render {
+
+// Read w x h pixels of framebuffer `fbo` (0: the window's back buffer) into `out`, rows from the top. The one
+// read-back of the project: Target::read and the window's screenshot both use it.
+void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch);
 
 class Target {
  public:

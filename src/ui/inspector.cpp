@@ -9,8 +9,6 @@
 #include "core/error.h"
 #include "record/mp4.h"
 #include "record/png.h"
-#include "render/renderer.h"
-#include "render/target.h"
 
 namespace ui {
 
@@ -30,22 +28,6 @@ double to_double(const std::string& s, const char* what) {
 const char* kCommands =
     "goto, step, next, prev, zoom, pan, color, palette, overlay, arch, snapshot, export, print";
 }  // namespace
-
-Painter::Painter() : renderer_(std::make_unique<render::Renderer>()), overlay_(std::make_unique<render::Overlay>()) {}
-Painter::~Painter() = default;
-
-core::Image Painter::paint(const core::Frame& f, const core::Geometry& geo, const std::vector<render::View>& views,
-                           const render::Style& style, const render::OverlayOptions& overlay,
-                           const render::OverlayData& data, int w, int h) {
-  if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<render::Target>(w, h);
-  target_->bind();
-  renderer_->draw(f, geo, views, style, w, h);
-  overlay_->draw(f, data, overlay, views, style, w, h);
-  core::Image img;
-  target_->read(img, style.transparent);
-  img.t = f.t;
-  return img;
-}
 
 Inspector::Inspector(const io::Trajectory& traj, const core::Scene& scene)
     : traj_(traj), scene_(scene), geo_(core::make_geometry(scene)) {

@@ -21,13 +21,8 @@
 #include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/overlay.h"
+#include "render/painter.h"
 #include "render/palette.h"
-
-namespace render {
-class Renderer;
-class Overlay;
-class Target;
-}  // namespace render
 
 namespace ui {
 
@@ -38,23 +33,7 @@ struct ClogSpan {
   bool removed;      // ended by the clog_timeout rule (a long-lasting arch)
 };
 
-// Renders frames into images at any size in the current GL context (OSMesa or a window's).
-class Painter {
- public:
-  Painter();
-  ~Painter();
-  // Draws into an off-screen target of w x h (kept while the size stays) and reads it back.
-  core::Image paint(const core::Frame& f, const core::Geometry& geo, const std::vector<render::View>& views,
-                    const render::Style& style, const render::OverlayOptions& overlay,
-                    const render::OverlayData& data, int w, int h);
-  render::Renderer& renderer() { return *renderer_; }
-  render::Overlay& overlay() { return *overlay_; }
-
- private:
-  std::unique_ptr<render::Renderer> renderer_;
-  std::unique_ptr<render::Overlay> overlay_;
-  std::unique_ptr<render::Target> target_;
-};
+using render::Painter;  // Frame -> Image, shared with record (render/painter.h)
 
 class Inspector {
  public:

@@ -11,17 +11,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <utility>
 #include <vector>
 
-#include "analysis/stats.h"
 #include "core/error.h"
-#include "core/physics.h"
 #include "record/png.h"
 #include "render/context.h"
-#include "render/renderer.h"
-#include "sim/hopper.h"
+#include "render/painter.h"
+#include "render/target.h"
 #include "ui/panels.h"
 
 bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
@@ -141,23 +140,39 @@ void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
   }
 }
 
-void save_screenshot(const std::string& path, int w, int h) {
+core::Image window_pixels(int w, int h) {
   core::Image img;
-  img.width = w;
-  img.height = h;
-  std::vector<std::uint8_t> raw(static_cast<size_t>(w) * h * 4);
-  glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-  img.rgba.resize(raw.size());
-  for (int y = 0; y < h; ++y)
-    std::copy_n(&raw[static_cast<size_t>(h - 1 - y) * w * 4], static_cast<size_t>(w) * 4, &img.rgba[static_cast<size_t>(y) * w * 4]);
+  std::vector<std::uint8_t> scratch;
+  render::read_framebuffer(0, w, h, img, scratch);
   for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
-  record::write_png(path, img, true);
+  return img;
 }
 
+void save_screenshot(const std::string& path, int w, int h) { record::write_png(path, window_pixels(w, h), true); }
 
-// One window frame: the scene (renderer + in-frame overlay) on the left, ImGui panels over the rest.
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
+  const double hi = v[mid];
+  if (v.size() % 2) return hi;
+  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(mid)));
+}
+
+// Start ImGui's frame, run `panels`, draw ImGui over the window.
+template <class Panels>
+void imgui_frame(Window& win, int fw, int fh, Panels&& panels) {
+  ImGui::SetCurrentContext(win.imgui());
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  panels();
+  ImGui::Render();
+  glViewport(0, 0, fw, fh);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+// One window frame: the scene (painter: renderer + in-frame overlay) on the left, ImGui panels over the rest.
 template <class Panels>
 void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspector& insp, Panels&& panels) {
   int fw = 0, fh = 0;
@@ -165,17 +180,11 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
   const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  auto views = insp.views(scene_w, scene_h);
-  painter.renderer().draw(f, insp.geometry(), views, insp.style, fw, fh);
-  painter.overlay().draw(f, insp.overlay_data, insp.overlay, views, insp.style, scene_w, fh);
-  ImGui::SetCurrentContext(win.imgui());
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
-  ImGui::NewFrame();
-  panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh), static_cast<float>(scene_h));
-  ImGui::Render();
-  glViewport(0, 0, fw, fh);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  const auto views = insp.views(scene_w, scene_h);
+  painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, insp.overlay, fw, fh, scene_w);
+  imgui_frame(win, fw, fh, [&] {
+    panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh), static_cast<float>(scene_h));
+  });
 }
 }  // namespace
 
@@ -227,101 +236,138 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
-  return redraws.empty() ? 0.0 : analysis::median(redraws);
+  return median(redraws);
 }
 
-double run_live_window(const core::Scene& base, const WindowOptions& o) {
+namespace {
+// A free name for a snapshot: live-t12.345s.png, then live-t12.345s-2.png, ... (never over an existing file).
+std::string free_snapshot_name(double t) {
+  char stem_buf[48];
+  std::snprintf(stem_buf, sizeof stem_buf, "live-t%.3fs", t);
+  const std::string stem = stem_buf;
+  std::string name = stem + ".png";
+  for (int k = 2; std::filesystem::exists(name); ++k) name = stem + "-" + std::to_string(k) + ".png";
+  return name;
+}
+}  // namespace
+
+void run_live_window(LiveSource& source, const WindowOptions& o) {
   Window win(o.width, o.height, "siloscope live");
   Painter painter;
-  core::Scene scene = base;
-  auto hopper = std::make_unique<sim::Hopper>(scene);
-  float ratio = 0, kick = static_cast<float>(scene.kick_impulse_max), speed = 1.0f;
+  LiveParams params = source.params();
+  float r = static_cast<float>(params.size_ratio), chi = static_cast<float>(params.chi);
+  float ratio = static_cast<float>(params.force_ratio), kick = static_cast<float>(params.kick_impulse_max);
+  float speed = 1.0f, zoom = 1.0f;
+  bool paused = false, snapshot = false;
+  double step_pending = 0;  // s to advance while paused (single steps)
+  constexpr double kStep = 1.0 / 30.0;
   std::string message = "running";
   render::Style style;
   render::OverlayOptions overlay;
   std::string camera = "split";
-  float zoom = 1.0f;
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
-    glfwPollEvents();
+    win.wait_or_poll(!paused || o.frames > 0);
     const auto now = Clock::now();
     const double wall = std::min(0.1, std::chrono::duration<double>(now - last).count());
     last = now;
+    for (int k : win.take_keys()) {
+      if (ImGui::GetIO().WantTextInput) break;
+      const int key = k < 0 ? -k : k;
+      if (key == GLFW_KEY_RIGHT && paused) step_pending += kStep;
+      else if (k < 0) continue;
+      else if (key == GLFW_KEY_SPACE) paused = !paused;
+      else if (key == GLFW_KEY_S) snapshot = true;
+      else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
+    }
     try {
-      hopper->advance_to(hopper->time() + speed * wall);
+      const double advance = paused ? std::exchange(step_pending, 0.0) : speed * wall;
+      if (advance > 0) source.advance(advance);
     } catch (const std::exception& e) {
       message = e.what();
+      paused = true;
     }
-    const core::Frame f = hopper->frame(true, style.color == render::ColorMode::Force);
+    const core::Frame f = source.frame(style.color == render::ColorMode::Force);
+    const render::OverlayData od = source.overlay_data();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);
     const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
-    auto views = render::layout_views(camera, hopper->geometry(), scene_w, fh);
-    for (auto& v : views)
-      if (v.name != "hopper") v.cam.height /= zoom;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    painter.renderer().draw(f, hopper->geometry(), views, style, fw, fh);
-    const render::OverlayData od = render::overlay_data_for(hopper->scene());
-    painter.overlay().draw(f, od, overlay, views, style, scene_w, fh);
-    ImGui::SetCurrentContext(win.imgui());
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
-    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
-    ImGui::Begin("siloscope live", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t, static_cast<long long>(f.exits_original),
-                static_cast<long long>(f.exits_added));
-    ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
-    ImGui::Separator();
-    ImGui::TextUnformatted("scene (applies on restart)");
-    float r = static_cast<float>(scene.size_ratio), chi = static_cast<float>(scene.chi);
-    ImGui::SliderFloat("r", &r, 0.2f, 1.0f, "%.2f");
-    ImGui::SliderFloat("chi", &chi, 0.0f, 1.0f, "%.2f");
-    ImGui::SliderFloat("F_dip / W", &ratio, 0.0f, 30.0f, "%.1f");
-    ImGui::SliderFloat("kick [N s]", &kick, 1e-6f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
-    scene.size_ratio = r;
-    scene.chi = chi;
-    scene.kick_impulse_max = kick;
-    scene.mu = core::mu_for_force_ratio(scene, ratio);
-    ImGui::Text("mu = %.3g A m^2", scene.mu);
-    if (ImGui::Button("restart (settles first)")) {
+    auto views_for = [&](int w, int h) {
+      auto views = render::layout_views(camera, source.geometry(), w, h);
+      for (auto& v : views)
+        if (v.name != "hopper") v.cam.height /= zoom;
+      return views;
+    };
+    if (snapshot) {
+      snapshot = false;
       try {
-        core::validate(scene);
-        hopper = std::make_unique<sim::Hopper>(scene);
-        message = "restarted";
+        const auto views = views_for(1920, 1080);
+        const std::string name = free_snapshot_name(f.t);
+        record::write_png(name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, overlay, 1920, 1080), true);
+        message = "snapshot " + name;
       } catch (const std::exception& e) {
-        message = e.what();
+        message = std::string("snapshot failed: ") + e.what();
       }
     }
-    ImGui::Separator();
-    const char* cams[] = {"split", "outlet", "hopper"};
-    for (const char* c : cams) {
-      if (ImGui::RadioButton(c, camera == c)) camera = c;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const auto views = views_for(scene_w, fh);
+    painter.draw({{&f, &source.geometry(), &views, &od}}, style, overlay, fw, fh, scene_w);
+    imgui_frame(win, fw, fh, [&] {
+      ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
+      ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
+      ImGui::Begin("siloscope live", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+      ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t, static_cast<long long>(f.exits_original),
+                  static_cast<long long>(f.exits_added));
+      if (ImGui::Button(paused ? "resume (space)" : "pause (space)")) paused = !paused;
       ImGui::SameLine();
-    }
-    ImGui::NewLine();
-    ImGui::SliderFloat("zoom", &zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-    int color = static_cast<int>(style.color);
-    ImGui::RadioButton("species", &color, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("speed", &color, 1);
-    ImGui::SameLine();
-    ImGui::RadioButton("force", &color, 2);
-    style.color = static_cast<render::ColorMode>(color);
-    ImGui::Checkbox("arch", &style.show_arch);
-    ImGui::TextWrapped("%s", message.c_str());
-    ImGui::End();
-    ImGui::Render();
-    glViewport(0, 0, fw, fh);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      ImGui::BeginDisabled(!paused);
+      if (ImGui::Button("step 1/30 s (right)")) step_pending += kStep;
+      ImGui::EndDisabled();
+      ImGui::SameLine();
+      if (ImGui::Button("snapshot (s)")) snapshot = true;
+      ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
+      ImGui::Separator();
+      ImGui::TextUnformatted("scene (applies on restart)");
+      ImGui::SliderFloat("r", &r, 0.2f, 1.0f, "%.2f");
+      ImGui::SliderFloat("chi", &chi, 0.0f, 1.0f, "%.2f");
+      ImGui::SliderFloat("F_dip / W", &ratio, 0.0f, 30.0f, "%.1f");
+      ImGui::SliderFloat("kick [N s]", &kick, 1e-6f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
+      params = {r, chi, ratio, kick};
+      ImGui::Text("mu = %.3g A m^2", source.mu_for(params));
+      if (ImGui::Button("restart (settles first)")) {
+        try {
+          source.restart(params);
+          message = "restarted";
+        } catch (const std::exception& e) {
+          message = e.what();
+        }
+      }
+      ImGui::Separator();
+      for (const char* c : {"split", "outlet", "hopper"}) {
+        if (ImGui::RadioButton(c, camera == c)) camera = c;
+        ImGui::SameLine();
+      }
+      ImGui::NewLine();
+      ImGui::SliderFloat("zoom", &zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+      const std::pair<const char*, render::ColorMode> colors[] = {
+          {"species", render::ColorMode::Species}, {"speed", render::ColorMode::Speed}, {"force", render::ColorMode::Force}};
+      for (const auto& [label, mode] : colors) {
+        if (ImGui::RadioButton(label, style.color == mode)) style.color = mode;
+        ImGui::SameLine();
+      }
+      ImGui::NewLine();
+      ImGui::Checkbox("arch", &style.show_arch);
+      ImGui::TextWrapped("%s", message.c_str());
+      ImGui::TextDisabled("keys: space pause, right step (paused), s snapshot, q close");
+      ImGui::End();
+    });
     if (o.frames > 0 && n + 1 >= o.frames) {
       if (!o.screenshot.empty()) save_screenshot(o.screenshot, fw, fh);
       break;
     }
     glfwSwapBuffers(win.get());
   }
-  return 0;
+  std::fprintf(stderr, "siloscope: live window closed at t = %.3f s\n", source.frame(false).t);
 }
 
 }  // namespace ui

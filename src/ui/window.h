@@ -1,10 +1,12 @@
-// The inspector and the live simulation in a window (GLFW + Dear ImGui), drawn by the same renderer as the
+// The inspector and the live simulation in a window (GLFW + Dear ImGui), drawn by the same painter as the
 // movies. Without a display these throw core::InputError pointing to the scripted mode.
 #pragma once
 
 #include <string>
 
-#include "core/scene.h"
+#include "core/frame.h"
+#include "core/geometry.h"
+#include "render/overlay.h"
 #include "ui/inspector.h"
 
 namespace ui {
@@ -17,6 +19,30 @@ struct WindowOptions {
 
 // Returns the median redraw time (ms) of frames where the shown frame changed, 0 if none.
 double run_inspector_window(Inspector& insp, const WindowOptions& o);
-double run_live_window(const core::Scene& scene, const WindowOptions& o);
+
+// The scene values the live window's panel changes; they apply on restart.
+struct LiveParams {
+  double size_ratio = 0.4, chi = 0.4;
+  double force_ratio = 0;          // dipole contact force between two added disks over an added disk's weight
+  double kick_impulse_max = 5e-5;  // N s
+};
+
+// What the live window needs of a running simulation. The app owns the simulation and implements this; the
+// window sees frames, the container and these numbers, never the simulation itself.
+class LiveSource {
+ public:
+  virtual ~LiveSource() = default;
+  virtual void advance(double seconds) = 0;  // simulated seconds; throws with the health monitor's message
+  virtual core::Frame frame(bool forces) const = 0;
+  virtual const core::Geometry& geometry() const = 0;
+  virtual render::OverlayData overlay_data() const = 0;
+  virtual LiveParams params() const = 0;
+  virtual double mu_for(const LiveParams& p) const = 0;  // A m^2: the dipole moment that gives p.force_ratio
+  virtual void restart(const LiveParams& p) = 0;         // validates; throws core::InputError naming the value
+};
+
+// Space pauses and resumes, the right arrow steps one frame (1/30 s) while paused, S saves a snapshot
+// live-tSSS.SSSs.png (1920x1080, re-rendered; never over an existing file), Q or Escape closes.
+void run_live_window(LiveSource& source, const WindowOptions& o);
 
 }  // namespace ui

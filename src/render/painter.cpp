@@ -1,0 +1,47 @@
+#include "render/painter.h"
+
+#include <chrono>
+
+#include "render/renderer.h"
+#include "render/target.h"
+
+namespace render {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+Painter::Painter() : renderer_(std::make_unique<Renderer>()) {}
+Painter::~Painter() = default;
+
+void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay, int w,
+                   int h, int overlay_w) {
+  for (size_t k = 0; k < panels.size(); ++k) {
+    const PanelInput& p = panels[k];
+    Style panel_style = style;
+    panel_style.clear = style.clear && k == 0;
+    renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
+    if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
+    while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
+    overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, style, overlay_w < 0 ? w : overlay_w, h);
+  }
+}
+
+core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
+                           int w, int h) {
+  if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<Target>(w, h);
+  const auto t0 = std::chrono::steady_clock::now();
+  target_->bind();
+  draw(panels, style, overlay, w, h);
+  const auto t1 = std::chrono::steady_clock::now();
+  timing_.draw_s += std::chrono::duration<double>(t1 - t0).count();
+  core::Image img;
+  target_->read(img, style.transparent);
+  timing_.readback_s += seconds_since(t1);
+  if (!panels.empty()) img.t = panels.front().frame->t;
+  return img;
+}
+
+}  // namespace render
