@@ -132,6 +132,8 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
                                << (d / "b.png").string() << " 400x400\n";
   CHECK(ui::run_script(insp, painter, (d / "fig.txt").string()) == 7);
   CHECK(insp.frame_index() == 0);
+  CHECK_THAT(insp.last_output, Contains("b.png"));  // the file the last command wrote
+  insp.execute("print");
   CHECK_THAT(insp.last_output, Contains("frame 0"));
   const render::Style style;
   const Png a = read_png(d / "a.png"), b = read_png(d / "b.png");
@@ -164,6 +166,34 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
   CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
+}
+
+TEST_CASE("snapshots and clips are named by frame and never written over and export clog cuts the clog", "[ui]") {
+  gl();
+  fs::path d = temp_dir("names");
+  io::Trajectory t(synthetic_trajectory(d));
+  ui::Inspector insp(t, two_disk_scene());
+  ui::Painter painter;
+  const std::string pattern = (d / "shot-{frame}-{t}.png").string();
+  insp.execute("goto frame 3");
+  insp.execute("snapshot " + pattern + " 64x64", &painter);
+  const std::string first = insp.last_output;
+  CHECK_THAT(first, Contains("shot-000003-"));
+  CHECK(fs::exists(first));
+  const auto size = fs::file_size(first);
+  // The same frame again: refused, the first file untouched.
+  CHECK_THROWS_WITH(insp.execute("snapshot " + pattern + " 64x64", &painter), Contains("exists") && Contains("{frame}"));
+  CHECK(fs::file_size(first) == size);
+  std::ofstream(d / "mine.png") << "not siloscope's";
+  CHECK_THROWS_WITH(insp.execute("snapshot " + (d / "mine.png").string(), &painter), Contains("never writes over"));
+  // export clog: the one clog (frames 2-3) with 1 s before and 0.5 s after, clamped to the trajectory (0-4).
+  insp.execute("goto start");
+  insp.execute("export clog " + (d / "clog-{frame}.mp4").string() + " 64x64", &painter);
+  CHECK_THAT(insp.last_output, Contains("clog-000000.mp4") && Contains("(frames 0 to 4)"));
+  CHECK(fs::exists(d / "clog-000000.mp4"));
+  insp.execute("goto end");
+  CHECK_THROWS_WITH(insp.execute("export clog " + (d / "late.mp4").string(), &painter), Contains("no clog at or after"));
+  CHECK_FALSE(fs::exists(d / "late.mp4"));
 }
 
 TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a slider zooms", "[ui]") {

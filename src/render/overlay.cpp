@@ -265,7 +265,42 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   if (panel) {
     // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays visible.
     const float right = d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w);
-    ImGui::SetNextWindowPos(ImVec2(right - 0.6f * em, 0.6f * em), 0, ImVec2(1.0f, 0.0f));
+    const float left = static_cast<float>(d.panel_x), pad = 0.6f * em;
+    // Corner k: its anchor and pivot. In a window, move to the corner covering the fewest disk centres (within a
+    // radius); stay where the box is unless another corner is strictly better, so it does not jump.
+    float bottom = 0;  // of the lowest view: a window's timeline may lie below
+    for (const auto& v : views) bottom = std::max(bottom, static_cast<float>(v.rect.y + v.rect.h));
+    if (bottom <= 0) bottom = static_cast<float>(h);
+    auto anchor = [&](int k) { return ImVec2(k % 2 == 0 ? right - pad : left + pad, k < 2 ? pad : bottom - pad); };
+    auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
+    if (o.place_clear && info_w_ > 0) {
+      auto covered = [&](int k) {
+        const ImVec2 a = anchor(k), pv = pivot(k);
+        const float x0 = a.x - pv.x * info_w_, y0 = a.y - pv.y * info_h_;
+        long n = 0;
+        std::vector<char> in_arch(f.particles.size(), 0);
+        for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
+        for (const auto& v : views) {
+          for (size_t i = 0; i < f.particles.size(); ++i) {
+            const auto& p = f.particles[i];
+            const core::Vec2 c = v.world_to_pixel({p.x, p.y});
+            const double r = 1.3 * p.radius * v.px_per_m();  // with the arch's ring
+            if (c.x < v.rect.x || c.x > v.rect.x + v.rect.w || c.y < v.rect.y || c.y > v.rect.y + v.rect.h) continue;
+            // Covering an arch member is worst: it is what the inspector is for.
+            if (c.x + r > x0 && c.x - r < x0 + info_w_ && c.y + r > y0 && c.y - r < y0 + info_h_) n += in_arch[i] ? 100 : 1;
+          }
+        }
+        return n;
+      };
+      long best = covered(info_corner_);
+      for (int k = 0; k < 4 && best > 0; ++k) {
+        const long n = covered(k);
+        if (n < best) best = n, info_corner_ = k;
+      }
+    } else if (!o.place_clear) {
+      info_corner_ = 0;
+    }
+    ImGui::SetNextWindowPos(anchor(info_corner_), 0, pivot(info_corner_));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("info", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
@@ -322,6 +357,8 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       }
       swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
     }
+    info_w_ = ImGui::GetWindowSize().x;
+    info_h_ = ImGui::GetWindowSize().y;
     ImGui::End();
   }
 

@@ -19,6 +19,9 @@ struct OverlayOptions {
   bool zoombox = true;    // the outlet panel's region outlined on the whole-hopper panel (split camera)
   bool plot = false;      // cumulative exits of each species against time, clogs shaded (not in "all")
   bool colorbar = false;  // only the colour bar (speed/force colouring), e.g. with nothing else
+  // Not an element: put the information box in the corner where it covers the fewest disks (the windows, whose
+  // views are zoomed and panned at will); off, it stays top-right (movies: the outlet view leaves room there).
+  bool place_clear = false;
   static OverlayOptions none() {
     OverlayOptions o;
     o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
@@ -68,6 +71,8 @@ class Overlay {
   std::vector<Sample> history_;
   int font_px_ = 0;
   bool laid_out_ = false;
+  float info_w_ = 0, info_h_ = 0;  // the information box's size in the last frame, pixels
+  int info_corner_ = 0;            // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
 };
 
 }  // namespace render

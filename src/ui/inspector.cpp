@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -64,6 +65,23 @@ std::vector<render::View> Inspector::views(int w, int h) const {
   main->cam.cx += pan.x;
   main->cam.cy += pan.y;
   return vs;
+}
+
+std::string Inspector::output_name(const std::string& pattern, const std::string& line) const {
+  // {frame} -> the frame number (6 digits), {t} -> the time in s (3 decimals).
+  std::string out = pattern;
+  auto put = [&](const std::string& key, const std::string& value) {
+    for (size_t p; (p = out.find(key)) != std::string::npos;) out.replace(p, key.size(), value);
+  };
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06ld", frame_);
+  put("{frame}", buf);
+  std::snprintf(buf, sizeof buf, "%.3f", traj_.time(frame_));
+  put("{t}", buf);
+  if (std::filesystem::exists(out))
+    throw core::InputError("'" + line + "': " + out + " exists; the inspector never writes over a file (choose another "
+                           "name, or use {frame} or {t} in it)");
+  return out;
 }
 
 core::Image Inspector::render_current(Painter& p, int w, int h) const {
@@ -187,20 +205,47 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     int w = 1920, h = 1080;
     if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
     if (!painter) throw core::InputError("'" + line + "': snapshot needs a renderer");
-    record::write_png(a[1], render_current(*painter, w, h), true);
+    const std::string path = output_name(a[1], line);
+    record::write_png(path, render_current(*painter, w, h), true);
+    last_output = path;
   } else if (cmd == "export") {
-    if (a.size() < 4 || a.size() > 6) throw core::InputError("'" + line + "': usage: export FILE.mp4 FROM TO [WxH] [FPS]");
-    const long from = in_range(to_long(a[2], "FROM")), to = in_range(to_long(a[3], "TO"));
-    if (to < from) throw core::InputError("'" + line + "': TO must not be before FROM");
+    // export clog FILE.mp4 [WxH] [FPS]: the clog at (or after) this frame, from 1 s before it forms to 0.5 s
+    // after it ends.
+    long from = 0, to = 0;
+    size_t opt = 4;  // index of the first optional argument
+    std::string file;
+    if (a.size() >= 3 && a[1] == "clog") {
+      if (a.size() > 5) throw core::InputError("'" + line + "': usage: export clog FILE.mp4 [WxH] [FPS]");
+      const ClogSpan* hit = nullptr;
+      for (const auto& c : clogs_)
+        if (c.last >= frame_) {
+          hit = &c;
+          break;
+        }
+      if (!hit) throw core::InputError("'" + line + "': there is no clog at or after frame " + std::to_string(frame_));
+      const double dt = traj_.info().frame_interval;
+      from = std::max(0L, hit->first - std::lround(1.0 / dt));
+      to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
+      file = a[2];
+      opt = 3;
+    } else {
+      if (a.size() < 4 || a.size() > 6)
+        throw core::InputError("'" + line + "': usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
+      from = in_range(to_long(a[2], "FROM"));
+      to = in_range(to_long(a[3], "TO"));
+      if (to < from) throw core::InputError("'" + line + "': TO must not be before FROM");
+      file = a[1];
+    }
     record::VideoSettings v;
     v.width = 1280;
     v.height = 720;
-    if (a.size() >= 5) render::parse_size(a[4], "export size", v.width, v.height);
-    v.fps = a.size() == 6 ? static_cast<int>(to_long(a[5], "FPS"))
-                          : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
+    if (a.size() > opt) render::parse_size(a[opt], "export size", v.width, v.height);
+    v.fps = a.size() > opt + 1 ? static_cast<int>(to_long(a[opt + 1], "FPS"))
+                               : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
     record::validate(v);
     if (!painter) throw core::InputError("'" + line + "': export needs a renderer");
-    record::Mp4Writer mp4(a[1], v);
+    const std::string path = output_name(file, line);
+    record::Mp4Writer mp4(path, v);
     const long keep = frame_;
     for (long k = from; k <= to; ++k) {
       frame_ = k;
@@ -208,6 +253,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     frame_ = keep;
     mp4.finish();
+    last_output = path + " (frames " + std::to_string(from) + " to " + std::to_string(to) + ")";
   } else {
     throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
   }

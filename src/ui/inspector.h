@@ -9,6 +9,8 @@
 //   color species|speed|force    palette paper|colorblind    overlay all|none|time,counts,...    arch on|off
 //   snapshot FILE.png [WxH]      re-render the current view off-screen at any resolution (default 1920x1080)
 //   export FILE.mp4 FROM TO [WxH] [FPS]    frames FROM..TO as a movie
+//   export clog FILE.mp4 [WxH] [FPS]       the clog at or after this frame, 1 s before to 0.5 s after
+//   (FILE may hold {frame} and {t}, e.g. snapshot arch-{frame}.png; an existing file is never written over)
 //   print                        frame, time, clog timer and arch members on standard output
 #pragma once
 
@@ -61,9 +63,11 @@ class Inspector {
   render::Style style;
   render::OverlayOptions overlay;
   render::OverlayData overlay_data;
-  std::string last_output;  // what `print` printed last
+  std::string last_output;  // what `print` printed last, or the file that snapshot/export wrote
 
  private:
+  // FILE with {frame} and {t} filled in; throws core::InputError if it exists.
+  std::string output_name(const std::string& pattern, const std::string& line) const;
   const io::Trajectory& traj_;
   core::Scene scene_;
   core::Geometry geo_;

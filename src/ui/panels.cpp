@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -20,8 +21,10 @@ const char* kSizes[] = {"1920x1080", "3840x2160", "1280x720", "2048x2048"};
 
 void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command) {
   try {
+    insp.last_output.clear();
     insp.execute(command, painter);
-    ps.message = command;
+    const bool wrote = command.rfind("snapshot", 0) == 0 || command.rfind("export", 0) == 0;
+    ps.message = wrote && !insp.last_output.empty() ? "wrote " + insp.last_output : command;
   } catch (const std::exception& e) {
     ps.message = e.what();
   }
@@ -126,7 +129,7 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
-  if (ImGui::Button("snapshot (re-rendered off-screen)"))
+  if (ImGui::Button("snapshot this frame"))
     run_command(insp, ps, painter, std::string("snapshot ") + ps.snapshot_path + " " + kSizes[ps.snapshot_size]);
   remember(ps, "snapshot");
   ImGui::SetNextItemWidth(0.3f * w);
@@ -134,15 +137,20 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::SameLine();
   ImGui::SetNextItemWidth(0.3f * w);
   ImGui::InputInt("to", &ps.export_to, 0);
-  ImGui::SetNextItemWidth(0.55f * w);
+  ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##clip", ps.export_path, sizeof ps.export_path);
-  ImGui::SameLine();
-  if (ImGui::Button("export mp4"))
+  if (ImGui::Button("export from..to"))
     run_command(insp, ps, painter, std::string("export ") + ps.export_path + " " + std::to_string(ps.export_from) + " " +
                                        std::to_string(ps.export_to));
+  ImGui::SameLine();
+  if (ImGui::Button("export this clog")) run_command(insp, ps, painter, std::string("export clog ") + ps.export_path);
+  remember(ps, "export clog");
   ImGui::Separator();
   ImGui::TextWrapped("%s", ps.message.c_str());
-  ImGui::TextDisabled("keys: left/right step, space play, n/p next/prev clog; wheel zoom, drag pan");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
+  ImGui::TextWrapped("keys: left/right step, space play, n/p next/previous clog, Home/End, q close; "
+                     "wheel zooms, drag pans");
+  ImGui::PopStyleColor();
   if (ps.last_redraw_ms > 0) ImGui::TextDisabled("last redraw %.1f ms", ps.last_redraw_ms);
   ImGui::End();
 
@@ -156,12 +164,35 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   remember(ps, "timeline");
   if (ImGui::IsItemActive()) insp.set_frame(std::lround((ImGui::GetIO().MousePos.x - p0.x) / bw * (n - 1)));
   ImDrawList* dl = ImGui::GetWindowDrawList();
-  dl->AddRectFilled(p0, ImVec2(p0.x + bw, p0.y + bh), IM_COL32(235, 235, 235, 255));
+  // The bar over the top 55%, a time axis (seconds) under it.
+  const float bar_h = std::max(4.0f, 0.55f * bh);
+  dl->AddRectFilled(p0, ImVec2(p0.x + bw, p0.y + bar_h), IM_COL32(235, 235, 235, 255));
   auto xof = [&](long k) { return p0.x + bw * static_cast<float>(k) / std::max(1L, n - 1); };
   for (const auto& c : insp.clogs())
-    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bh), ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bh),
+    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bar_h), ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bar_h),
                       c.removed ? IM_COL32(200, 40, 30, 255) : IM_COL32(240, 150, 30, 255));
-  dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bh), IM_COL32(0, 0, 0, 255), 2);
+  dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bar_h), IM_COL32(0, 0, 0, 255), 2);
+  const double t0 = insp.trajectory().time(0), t1 = insp.trajectory().time(n - 1);
+  if (t1 > t0 && bw > 0) {
+    // A tick every 1, 2 or 5 x 10^k s, at least 70 px apart.
+    const double min_step = (t1 - t0) * 70.0 / bw;
+    double step = std::pow(10.0, std::floor(std::log10(min_step)));
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+      if (m * step >= min_step) {
+        step *= m;
+        break;
+      }
+    const ImU32 ink = IM_COL32(60, 60, 60, 255);
+    for (double t = std::ceil(t0 / step) * step; t <= t1 + 1e-9; t += step) {
+      const float x = p0.x + bw * static_cast<float>((t - t0) / (t1 - t0));
+      dl->AddLine(ImVec2(x, p0.y + bar_h), ImVec2(x, p0.y + bar_h + 4), ink);
+      char label[32];
+      std::snprintf(label, sizeof label, step < 1 ? "%.1f s" : "%.0f s", t);
+      const ImVec2 size = ImGui::CalcTextSize(label);
+      const float lx = std::clamp(x - 0.5f * size.x, p0.x, p0.x + bw - size.x);
+      dl->AddText(ImVec2(lx, p0.y + bar_h + 4), ink, label);
+    }
+  }
   ImGui::End();
 }
 

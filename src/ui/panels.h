@@ -14,10 +14,10 @@ struct PanelState {
   bool playing = false;
   float speed = 1.0f;               // video frames per display frame, scaled by the trajectory's frame rate
   std::string message;              // the last result or error, shown in the panel
-  char snapshot_path[256] = "snapshot.png";
+  char snapshot_path[256] = "snapshot-{frame}.png";
   int snapshot_size = 0;            // index into the size presets
   int export_from = 0, export_to = 0;
-  char export_path[256] = "clip.mp4";
+  char export_path[256] = "clip-{frame}.mp4";
   double last_redraw_ms = 0;
   // Screen rectangles (x0, y0, x1, y1) of named widgets from the last frame, for tests and tooltips.
   std::map<std::string, std::array<float, 4>> rects;

@@ -32,7 +32,7 @@ namespace ui {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-constexpr float kPanelWidth = 400, kTimelineHeight = 48;
+constexpr float kPanelWidth = 400, kTimelineHeight = 60;
 
 void* glfw_proc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
 
@@ -181,7 +181,9 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   const auto views = insp.views(scene_w, scene_h);
-  painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, insp.overlay, fw, fh, scene_w);
+  render::OverlayOptions overlay = insp.overlay;
+  overlay.place_clear = true;  // views are zoomed and panned at will: keep the information box off the disks
+  painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, overlay, fw, fh, scene_w);
   imgui_frame(win, fw, fh, [&] {
     panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh), static_cast<float>(scene_h));
   });
@@ -264,6 +266,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   std::string message = "running";
   render::Style style;
   render::OverlayOptions overlay;
+  overlay.place_clear = true;
   std::string camera = "split";
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
