@@ -36,7 +36,7 @@ TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
   core::Scene s;
   auto geo = core::make_geometry(s);
   for (const char* spec : {"hopper", "outlet", "split", "window:-0.3,0.1,0.5,0.9"}) {
-    auto views = render::layout_views(spec, geo, 640, 360);
+    auto views = render::layout_views(render::parse_camera(spec), geo, 640, 360);
     for (const auto& v : views) {
       for (core::Vec2 p : {core::Vec2{0.0, 0.0}, core::Vec2{0.2, 0.5}, core::Vec2{-0.4, 1.3}}) {
         core::Vec2 back = v.pixel_to_world(v.world_to_pixel(p));
@@ -50,10 +50,26 @@ TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
       CHECK(v.world_to_pixel({v.cam.cx, v.cam.cy + 0.1}).y < c.y);
     }
   }
-  auto w = render::layout_views("window:-0.5,0,0.5,1", geo, 400, 400);
+  auto w = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), geo, 400, 400);
   CHECK(w[0].px_per_m() == Approx(400));
-  CHECK_THROWS_AS(render::layout_views("window:1,0,0,1", geo, 400, 400), core::InputError);
-  CHECK_THROWS_AS(render::layout_views("sideways", geo, 400, 400), core::InputError);
+  CHECK_THROWS_AS(render::layout_views(render::parse_camera("window:1,0,0,1"), geo, 400, 400), core::InputError);
+  CHECK_THROWS_AS(render::layout_views(render::parse_camera("sideways"), geo, 400, 400), core::InputError);
+}
+
+TEST_CASE("the outlet camera is sized by the grain: ten diameters tall at any grain size", "[render]") {
+  core::Scene paper;
+  const auto at_paper = render::layout_views(render::parse_camera("outlet"), core::make_geometry(paper), 600, 600);
+  CHECK(at_paper[0].cam.height == Approx(1.3));  // the paper's 0.13 m disks: 1.3 m, as before
+  core::Scene small = paper;
+  core::apply_overrides(small, {"radius_original=0.0065", "silo_width=0.2", "aperture=0.0249", "hopper_height=0.0877",
+                                "silo_height=0.4"});
+  const auto geo = core::make_geometry(small);
+  const auto v = render::layout_views(render::parse_camera("outlet"), geo, 600, 600);
+  CHECK(v[0].cam.height == Approx(10 * geo.grain_diameter));
+  const auto split = render::layout_views(render::parse_camera("split"), geo, 1920, 1080);
+  CHECK(split[1].cam.height == Approx(10 * geo.grain_diameter));
+  CHECK(render::parse_camera("window:-1,0,1,2").kind == render::CameraSpec::Kind::Window);
+  CHECK_THROWS_WITH(render::parse_camera("window:0,0,0,0"), Catch::Contains("X1 > X0"));
 }
 
 TEST_CASE("disks show their species colour at the expected pixels, arch members carry the halo", "[render]") {
@@ -64,7 +80,7 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
                  disk(-0.15f, 0.25f, 0.065f, core::Species::Original), disk(0.15f, 0.25f, 0.065f, core::Species::Original)};
   f.arch = {2, 3};
   f.since_last_exit = 3.0;  // clogged: the arch is drawn at full strength
-  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, w, h);
+  auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
   render::Style style;
   render::Target target(w, h);
   target.bind();
@@ -96,7 +112,7 @@ TEST_CASE("colour by speed uses the colour map on its fixed scale", "[render]") 
   core::Frame f;
   f.particles = {disk(0, 0.5f, 0.1f, core::Species::Original)};
   f.particles[0].vx = 0.5f;  // the top of the default 0.5 m/s scale
-  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, 200, 200);
+  auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, 200, 200);
   render::Style style;
   style.color = render::ColorMode::Speed;
   render::Target target(200, 200);
@@ -111,7 +127,7 @@ TEST_CASE("a transparent background reads back with zero alpha and straight colo
   auto& fx = fixture();
   core::Frame f;
   f.particles = {disk(0, 0.5f, 0.1f, core::Species::Added)};
-  auto views = render::layout_views("window:-0.5,0,0.5,1", fx.geo, 100, 100);
+  auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, 100, 100);
   render::Style style;
   style.transparent = true;
   render::Target target(100, 100);
@@ -130,7 +146,7 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   core::Frame f;
   f.t = 12.5;
   f.exits_original = 10;
-  auto views = render::layout_views("hopper", fx.geo, 320, 240);
+  auto views = render::layout_views(render::parse_camera("hopper"), fx.geo, 320, 240);
   render::Style style;
   render::Target target(320, 240);
   auto render_with = [&](const render::OverlayOptions& o) {

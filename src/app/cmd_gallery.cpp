@@ -68,7 +68,7 @@ int gallery(const GalleryOptions& o) {
   render::Style style;
   style.palette = render::parse_palette(o.palette);
   const core::Geometry geo = core::make_geometry(scene);
-  const auto views = render::layout_views("outlet", geo, o.tile, o.tile);
+  const auto views = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile);
   sim::Hopper h(scene);
   std::string index = "tile,t_s,clog_s,members,added,species,method,span_m\n";
   for (size_t k = 0; k < n; ++k) {

@@ -145,12 +145,13 @@ int record_movie(const RecordOptions& o) {
     (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = o.color_max;
   }
   const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
+  const render::CameraSpec camera = render::parse_camera(o.camera);
   // Panels side by side, equal widths, the same camera (and so the same scales) in each.
   const int panel_w = video.width / static_cast<int>(n_panels);
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
     p.geo = core::make_geometry(p.scene);
-    p.views = render::layout_views(o.camera, p.geo, panel_w, video.height);
+    p.views = render::layout_views(camera, p.geo, panel_w, video.height);
     for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
     p.odata = render::overlay_data_for(p.scene);
     if (n_panels > 1) {

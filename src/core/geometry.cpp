@@ -18,6 +18,7 @@ Geometry make_geometry(const Scene& s) {
   g.half_aperture = 0.5 * s.aperture;
   g.hopper_height = s.hopper_height;
   g.total_height = s.hopper_height + s.silo_height;
+  g.grain_diameter = 2 * s.radius_original;
   const double w = g.half_width, a = g.half_aperture, h = g.hopper_height, top = g.total_height;
   g.walls[static_cast<int>(Wall::HopperLeft)] = {{-w, h}, {-a, 0}};
   g.walls[static_cast<int>(Wall::HopperRight)] = {{a, 0}, {w, h}};

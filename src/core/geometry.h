@@ -30,6 +30,7 @@ struct Geometry {
   double half_aperture;   // D/2, m
   double hopper_height;   // H_t, m
   double total_height;    // H_t + H_s, m
+  double grain_diameter;  // 2 r_o, m: what cameras are sized by
   // The walls in order of Wall (Lid is the closed aperture during deposition).
   std::array<Segment, static_cast<int>(Wall::Count)> walls;
 

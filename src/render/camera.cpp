@@ -43,36 +43,66 @@ Camera fit(double x0, double y0, double x1, double y1, int w, int h) {
   return c;
 }
 
-std::vector<View> layout_views(const std::string& spec, const core::Geometry& geo, int w, int h) {
-  const double margin = 0.04 * geo.total_height;
-  auto hopper = [&](Rect r) {
-    return View{fit(-geo.half_width - margin, -margin, geo.half_width + margin, geo.total_height + margin, r.w, r.h), r,
-                "hopper"};
-  };
-  auto outlet = [&](Rect r) {
-    // 1.3 m tall (10 original diameters): arches form up to ~0.6 m above the aperture; the grains falling out.
-    const double half = std::min(geo.half_width + 0.05, 0.6);
-    return View{fit(-half, -0.25, half, std::min(1.05, geo.total_height), r.w, r.h), r, "outlet"};
-  };
-  if (spec == "hopper") return {hopper({0, 0, w, h})};
-  if (spec == "outlet") return {outlet({0, 0, w, h})};
+CameraSpec parse_camera(const std::string& spec) {
+  CameraSpec c;
+  c.text = spec;
+  if (spec == "hopper") {
+    c.kind = CameraSpec::Kind::Hopper;
+    return c;
+  }
+  if (spec == "outlet") {
+    c.kind = CameraSpec::Kind::Outlet;
+    return c;
+  }
   if (spec == "split") {
-    // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the panel).
-    const double aspect = (2 * geo.half_width + 2 * margin) / (geo.total_height + 2 * margin);
-    const int left = std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
-    View out = outlet({left, 0, w - left, h});
-    out.cam.cx += 0.08 * out.cam.height * (w - left) / h;  // hopper a little left of centre: room for the panel
-    return {hopper({0, 0, left, h}), out};
+    c.kind = CameraSpec::Kind::Split;
+    return c;
   }
   if (spec.rfind("window:", 0) == 0) {
     std::stringstream ss(spec.substr(7));
     double v[4];
     char comma;
     bool ok = static_cast<bool>(ss >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3]) && ss.peek() == EOF;
-    if (ok && v[2] > v[0] && v[3] > v[1]) return {View{fit(v[0], v[1], v[2], v[3], w, h), {0, 0, w, h}, "window"}};
+    if (ok && std::isfinite(v[0]) && std::isfinite(v[3]) && v[2] > v[0] && v[3] > v[1]) {
+      c.kind = CameraSpec::Kind::Window;
+      c.x0 = v[0], c.y0 = v[1], c.x1 = v[2], c.y1 = v[3];
+      return c;
+    }
   }
   throw core::InputError("--camera " + spec +
                          ": expected hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)");
+}
+
+std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h) {
+  const double margin = 0.04 * geo.total_height;
+  auto hopper = [&](Rect r) {
+    return View{fit(-geo.half_width - margin, -margin, geo.half_width + margin, geo.total_height + margin, r.w, r.h), r,
+                "hopper"};
+  };
+  auto outlet = [&](Rect r) {
+    // Ten original diameters tall: arches form up to ~5 diameters above the aperture; the grains falling out
+    // below. Written in the paper's metres times the grain size over its 0.13 m (exactly 1 for the paper).
+    const double k = geo.grain_diameter / 0.13;
+    const double half = std::min(geo.half_width + 0.05 * k, 0.6 * k);
+    return View{fit(-half, -0.25 * k, half, std::min(1.05 * k, geo.total_height), r.w, r.h), r, "outlet"};
+  };
+  switch (camera.kind) {
+    case CameraSpec::Kind::Hopper:
+      return {hopper({0, 0, w, h})};
+    case CameraSpec::Kind::Outlet:
+      return {outlet({0, 0, w, h})};
+    case CameraSpec::Kind::Split: {
+      // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the panel).
+      const double aspect = (2 * geo.half_width + 2 * margin) / (geo.total_height + 2 * margin);
+      const int left = std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
+      View out = outlet({left, 0, w - left, h});
+      out.cam.cx += 0.08 * out.cam.height * (w - left) / h;  // hopper a little left of centre: room for the panel
+      return {hopper({0, 0, left, h}), out};
+    }
+    case CameraSpec::Kind::Window:
+      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h), {0, 0, w, h}, "window"}};
+  }
+  return {};
 }
 
 }  // namespace render

@@ -38,12 +38,21 @@ void parse_size(const std::string& text, const std::string& option, int& w, int&
 // A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels.
 Camera fit(double x0, double y0, double x1, double y1, int w, int h);
 
-// Views for a camera spec in an image of w x h pixels:
+// What a camera shows, parsed once from its text:
 //   hopper          the whole container
-//   outlet          the outlet region, from 0.25 m below the aperture to 1.05 m above it
+//   outlet          the outlet region, ten original diameters tall (from 1.9 diameters below the aperture), at
+//                   most 9.2 diameters wide: 1.3 m x 1.2 m for the paper's 0.13 m disks
 //   split           the whole container in a strip on the left, the outlet in the rest
 //   window:X0,Y0,X1,Y1   any window in metres
+struct CameraSpec {
+  enum class Kind { Hopper, Outlet, Split, Window } kind = Kind::Split;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // Window only, m
+  std::string text = "split";             // as written: metadata, panels, messages
+};
 // Throws core::InputError naming the spec and the allowed forms.
-std::vector<View> layout_views(const std::string& spec, const core::Geometry& geo, int w, int h);
+CameraSpec parse_camera(const std::string& spec);
+
+// The views of a camera in an image of w x h pixels.
+std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h);
 
 }  // namespace render

@@ -171,8 +171,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       return;
     }
     need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
-    render::layout_views(a[1], geo_, 64, 64);  // validates the spec
-    camera = a[1];
+    camera = render::parse_camera(a[1]);
     zoom = 1.0;
     pan = {0, 0};
   } else if (cmd == "pan") {

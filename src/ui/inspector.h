@@ -57,7 +57,7 @@ class Inspector {
   std::vector<render::View> views(int w, int h) const;
   core::Image render_current(Painter& p, int w, int h) const;
 
-  std::string camera = "split";
+  render::CameraSpec camera;  // split
   double zoom = 1.0;         // magnification on top of the preset
   core::Vec2 pan{0, 0};      // m
   render::Style style;

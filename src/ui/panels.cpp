@@ -69,7 +69,7 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::Separator();
   const char* cams[] = {"split", "outlet", "hopper"};
   for (const char* c : cams) {
-    if (ImGui::RadioButton(c, insp.camera == c)) run_command(insp, ps, painter, std::string("zoom ") + c);
+    if (ImGui::RadioButton(c, insp.camera.text == c)) run_command(insp, ps, painter, std::string("zoom ") + c);
     ImGui::SameLine();
   }
   ImGui::NewLine();

@@ -267,7 +267,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   render::Style style;
   render::OverlayOptions overlay;
   overlay.place_clear = true;
-  std::string camera = "split";
+  render::CameraSpec camera;  // split
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
     win.wait_or_poll(!paused || o.frames > 0);
@@ -347,7 +347,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       }
       ImGui::Separator();
       for (const char* c : {"split", "outlet", "hopper"}) {
-        if (ImGui::RadioButton(c, camera == c)) camera = c;
+        if (ImGui::RadioButton(c, camera.text == c)) camera = render::parse_camera(c);
         ImGui::SameLine();
       }
       ImGui::NewLine();
