@@ -56,8 +56,8 @@ TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
 TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   core::Events ev;
   for (int i = 0; i < 30; ++i) ev.exits.push_back({0.5 + i, i, i % 3 == 0 ? Species::Added : Species::Original});
-  ev.arches.push_back({10, 5, {1, 2, 3}, {Species::Original, Species::Added, Species::Original}, {}, "contact_path"});
-  ev.arches.push_back({20, 5, {4, 5, 6, 7}, {Species::Added, Species::Added, Species::Original, Species::Original}, {}, "contact_path"});
+  ev.arches.push_back({10, 5, {1, 2, 3}, {Species::Original, Species::Added, Species::Original}, {}, core::ArchMethod::ContactPath});
+  ev.arches.push_back({20, 5, {4, 5, 6, 7}, {Species::Added, Species::Added, Species::Original, Species::Original}, {}, core::ArchMethod::ContactPath});
   ev.clogs = {{5, 10, core::ClogEnd::Rule, true}, {12, 13, core::ClogEnd::Vibration, true},
               {14, 15, core::ClogEnd::Spontaneous, false}, {15, 20, core::ClogEnd::Rule, true}};
   auto m = analysis::measure(ev, 30.0);
@@ -81,7 +81,7 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
   core::Events ev;
   ev.exits = {{0.25, 3, Species::Original}, {0.5, 7, Species::Added}};
   ev.clogs = {{0.5, 5.5, core::ClogEnd::Rule, true}};
-  ev.arches.push_back({5.5, 5.0, {4, 9}, {Species::Original, Species::Added}, {0.3, 0.15, 170.0}, "contact_path"});
+  ev.arches.push_back({5.5, 5.0, {4, 9}, {Species::Original, Species::Added}, {0.3, 0.15, 170.0}, core::ArchMethod::ContactPath});
   io::write_events(dir, ev);
   core::Events back = io::read_events(dir);
   REQUIRE(back.exits.size() == 2);

@@ -168,7 +168,7 @@ TEST_CASE("the clog rule fires at clog_timeout, removes exactly the arch and re-
   CHECK(ev.t == Approx(s.scene.clog_timeout).margin(s.scene.dt));
   CHECK(ev.clog_duration == Approx(5.0).margin(s.scene.dt));
   CHECK(ev.ids == std::vector<int>{0, 1, 2});
-  CHECK(ev.method == "contact_path");
+  CHECK(ev.method == core::ArchMethod::ContactPath);
   CHECK(ev.geometry.span > 0.3);
   auto p = h.positions();
   for (int id : {0, 1, 2}) CHECK(p[id].y > 0.4);  // re-injected above the (tiny) column

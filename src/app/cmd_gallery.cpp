@@ -95,7 +95,7 @@ int gallery(const GalleryOptions& o) {
       species += std::string(species.empty() ? "" : ";") + core::species_name(s);
     }
     index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) + "," +
-             std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," + a.method + "," +
+             std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," + core::arch_method_name(a.method) + "," +
              core::format_g(a.geometry.span, 4) + "\n";
   }
   io::write_file_atomic(tmp / "index.csv", index);

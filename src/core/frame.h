@@ -70,13 +70,24 @@ struct ArchGeometry {
 };
 
 // A long-lasting arch: the clog_timeout rule fired and removed these particles.
+// How the 5 s rule found the members of the arch it removed (scene key arch_method): the contact path across the
+// aperture, or the disks visible from the aperture (the named fallback of either).
+enum class ArchMethod : std::uint8_t { ContactPath = 0, Visible = 1 };
+inline const char* arch_method_name(ArchMethod m) { return m == ArchMethod::Visible ? "visible" : "contact_path"; }
+// False if `text` names no method.
+inline bool parse_arch_method(const std::string& text, ArchMethod& out) {
+  if (text == "contact_path") return out = ArchMethod::ContactPath, true;
+  if (text == "visible") return out = ArchMethod::Visible, true;
+  return false;
+}
+
 struct ArchEvent {
   double t;                      // s, when the rule fired
   double clog_duration;          // s, time since the last exit
   std::vector<int> ids;          // members, left to right
   std::vector<Species> species;  // of each member
   ArchGeometry geometry;
-  std::string method;            // how the members were found: contact_path, or the visible fallback
+  ArchMethod method = ArchMethod::ContactPath;  // how the members were found
   std::vector<float> x, y;       // m, where each member stood when it was removed
 };
 

@@ -102,7 +102,7 @@ std::string arches_csv(const core::Events& ev) {
       sp += (k ? ";" : "") + std::string(core::species_name(a.species[k]));
       added += a.species[k] == core::Species::Added;
     }
-    s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," + a.method + "," + std::to_string(a.ids.size()) + "," +
+    s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," + core::arch_method_name(a.method) + "," + std::to_string(a.ids.size()) + "," +
          std::to_string(added) + "," + ids + "," + sp + "," + core::format_g(a.geometry.span) + "," + core::format_g(a.geometry.height) +
          "," + core::format_g(a.geometry.max_angle_deg) + "\n";
   }
@@ -146,7 +146,7 @@ core::Events read_events(const std::filesystem::path& dir) {
       core::ArchEvent a;
       a.t = r.real(c[0], "t_s");
       a.clog_duration = r.real(c[1], "clog_duration_s");
-      a.method = c[2];
+      if (!core::parse_arch_method(c[2], a.method)) r.fail("method '" + c[2] + "' is not contact_path or visible");
       long n = r.integer(c[3], "n_members");
       auto ids = c[5].empty() ? std::vector<std::string>{} : split(c[5], ';');
       auto sp = c[6].empty() ? std::vector<std::string>{} : split(c[6], ';');

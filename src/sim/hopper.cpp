@@ -44,6 +44,7 @@ Hopper::Hopper(const core::Scene& scene)
       rng_reinject_(scene.seed, 3),
       clogs_(scene.clog_min_gap, scene.clog_timeout) {
   core::validate(scene_);
+  core::parse_arch_method(scene_.arch_method, arch_method_);  // validate() allowed only the two names
   // Time steps the integration cannot survive are refused before any work: the explicit dipole repulsion,
   // and disks outrunning their own size in one step.
   const double dipole_dt = core::dipole_safe_dt(scene_), kinematic_dt = core::kinematic_safe_dt(scene_);
@@ -370,13 +371,13 @@ void Hopper::apply_clog_rule() {
   core::ArchEvent ev;
   ev.t = t_;
   ev.clog_duration = clogs_.since_last(t_);
-  ev.method = scene_.arch_method;
-  ev.ids = scene_.arch_method == "visible" ? core::visible_from_aperture(p, radius_, range) : current_arch();
+  ev.method = arch_method_;
+  ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range) : current_arch();
   if (ev.ids.empty()) {
     // Named fallback: the other method, counted and recorded with the event.
     ++arch_fallbacks_;
-    ev.method = scene_.arch_method == "visible" ? "contact_path" : "visible";
-    ev.ids = ev.method == "visible" ? core::visible_from_aperture(p, radius_, range) : current_arch();
+    ev.method = arch_method_ == core::ArchMethod::Visible ? core::ArchMethod::ContactPath : core::ArchMethod::Visible;
+    ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range) : current_arch();
   }
   for (int id : ev.ids) {
     ev.species.push_back(species_[id]);

@@ -146,6 +146,7 @@ class Hopper {
   ClogTracker clogs_;
   core::Events events_;
   long arch_fallbacks_ = 0;
+  core::ArchMethod arch_method_ = core::ArchMethod::ContactPath;  // scene_.arch_method, parsed once
   std::int64_t exits_original_ = 0, exits_added_ = 0;
   double settle_max_speed_ = 0;
   bool profiling_ = false;
