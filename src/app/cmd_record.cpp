@@ -328,14 +328,7 @@ int record_movie(const RecordOptions& o) {
     sim::Hopper& h = *p.hopper;
     h.finish();
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
-    const analysis::Measurements m = measure_run(h, analysed);
-    ms.push_back(m);
-    io::write_events(dir.file(p.subdir), h.events());
-    io::write_file_atomic(dir.file(p.subdir + "summary.csv"),
-                          analysis::summary_header() + "\n" + analysis::summary_row(p.scene, m) + "\n");
-    io::write_file_atomic(dir.file(p.subdir + "survival.csv"), analysis::survival_csv(p.scene, h.events().exits));
     io::RunInfo pinfo = info;
-    pinfo.health = health_facts(h);
     pinfo.facts = {{"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
                    {"frames", std::to_string(encoded)},
                    {"trajectory", "\"trajectory.sstraj\""},
@@ -370,7 +363,7 @@ int record_movie(const RecordOptions& o) {
                    {"ms_per_frame_convert", num6(st.convert * per)},
                    {"ms_per_frame_encode", num6(st.encode * per)},
                    {"ms_per_frame_png", num6(st.png * per)}};
-    io::write_file_atomic(dir.file(p.subdir + "metadata.toml"), io::metadata_toml(p.scene, pinfo));
+    ms.push_back(write_run_outputs(dir.file(p.subdir), p.scene, h, analysed, pinfo));
   }
   if (n_panels > 1) {
     // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).

@@ -74,10 +74,6 @@ int run(const RunOptions& o) {
   const double settle_wall = std::chrono::duration<double>(wall1 - wall0).count();
   const double run_wall = std::chrono::duration<double>(wall2 - wall1).count();
 
-  const analysis::Measurements m = measure_run(hopper, scene.duration);
-  io::write_events(dir.file(""), hopper.events());
-  io::write_file_atomic(dir.file("summary.csv"), analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
-  io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, hopper.events().exits));
   io::RunInfo info;
   info.command = command_line();
   info.facts = {{"steps", std::to_string(hopper.steps())},
@@ -86,8 +82,7 @@ int run(const RunOptions& o) {
                 {"wall_time_settle_s", core::format_g(settle_wall)},
                 {"wall_time_discharge_s", core::format_g(run_wall)},
                 {"speed_vs_real_time", core::format_g(scene.duration / std::max(run_wall, 1e-9))}};
-  info.health = health_facts(hopper);
-  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
+  const analysis::Measurements m = write_run_outputs(dir.file(""), scene, hopper, scene.duration, info);
   dir.commit();
 
   if (!o.quiet) {

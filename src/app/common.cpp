@@ -8,6 +8,9 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "analysis/tidy.h"
+#include "io/events_csv.h"
+#include "io/output.h"
 #include "io/trajectory.h"
 #include "sim/hopper.h"
 
@@ -57,6 +60,17 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
   m.health_warnings = h.health_warnings();
   m.airborne_fraction = h.airborne().mean();
   m.ballistic = h.ballistic();
+  return m;
+}
+
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene, const sim::Hopper& h,
+                                         double duration, io::RunInfo info) {
+  const analysis::Measurements m = measure_run(h, duration);
+  io::write_events(dir, h.events());
+  io::write_file_atomic(dir / "summary.csv", analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
+  io::write_file_atomic(dir / "survival.csv", analysis::survival_csv(scene, h.events().exits));
+  info.health = health_facts(h);
+  io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(scene, info));
   return m;
 }
 
