@@ -15,6 +15,8 @@ forbid(core "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/|render/|record/" "a libr
 forbid(render "box2d|sim/|libav|libsw|record/" "Box2D, the simulation or the recorder")
 forbid(record "box2d|GL/|glad|imgui|sim/|render/" "GL, Box2D or the simulation")
 forbid(analysis "box2d|GL/|glad|imgui|libav|sim/|render/|record/" "a library or an upper layer")
+forbid(app "box2d" "Box2D (it stays inside sim)")
+forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")
 forbid(ui "box2d|sim/|analysis/" "Box2D, the simulation or the analysis (the app feeds it frames)")
 file(GLOB_RECURSE osmesa_users ${SRC}/*.cpp ${SRC}/*.h)
 foreach(f ${osmesa_users})

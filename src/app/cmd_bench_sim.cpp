@@ -1,8 +1,6 @@
 // siloscope bench sim: time the simulation's stages and compare its step with a bare Box2D loop on the same
 // world. Prints a table and writes CSV. Medians over repeats; the two loops alternate within each repeat so
 // machine noise hits both alike.
-#include <box2d/box2d.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -40,16 +38,13 @@ int bench_sim(const BenchOptions& o) {
   sim::Hopper ours(scene), bare(scene);
   sim::Hopper profiled(scene);
   profiled.set_profiling(true);
-  const float dt = static_cast<float>(scene.dt);
-  const int vi = static_cast<int>(scene.velocity_iterations), pi = static_cast<int>(scene.position_iterations);
 
   std::vector<double> us_ours, us_bare, kicks, dipoles, box2d, book;
   for (int r = 0; r < o.repeats; ++r) {
     auto t0 = Clock::now();
     for (int i = 0; i < o.steps; ++i) ours.step();
     auto t1 = Clock::now();
-    b2World& w = bare.world();
-    for (int i = 0; i < o.steps; ++i) w.Step(dt, vi, pi);
+    bare.step_box2d_only(o.steps);
     auto t2 = Clock::now();
     sim::StageTimes before = profiled.stage_times();
     for (int i = 0; i < o.steps; ++i) profiled.step();

@@ -50,7 +50,7 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
   s += "version = " + quoted(SILOSCOPE_VERSION) + "\n";
   s += "git = " + quoted(SILOSCOPE_GIT) + "\n";
   s += "build_type = " + quoted(SILOSCOPE_BUILD_TYPE) + "\n";
-  s += "box2d = \"2.4.1\"\n";
+  s += "box2d = " + quoted(SILOSCOPE_BOX2D_VERSION) + "\n";
   s += "command = " + quoted(info.command) + "\n";
   char when[64];
   std::time_t now = std::time(nullptr);

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "render/gl.h"
+#include "siloscope_version.h"
 
 // The OpenGL3 backend, compiled from Debian's shipped source with our loader (see CMakeLists.txt).
 bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
@@ -21,7 +22,7 @@ void ImGui_ImplOpenGL3_DestroyFontsTexture();
 namespace render {
 
 namespace {
-const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+const char* kFont = SILOSCOPE_FONT;  // found at build time
 ImU32 to_u32(Rgba c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a)); }
 }  // namespace
 
@@ -86,7 +87,7 @@ void Overlay::ensure_font(int h) {
   if (px == font_px_) return;
   ImGuiIO& io = ImGui::GetIO();
   io.Fonts->Clear();
-  if (std::filesystem::exists(kFont)) {
+  if (kFont[0] != '\0' && std::filesystem::exists(kFont)) {
     io.Fonts->AddFontFromFileTTF(kFont, static_cast<float>(px));
   } else {
     ImFontConfig cfg;

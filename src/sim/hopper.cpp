@@ -13,6 +13,10 @@
 #include "sim/dipole.h"
 #include "sim/kicks.h"
 
+// The metadata states the contact slop as 0.005 Box2D units (io/metadata.cpp); fail the build if this Box2D differs.
+static_assert(b2_linearSlop == 0.005f && b2_lengthUnitsPerMeter == 1.0f,
+              "Box2D's linear slop changed: update box2d_linear_slop_m in io/metadata.cpp");
+
 namespace sim {
 
 namespace {
@@ -480,6 +484,12 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
 void Hopper::finish() {
   clogs_.finish(t_);
   events_.clogs = clogs_.clogs();
+}
+
+void Hopper::step_box2d_only(int n) {
+  for (int i = 0; i < n; ++i)
+    world_->Step(static_cast<float>(scene_.dt), static_cast<int>(scene_.velocity_iterations),
+                 static_cast<int>(scene_.position_iterations));
 }
 
 }  // namespace sim

@@ -94,8 +94,9 @@ class Hopper {
   void set_profiling(bool on) { profiling_ = on; }
   const StageTimes& stage_times() const { return times_; }
 
-  // For benchmarks and tests that must reach under the hood (the bare Box2D loop, staged arches).
-  b2World& world() { return *world_; }
+  // The benchmark's baseline: n steps of the Box2D world alone (no kicks, dipoles or bookkeeping; time does not
+  // advance). Box2D stays inside sim: nothing above it needs its types.
+  void step_box2d_only(int n);
   // Move disk `id` to p (m) at rest; tests use it to build arches by hand.
   void place(int id, core::Vec2 p);
   void set_velocity(int id, core::Vec2 v);  // m/s
