@@ -2,7 +2,7 @@
 # Drive the live window under Xvfb (run through xvfb-run), in OUTDIR (snapshots land in the working directory):
 # pause with space, measure its CPU while paused, snapshot twice (s s), step three frames (right x3), snapshot
 # again, close with q. Prints "paused_cpu_fraction F", the snapshot names and the window's stderr.
-# usage: xvfb-run -a bash tests/ui_live.sh SILOSCOPE SCENE OUTDIR
+# usage: xvfb-run -a bash tests/ui/ui_live.sh SILOSCOPE SCENE OUTDIR
 set -u
 bin=$1 scene=$2 out=$3
 cd "$out" || exit 1

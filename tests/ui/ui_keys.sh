@@ -1,7 +1,7 @@
 #!/bin/bash
 # Drive the inspector window under Xvfb (run through xvfb-run): measure its CPU while idle, tap the right arrow
 # five times quickly, close it with q. Prints "idle_cpu_fraction F" and the inspector's stderr.
-# usage: xvfb-run -a bash tests/ui_keys.sh SILOSCOPE RECORDING OUTDIR
+# usage: xvfb-run -a bash tests/ui/ui_keys.sh SILOSCOPE RECORDING OUTDIR
 set -u
 bin=$1 rec=$2 out=$3
 "$bin" inspect "$rec" > "$out/stdout.txt" 2> "$out/stderr.txt" &

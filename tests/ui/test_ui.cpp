@@ -286,7 +286,7 @@ TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvf
              (d / "rec").string()) == 0);
   const std::string log = (d / "log.txt").string();
   REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
-             "/tests/ui_keys.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log + " 2>&1") == 0);
+             "/tests/ui/ui_keys.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log + " 2>&1") == 0);
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   INFO(text);
@@ -301,7 +301,7 @@ TEST_CASE("the live window pauses without CPU, steps one frame and snapshots wit
           "[ui]") {
   fs::path d = temp_dir("live_keys");
   const std::string log = (d / "log.txt").string();
-  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) + "/tests/ui_live.sh " +
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) + "/tests/ui/ui_live.sh " +
              kBin + " " + std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml " + d.string() + " > " + log +
              " 2>&1") == 0);
   std::ifstream in(log);
