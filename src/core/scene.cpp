@@ -19,25 +19,6 @@ namespace core {
 
 namespace {
 
-std::string fmt_double(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  std::string s = buf;
-  // Shortest text that reads back exactly.
-  for (int prec = 1; prec < 17; ++prec) {
-    std::snprintf(buf, sizeof buf, "%.*g", prec, v);
-    // Exponents only for very small or large magnitudes: 20 prints as 20.0, not 2e+01.
-    bool exponent = std::strchr(buf, 'e') != nullptr;
-    bool tiny_or_huge = std::abs(v) < 1e-4 || std::abs(v) >= 1e16;
-    if (std::strtod(buf, nullptr) == v && (!exponent || tiny_or_huge)) {
-      s = buf;
-      break;
-    }
-  }
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // keep it a TOML float
-  return s;
-}
-
 std::string range_text(const Field& f) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "[%.10g, %.10g]", f.min, f.max);
@@ -119,7 +100,7 @@ std::string field_text(const Scene& s, const Field& f) {
       [&](auto ptr) -> std::string {
         const auto& v = s.*ptr;
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, double>) return fmt_double(v);
+        if constexpr (std::is_same_v<T, double>) return format_shortest(v);
         else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
         else if constexpr (std::is_same_v<T, std::string>) return toml_string(v);
         else return std::to_string(v);
@@ -190,36 +171,36 @@ void validate(const Scene& s) {
   }
   // Relations between fields.
   if (s.aperture <= 2.0 * s.radius_added() && s.n_added() > 0)
-    bad(origin, "aperture", fmt_double(s.aperture),
-        "it must be wider than the smallest disk (diameter " + fmt_double(2.0 * s.radius_added()) + " m)");
+    bad(origin, "aperture", format_shortest(s.aperture),
+        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_added()) + " m)");
   if (s.aperture <= 2.0 * s.radius_original && s.n_original() > 0)
-    bad(origin, "aperture", fmt_double(s.aperture),
-        "it must be wider than the smallest disk (diameter " + fmt_double(2.0 * s.radius_original) + " m)");
+    bad(origin, "aperture", format_shortest(s.aperture),
+        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_original) + " m)");
   if (s.aperture >= s.silo_width)
-    bad(origin, "aperture", fmt_double(s.aperture), "it must be narrower than silo_width = " + fmt_double(s.silo_width));
+    bad(origin, "aperture", format_shortest(s.aperture), "it must be narrower than silo_width = " + format_shortest(s.silo_width));
   if (2.0 * s.radius_original >= s.silo_width)
-    bad(origin, "radius_original", fmt_double(s.radius_original), "a disk must fit in silo_width");
+    bad(origin, "radius_original", format_shortest(s.radius_original), "a disk must fit in silo_width");
   // Kicks land on steps: the period must be a whole number of steps (to 1e-6 of a step).
   double steps_per_kick = s.kick_period / s.dt;
   if (steps_per_kick < 1.0 || std::abs(steps_per_kick - std::round(steps_per_kick)) > 1e-6)
-    bad(origin, "kick_period", fmt_double(s.kick_period),
-        "it must be a whole multiple of dt = " + fmt_double(s.dt) + " s");
+    bad(origin, "kick_period", format_shortest(s.kick_period),
+        "it must be a whole multiple of dt = " + format_shortest(s.dt) + " s");
   const double hold_steps = std::round(s.arrest_hold / s.dt);
   if (hold_steps < 1.0 || hold_steps >= std::round(steps_per_kick))
-    bad(origin, "arrest_hold", fmt_double(s.arrest_hold),
-        "it must be at least dt = " + fmt_double(s.dt) + " s and shorter than kick_period = " +
-            fmt_double(s.kick_period) + " s");
+    bad(origin, "arrest_hold", format_shortest(s.arrest_hold),
+        "it must be at least dt = " + format_shortest(s.dt) + " s and shorter than kick_period = " +
+            format_shortest(s.kick_period) + " s");
   if (s.clog_min_gap >= s.clog_timeout)
-    bad(origin, "clog_min_gap", fmt_double(s.clog_min_gap),
-        "it must be shorter than clog_timeout = " + fmt_double(s.clog_timeout) + " s");
+    bad(origin, "clog_min_gap", format_shortest(s.clog_min_gap),
+        "it must be shorter than clog_timeout = " + format_shortest(s.clog_timeout) + " s");
   // The settled column (packing fraction at most ~0.8) must fit below the top of the container.
   double area_disks = kPi * (static_cast<double>(s.n_original()) * s.radius_original * s.radius_original +
                              static_cast<double>(s.n_added()) * s.radius_added() * s.radius_added());
   double area_box = s.silo_width * s.silo_height + 0.5 * (s.silo_width + s.aperture) * s.hopper_height;
   if (area_disks / 0.8 > 0.9 * area_box)
     bad(origin, "n_total", std::to_string(s.n_total),
-        "the disks' packed area " + fmt_double(area_disks / 0.8) + " m^2 does not fit in the container (" +
-            fmt_double(area_box) + " m^2); raise silo_height or lower n_total");
+        "the disks' packed area " + format_shortest(area_disks / 0.8) + " m^2 does not fit in the container (" +
+            format_shortest(area_box) + " m^2); raise silo_height or lower n_total");
 }
 
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
@@ -269,7 +250,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     const Field* f = find_field(key);
     if (!f) set_field(s, key, "", where);  // throws "unknown key" with the list of keys
     std::string text;
-    if (auto v = node.as_floating_point()) text = fmt_double(v->get());
+    if (auto v = node.as_floating_point()) text = format_shortest(v->get());
     else if (auto i = node.as_integer()) text = std::to_string(i->get());
     else if (auto b = node.as_boolean()) text = b->get() ? "true" : "false";
     else if (auto t = node.as_string()) text = t->get();

@@ -12,18 +12,19 @@
 
 namespace core {
 
-// Defaults follow ../shared/model.md (Carlevaro et al., Granular Matter 24, 2022).
+// Defaults follow ../shared/model.md (Carlevaro et al., Granular Matter 24, 2022). The allowed range, unit and
+// meaning of every field are written once, in the field table of scene.cpp (`siloscope scene --keys` prints it).
 struct Scene {
   // --- particles ---
-  double radius_original = 0.065;  // m, r_o; (0.001, 1]
-  double size_ratio = 0.4;         // r = r_a / r_o; [0.2, 1]
-  std::int64_t n_total = 250;      // N_o + N_a; [1, 5000]
-  double chi = 0.4;                // N_a / (N_o + N_a), number fraction of added disks; [0, 1]
-  double density = 1.0;            // kg/m^2, areal, both species; (0, 1e4]
-  double friction = 0.5;           // particle-particle and particle-wall, static = dynamic; [0, 10]
-  double restitution = 0.1;        // [0, 1]
+  double radius_original = 0.065;  // m, r_o
+  double size_ratio = 0.4;         // r = r_a / r_o
+  std::int64_t n_total = 250;      // N_o + N_a
+  double chi = 0.4;                // N_a / (N_o + N_a), number fraction of added disks
+  double density = 1.0;            // kg/m^2, areal, both species
+  double friction = 0.5;           // particle-particle and particle-wall, static = dynamic
+  double restitution = 0.1;        // coefficient of restitution
   double restitution_threshold = 1.0;  // m/s; impacts slower than this are perfectly inelastic (Box2D rule)
-  double mu = 0.0;                 // A*m^2, dipole moment of added disks (perpendicular to the plane); [0, 100]
+  double mu = 0.0;                 // A*m^2, dipole moment of added disks (perpendicular to the plane)
   double dipole_cutoff = 0.0;      // m; dipole pairs farther apart are skipped; 0 = all pairs
 
   // --- container ---
@@ -46,17 +47,17 @@ struct Scene {
   double clog_min_gap = 0.5;     // s; an exit gap at least this long is recorded as a clog
   // A clog is "arrested" at a kick when a blocking arch stands and every disk near the outlet moved less than
   // arrest_shift of its own radius over the arrest_hold seconds before the kick (see sim/clog.h).
-  double arrest_hold = 0.05;     // s; [dt, kick_period)
-  double arrest_shift = 0.1;     // fraction of a disk's radius; [0, 10]
+  double arrest_hold = 0.05;     // s
+  double arrest_shift = 0.1;     // fraction of a disk's radius
   double arch_wall_reach = 1.36; // m; wall contacts below this height anchor arches (default: the hopper)
   std::string arch_method = "contact_path";  // contact_path | visible; how the 5 s rule picks the arch
   double reinject_gap = 0.05;    // m, clearance between a re-injected disk and the column top
 
   // --- numerics (not in the paper; chosen by the speed-versus-accuracy study) ---
-  double dt = 1e-3;                    // s, fixed time step; (0, 0.02]
-  std::int64_t velocity_iterations = 8;  // Box2D velocity solver iterations; [1, 500]
-  std::int64_t position_iterations = 3;  // Box2D position solver iterations; [1, 500]
-  double length_scale = 10.0;          // Box2D length units per metre; [0.1, 1000]
+  double dt = 1e-3;                    // s, fixed time step
+  std::int64_t velocity_iterations = 8;  // Box2D velocity solver iterations
+  std::int64_t position_iterations = 3;  // Box2D position solver iterations
+  double length_scale = 10.0;          // Box2D length units per metre
   bool continuous = false;             // Box2D continuous collision for the disks
   bool unsafe = false;                 // let the health monitor warn instead of stopping
 
