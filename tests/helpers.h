@@ -39,8 +39,8 @@ inline int sh(const std::string& cmd) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// The test directories of this process, removed when it exits normally (set SILOSCOPE_KEEP_TEST_DIRS=1 to keep
-// them for a look after a failure).
+// The test directories of this process, removed when it exits normally (set SILOSCOPE_KEEP_TEST_DIRS=1 to
+// keep them for a look after a failure).
 struct TempDirs {
   std::vector<std::filesystem::path> dirs;
   ~TempDirs() {
@@ -82,14 +82,14 @@ inline std::string slurp(const std::filesystem::path& p) {
 
 namespace test {
 
-// Start `siloscope record` of a long discharge into OUT (stdout and stderr discarded) and return once its movie
-// has grown past 20 kB: frames are being encoded. Returns the child's pid.
+// Start `siloscope record` of a long discharge into OUT (stdout and stderr discarded) and return once its
+// movie has grown past 20 kB: frames are being encoded. Returns the child's pid.
 inline pid_t start_long_record(const std::string& out) {
   pid_t pid = fork();
   if (pid == 0) {
     if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
-    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2", "--size",
-          "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
+    execl(kBin.c_str(), kBin.c_str(), "record", kScene.c_str(), "--duration", "120", "--set", "settle_time=2",
+          "--size", "320x240", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
     _exit(127);
   }
   const std::string partial = out + ".mp4.partial";

@@ -27,7 +27,6 @@ std::string point_label(const core::Scene& s) {
   return out;
 }
 
-
 Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*field) {
   std::vector<double> v;
   for (const Run* r : runs) v.push_back(r->m.*field);
@@ -44,8 +43,8 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
       if (is_point_key(f.key)) continue;
       std::string a = core::field_text(first.scene, f), b = core::field_text(r.scene, f);
       if (a != b)
-        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " + f.key +
-                               " = " + a + " but " + r.source + " has " + f.key + " = " + b);
+        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " +
+                               f.key + " = " + a + " but " + r.source + " has " + f.key + " = " + b);
     }
   }
   std::map<std::string, Point> by_label;
@@ -58,12 +57,13 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
       by_label[label].scene = r.scene;
     }
     if (!seeds[label].insert(r.scene.seed).second)
-      throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) + " appears twice at the point (" +
-                             label + "); " + r.source + " duplicates an earlier run");
+      throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) +
+                             " appears twice at the point (" + label + "); " + r.source +
+                             " duplicates an earlier run");
     by_label[label].runs.push_back(&r);
   }
-  // Q_p: the mean Q of the pure system (chi = 0) at the same kick strength; a campaign over kicks has one pure
-  // point per kick.
+  // Q_p: the mean Q of the pure system (chi = 0) at the same kick strength; a campaign over kicks has one
+  // pure point per kick.
   auto pure_for = [&](const core::Scene& s) -> const Point* {
     const Point* found = nullptr;
     for (auto& [label, p] : by_label)
@@ -97,7 +97,8 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
       // Ratio of two independent means; relative half-widths add in quadrature (first-order propagation).
       p.q_tilde_over_qp.mean = p.q_tilde.mean / qp.mean;
       // NaN when either side has a single realization: no interval.
-      double rel = std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
+      double rel =
+          std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
       p.q_tilde_over_qp.half_width = p.q_tilde_over_qp.mean * rel;
       p.q_tilde_over_qp.n = p.q_tilde.n;
     }
@@ -117,8 +118,15 @@ std::string points_csv(const std::vector<Point>& points) {
   for (const auto& k : kVaried) s += k + ",";
   s += "dipole_force_ratio,kick_dv_over_sqrt_g_ro,n_runs,n_runs_pure,clogs,clogs_vibration,clogs_rule,"
        "clogs_spontaneous,ballistic_runs";
-  const char* names[] = {"q_per_s", "q_tilde_per_s", "chi_eff", "long_arches_per_min", "added_per_long_arch",
-                         "fraction_broken_by_vibration", "q_tilde_over_qp", "q_p_per_s", "airborne_fraction"};
+  const char* names[] = {"q_per_s",
+                         "q_tilde_per_s",
+                         "chi_eff",
+                         "long_arches_per_min",
+                         "added_per_long_arch",
+                         "fraction_broken_by_vibration",
+                         "q_tilde_over_qp",
+                         "q_p_per_s",
+                         "airborne_fraction"};
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
   s += "\n";
   for (const auto& p : points) {
@@ -127,16 +135,19 @@ std::string points_csv(const std::vector<Point>& points) {
       s += v + ",";
     }
     s += core::format_g(core::dipole_contact_force(p.scene) /
-             (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) + ",";
+                        (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) +
+         ",";
     // The kick's largest velocity change for an original disk, in units of sqrt(g r_o).
     const core::Scene& sc = p.scene;
     s += core::format_g(sc.kick_impulse_max / core::mass_of(sc.radius_original, sc.density) /
-                        std::sqrt(sc.gravity * sc.radius_original)) + ",";
+                        std::sqrt(sc.gravity * sc.radius_original)) +
+         ",";
     s += std::to_string(p.runs.size()) + "," + std::to_string(p.q_p.n) + "," + std::to_string(p.clogs) + "," +
          std::to_string(p.clogs_vibration) + "," + std::to_string(p.clogs_rule) + "," +
          std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs);
-    for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
-                              &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p, &p.airborne_fraction})
+    for (const Estimate* e :
+         {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
+          &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p, &p.airborne_fraction})
       s += "," + core::format_g(e->mean) + "," + core::format_g(e->half_width);
     s += "\n";
   }
@@ -158,7 +169,8 @@ std::string pooled_survival_csv(const std::vector<Point>& points) {
     std::string prefix;
     for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
     for (size_t i = 0; i < taus.size(); ++i)
-      s += prefix + core::format_g(taus[i]) + "," + core::format_g(surv[i]) + "," + std::to_string(gaps.size()) + "\n";
+      s += prefix + core::format_g(taus[i]) + "," + core::format_g(surv[i]) + "," +
+           std::to_string(gaps.size()) + "\n";
   }
   return s;
 }

@@ -30,10 +30,18 @@ Measurements measure(const core::Events& ev, double duration) {
     if (c.start > duration) continue;
     ++m.clogs;
     switch (c.ended_by) {
-      case core::ClogEnd::Spontaneous: ++m.clogs_spontaneous; break;
-      case core::ClogEnd::Vibration: ++m.clogs_vibration; break;
-      case core::ClogEnd::Rule: ++m.clogs_rule; break;
-      case core::ClogEnd::RunEnd: ++m.clogs_run_end; break;
+      case core::ClogEnd::Spontaneous:
+        ++m.clogs_spontaneous;
+        break;
+      case core::ClogEnd::Vibration:
+        ++m.clogs_vibration;
+        break;
+      case core::ClogEnd::Rule:
+        ++m.clogs_rule;
+        break;
+      case core::ClogEnd::RunEnd:
+        ++m.clogs_run_end;
+        break;
     }
   }
   long decided = m.clogs_vibration + m.clogs_rule;

@@ -8,22 +8,22 @@
 namespace analysis {
 
 struct Measurements {
-  double duration = 0;              // s of discharge analysed
+  double duration = 0;  // s of discharge analysed
   long exits = 0, exits_original = 0, exits_added = 0;
-  double q = 0;                     // exits per second (all species)
-  double q_tilde = 0;               // exits of original disks per second
-  double chi_eff = 0;               // fraction of added disks among the exits (NaN without exits)
-  long long_arches = 0;             // clog_timeout rule firings
+  double q = 0;          // exits per second (all species)
+  double q_tilde = 0;    // exits of original disks per second
+  double chi_eff = 0;    // fraction of added disks among the exits (NaN without exits)
+  long long_arches = 0;  // clog_timeout rule firings
   double long_arches_per_minute = 0;
-  double added_per_long_arch = 0;   // mean number of added disks per long-lasting arch (NaN without arches)
-  double members_per_long_arch = 0; // mean arch size (NaN without arches)
-  long clogs = 0;                   // exit gaps >= clog_min_gap, any ending
+  double added_per_long_arch = 0;    // mean number of added disks per long-lasting arch (NaN without arches)
+  double members_per_long_arch = 0;  // mean arch size (NaN without arches)
+  long clogs = 0;                    // exit gaps >= clog_min_gap, any ending
   long clogs_spontaneous = 0, clogs_vibration = 0, clogs_rule = 0, clogs_run_end = 0;
   double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
   // Health, from the run's metadata (not from the events): set by the caller.
-  long health_warnings = 0;         // --unsafe warnings
-  double airborne_fraction = 0;     // mean fraction of disks in flight above the column
-  bool ballistic = false;           // airborne_fraction above the ballistic threshold
+  long health_warnings = 0;      // --unsafe warnings
+  double airborne_fraction = 0;  // mean fraction of disks in flight above the column
+  bool ballistic = false;        // airborne_fraction above the ballistic threshold
 };
 
 Measurements measure(const core::Events& ev, double duration);
@@ -31,9 +31,9 @@ Measurements measure(const core::Events& ev, double duration);
 // Gaps between consecutive exits of original disks, s (added disks may exit in between).
 std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);
 
-// Avalanche sizes: the number of disks (both species) that exit between two clogs, a clog being an exit gap of
-// at least `min_gap` s. The last avalanche is left out (the end of the run cuts it short); a run that never clogs
-// gives none. Many samples per run, so it tells numerical settings apart where Q~ per run cannot.
+// Avalanche sizes: the number of disks (both species) that exit between two clogs, a clog being an exit gap
+// of at least `min_gap` s. The last avalanche is left out (the end of the run cuts it short); a run that
+// never clogs gives none. Many samples per run, so it tells numerical settings apart where Q~ per run cannot.
 std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits, double min_gap);
 
 // Survival function P(dt >= tau) of `gaps` at each tau.

@@ -47,7 +47,8 @@ double median(std::vector<double> v) {
 double incomplete_beta(double a, double b, double x) {
   if (x <= 0) return 0;
   if (x >= 1) return 1;
-  const double ln_front = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+  const double ln_front =
+      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
   const double front = std::exp(ln_front);
   if (x < (a + 1.0) / (a + b + 2.0)) return front * beta_fraction(a, b, x) / a;
   return 1.0 - front * beta_fraction(b, a, 1.0 - x) / b;
@@ -60,7 +61,8 @@ double student_t_cdf(double t, double nu) {
 }
 
 double student_t_critical(double confidence, double nu) {
-  if (!(confidence > 0 && confidence < 1) || !(nu > 0)) throw std::invalid_argument("student_t_critical: bad arguments");
+  if (!(confidence > 0 && confidence < 1) || !(nu > 0))
+    throw std::invalid_argument("student_t_critical: bad arguments");
   const double target = 0.5 + 0.5 * confidence;
   double lo = 0, hi = 1;
   while (student_t_cdf(hi, nu) < target) hi *= 2;

@@ -28,18 +28,22 @@ std::string summary_header() {
   for (const auto& k : point_keys()) h += k + ",";
   return h +
          "duration_s,exits,exits_original,exits_added,q_per_s,q_tilde_per_s,chi_eff,long_arches,"
-         "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_vibration,"
+         "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_"
+         "vibration,"
          "clogs_rule,clogs_run_end,fraction_broken_by_vibration,airborne_fraction,ballistic,health_warnings";
 }
 
 std::string summary_row(const core::Scene& s, const Measurements& m) {
-  return point_values(s) + core::format_g(m.duration) + "," + std::to_string(m.exits) + "," + std::to_string(m.exits_original) +
-         "," + std::to_string(m.exits_added) + "," + core::format_g(m.q) + "," + core::format_g(m.q_tilde) + "," + core::format_g(m.chi_eff) + "," +
-         std::to_string(m.long_arches) + "," + core::format_g(m.long_arches_per_minute) + "," + core::format_g(m.added_per_long_arch) + "," +
-         core::format_g(m.members_per_long_arch) + "," + std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) +
-         "," + std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
+  return point_values(s) + core::format_g(m.duration) + "," + std::to_string(m.exits) + "," +
+         std::to_string(m.exits_original) + "," + std::to_string(m.exits_added) + "," + core::format_g(m.q) +
+         "," + core::format_g(m.q_tilde) + "," + core::format_g(m.chi_eff) + "," +
+         std::to_string(m.long_arches) + "," + core::format_g(m.long_arches_per_minute) + "," +
+         core::format_g(m.added_per_long_arch) + "," + core::format_g(m.members_per_long_arch) + "," +
+         std::to_string(m.clogs) + "," + std::to_string(m.clogs_spontaneous) + "," +
+         std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
          std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration) + "," +
-         core::format_g(m.airborne_fraction) + "," + (m.ballistic ? "1" : "0") + "," + std::to_string(m.health_warnings);
+         core::format_g(m.airborne_fraction) + "," + (m.ballistic ? "1" : "0") + "," +
+         std::to_string(m.health_warnings);
 }
 
 std::vector<double> survival_taus(const core::Scene& s) {
@@ -58,7 +62,8 @@ std::string survival_csv(const core::Scene& s, const std::vector<core::ExitEvent
   const auto p = survival(gaps, taus);
   const std::string pv = point_values(s);
   for (size_t i = 0; i < taus.size(); ++i)
-    out += pv + core::format_g(taus[i]) + "," + core::format_g(p[i]) + "," + std::to_string(gaps.size()) + "\n";
+    out +=
+        pv + core::format_g(taus[i]) + "," + core::format_g(p[i]) + "," + std::to_string(gaps.size()) + "\n";
   return out;
 }
 
@@ -70,9 +75,9 @@ std::string summary_text(const Measurements& m) {
                 "long arches %ld (%.2f per minute), %.2f added disks per arch, %.2f members per arch\n"
                 "clogs       %ld >= clog_min_gap: %ld spontaneous, %ld broken by vibration, %ld by the rule, "
                 "%ld open at the end\n",
-                m.duration, m.exits, m.exits_original, m.exits_added, m.q, m.q_tilde, m.chi_eff, m.long_arches,
-                m.long_arches_per_minute, m.added_per_long_arch, m.members_per_long_arch, m.clogs,
-                m.clogs_spontaneous, m.clogs_vibration, m.clogs_rule, m.clogs_run_end);
+                m.duration, m.exits, m.exits_original, m.exits_added, m.q, m.q_tilde, m.chi_eff,
+                m.long_arches, m.long_arches_per_minute, m.added_per_long_arch, m.members_per_long_arch,
+                m.clogs, m.clogs_spontaneous, m.clogs_vibration, m.clogs_rule, m.clogs_run_end);
   std::string out = b;
   char h[256];
   std::snprintf(h, sizeof h, "health      %s: %.2f%% of disks in flight on average, %ld warnings\n",

@@ -27,7 +27,8 @@ void NumericSetting::apply(core::Scene& s) const {
   }
 }
 
-SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations, int threads) {
+SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations,
+                          int threads) {
   SettingResult out;
   std::mutex m;
   std::atomic<int> next{1};
@@ -91,7 +92,9 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
     const double m = core::mass_of(ra, s.density);
     double e = 0;
     for (const auto& p : f.particles) e += 0.5 * m * (p.vx * p.vx + p.vy * p.vy);
-    return e + sim::dipole_energy(std::hypot(f.particles[0].x - f.particles[1].x, f.particles[0].y - f.particles[1].y), s.mu);
+    return e +
+           sim::dipole_energy(
+               std::hypot(f.particles[0].x - f.particles[1].x, f.particles[0].y - f.particles[1].y), s.mu);
   };
   const double e0 = energy();
   // Stop before either disk comes within two radii of a side wall: wall contacts are inelastic by design.

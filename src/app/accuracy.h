@@ -24,25 +24,29 @@ struct SettingResult {
   double sim_seconds = 0, wall_seconds = 0;
   std::vector<analysis::Measurements> runs;
   std::vector<double> clog_durations;  // every clog's duration, pooled over realizations
-  std::vector<double> avalanche_sizes; // disks per avalanche between clogs, pooled (analysis::avalanche_sizes)
-  std::vector<double> original_gaps;   // s between consecutive original exits, pooled
+  std::vector<double>
+      avalanche_sizes;                // disks per avalanche between clogs, pooled (analysis::avalanche_sizes)
+  std::vector<double> original_gaps;  // s between consecutive original exits, pooled
   double overlap_mean = 0, overlap_max = 0;  // fraction of the smaller radius
   int failures = 0;
   std::string failure;  // the first health-monitor message
 };
 
 // Run `realizations` seeds (1..n) of `scene` at `setting`, `threads` at a time.
-SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations, int threads);
+SettingResult run_setting(const core::Scene& scene, const NumericSetting& setting, int realizations,
+                          int threads);
 
-// Relative energy drift |E(T) - E(0)| / E(0) of two added disks repelling each other in free space (no gravity,
-// no kicks) over `seconds` or until a disk nears a wall, integrated at `setting`; the dipole sets the energy.
+// Relative energy drift |E(T) - E(0)| / E(0) of two added disks repelling each other in free space (no
+// gravity, no kicks) over `seconds` or until a disk nears a wall, integrated at `setting`; the dipole sets
+// the energy.
 double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting, double seconds);
 
 // Two-sample Kolmogorov-Smirnov distance sup |F_a - F_b|.
 double ks_distance(std::vector<double> a, std::vector<double> b);
 
-// The distance two samples of sizes n and m drawn from one distribution exceed with probability 5% (asymptotic
-// two-sample KS, c(0.05) = 1.358): a KS distance below it cannot tell the two apart. NaN if either is empty.
+// The distance two samples of sizes n and m drawn from one distribution exceed with probability 5%
+// (asymptotic two-sample KS, c(0.05) = 1.358): a KS distance below it cannot tell the two apart. NaN if
+// either is empty.
 double ks_critical_95(size_t n, size_t m);
 
 }  // namespace app

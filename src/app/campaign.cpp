@@ -43,8 +43,10 @@ core::Scene apply(const core::Scene& base, const std::vector<Assignment>& set, c
   core::Scene s = base;
   const std::string* ratio = nullptr;
   for (const auto& [k, v] : set) {
-    if (k == kForceRatio) ratio = &v;
-    else core::set_field(s, k, v, where);
+    if (k == kForceRatio)
+      ratio = &v;
+    else
+      core::set_field(s, k, v, where);
   }
   if (ratio) {
     char* end = nullptr;
@@ -87,10 +89,11 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
   try {
     t = toml::parse(c.text, path);
   } catch (const toml::parse_error& e) {
-    throw core::InputError(path + ":" + std::to_string(e.source().begin.line) + ": malformed TOML: " +
-                           std::string(e.description()));
+    throw core::InputError(path + ":" + std::to_string(e.source().begin.line) +
+                           ": malformed TOML: " + std::string(e.description()));
   }
-  static const std::set<std::string> known = {"name", "scene", "seed", "realizations", "duration", "grid", "points"};
+  static const std::set<std::string> known = {"name",     "scene", "seed",  "realizations",
+                                              "duration", "grid",  "points"};
   for (auto&& [k, v] : t)
     if (!known.count(std::string(k.str())))
       throw core::InputError(path + ": unknown key '" + std::string(k.str()) +
@@ -98,7 +101,8 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
   c.name = t["name"].value_or(std::string(fs::path(path).stem()));
   for (char ch : c.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_'))
-      throw core::InputError(path + ": name = \"" + c.name + "\" may hold only letters, digits, - and _ (it names a directory)");
+      throw core::InputError(path + ": name = \"" + c.name +
+                             "\" may hold only letters, digits, - and _ (it names a directory)");
   auto scene_rel = t["scene"].value<std::string>();
   if (!scene_rel) throw core::InputError(path + ": scene = \"...\" (the base scene file) is missing");
   c.scene_path = fs::absolute(fs::path(path).parent_path() / *scene_rel).lexically_normal().string();
@@ -108,8 +112,8 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
     if (!n) return fallback;
     const auto* i = n->as_integer();
     if (!i || i->get() < lo || i->get() > hi)
-      throw core::InputError(path + ": " + key + " must be a whole number from " + std::to_string(lo) + " to " +
-                             std::to_string(hi));
+      throw core::InputError(path + ": " + key + " must be a whole number from " + std::to_string(lo) +
+                             " to " + std::to_string(hi));
     return i->get();
   };
   c.seed = static_cast<std::uint64_t>(integer("seed", 1, 0, INT64_MAX));
@@ -117,9 +121,12 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
   const core::Scene base = core::load_scene(c.scene_path);
   c.duration = base.duration;
   if (const toml::node* n = t.get("duration")) {
-    if (auto f = n->as_floating_point()) c.duration = f->get();
-    else if (auto i = n->as_integer()) c.duration = static_cast<double>(i->get());
-    else throw core::InputError(path + ": duration must be a number of seconds");
+    if (auto f = n->as_floating_point())
+      c.duration = f->get();
+    else if (auto i = n->as_integer())
+      c.duration = static_cast<double>(i->get());
+    else
+      throw core::InputError(path + ": duration must be a number of seconds");
   }
   if (!(c.duration <= 1e6)) throw core::InputError(path + ": duration must be at most 1e6 s");
   if (!(c.duration > 0)) throw core::InputError(path + ": duration must be > 0 s");
@@ -133,7 +140,8 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
         core::Scene probe;
         core::set_field(probe, key, "", where);  // throws "unknown key" with the list of keys
       }
-      if (key == "seed" || key == "duration") throw core::InputError(where + ": set it at the top of the campaign");
+      if (key == "seed" || key == "duration")
+        throw core::InputError(where + ": set it at the top of the campaign");
       auto* arr = v.as_array();
       if (!arr || arr->empty()) throw core::InputError(where + " must be a non-empty list, e.g. [0.4, 0.6]");
       std::vector<std::string> values;
@@ -169,7 +177,8 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
     }
   }
   if (sets.empty()) throw core::InputError(path + ": the grid is empty: give [grid] lists or [[points]]");
-  if (sets.size() > 10000) throw core::InputError(path + ": the grid has " + std::to_string(sets.size()) + " points; at most 10000");
+  if (sets.size() > 10000)
+    throw core::InputError(path + ": the grid has " + std::to_string(sets.size()) + " points; at most 10000");
 
   std::set<std::string> seen;
   for (const auto& s : sets) {

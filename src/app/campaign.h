@@ -45,7 +45,8 @@ struct Campaign {
   std::string run_dir(size_t p, int k) const;
 };
 
-// Throws core::InputError naming the file, the key and the problem (empty grid, unknown key, duplicate point...).
+// Throws core::InputError naming the file, the key and the problem (empty grid, unknown key, duplicate
+// point...).
 Campaign load_campaign(const std::string& path);
 // The same from text; `path` names it in errors and anchors the relative scene path.
 Campaign parse_campaign(const std::string& text, const std::string& path);

@@ -26,7 +26,8 @@ struct AnalyzeOptions {
 // Run directories (holding metadata.toml and exits.csv) at or below `root`, sorted.
 void find_runs(const fs::path& root, std::vector<fs::path>& out) {
   std::error_code ec;
-  if (!fs::is_directory(root, ec)) throw core::InputError("analyze: " + root.string() + " is not a directory");
+  if (!fs::is_directory(root, ec))
+    throw core::InputError("analyze: " + root.string() + " is not a directory");
   if (fs::exists(root / "metadata.toml") && fs::exists(root / "exits.csv")) {
     out.push_back(root);
     return;
@@ -49,7 +50,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     size_t before = dirs.size();
     find_runs(in, dirs);
     if (dirs.size() == before)
-      throw core::InputError("analyze: no runs under " + in + " (a run directory holds metadata.toml and exits.csv)");
+      throw core::InputError("analyze: no runs under " + in +
+                             " (a run directory holds metadata.toml and exits.csv)");
   }
   io::OutputDir out(o.out, o.force);
   std::vector<analysis::Run> runs;
@@ -70,7 +72,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                              core::format_g(rec.covered_s) + " s of discharge); remove it or rerun it");
     if (rec.interrupted && !o.include_interrupted) {
       left_out.push_back(r.source + ": interrupted after " + core::format_g(covered, 4) + " of " +
-                         core::format_g(r.scene.duration, 4) + " s (--include-interrupted counts it for that time)");
+                         core::format_g(r.scene.duration, 4) +
+                         " s (--include-interrupted counts it for that time)");
       continue;
     }
     if (rec.health_warnings > 0 && !o.include_unhealthy) {
@@ -85,7 +88,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     runs.push_back(std::move(r));
   }
   for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
-  if (runs.empty()) throw core::InputError("analyze: every run was left out (see above); nothing to aggregate");
+  if (runs.empty())
+    throw core::InputError("analyze: every run was left out (see above); nothing to aggregate");
   auto points = analysis::aggregate(runs);
   io::write_file_atomic(out.file("realizations.csv"), analysis::realizations_csv(runs));
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
@@ -94,15 +98,17 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                    {{"runs", std::to_string(runs.size())},
                     {"points", std::to_string(points.size())},
                     {"runs_left_out", std::to_string(left_out.size())},
-                    {"ballistic_runs", std::to_string(std::count_if(runs.begin(), runs.end(),
-                                                                    [](const analysis::Run& r) { return r.m.ballistic; }))}},
+                    {"ballistic_runs",
+                     std::to_string(std::count_if(runs.begin(), runs.end(),
+                                                  [](const analysis::Run& r) { return r.m.ballistic; }))}},
                    {}};
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
   if (quiet) return 0;
   std::printf("%zu runs, %zu points -> %s/{points,realizations,survival}.csv\n", runs.size(), points.size(),
               o.out.c_str());
-  std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p", "chi_eff");
+  std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
+              "chi_eff");
   for (const auto& p : points) {
     char label[64];
     std::snprintf(label, sizeof label, "%g, %g, %g, %g", p.scene.size_ratio, p.scene.chi, p.scene.mu,
@@ -115,14 +121,16 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
 
 void add_analyze_command(CLI::App& app, Action& action) {
   auto opts = std::make_shared<AnalyzeOptions>();
-  auto* cmd = app.add_subcommand("analyze", "aggregate run directories into tidy CSV with 95% confidence intervals");
+  auto* cmd =
+      app.add_subcommand("analyze", "aggregate run directories into tidy CSV with 95% confidence intervals");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("dirs", opts->inputs, "run directories, or directories holding them")->required();
   cmd->add_option("--out", opts->out, "output directory")->required();
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--include-interrupted", opts->include_interrupted,
                 "count interrupted recordings, for the discharge time each covered");
-  cmd->add_flag("--include-unhealthy", opts->include_unhealthy, "count runs that went on past --unsafe warnings");
+  cmd->add_flag("--include-unhealthy", opts->include_unhealthy,
+                "count runs that went on past --unsafe warnings");
   cmd->callback([opts, &action] {
     action = [opts] {
       return analyze_runs(opts->inputs, opts->out, opts->force, false, opts->include_interrupted,

@@ -1,16 +1,16 @@
-// siloscope bench accuracy: every numerical setting against a fine reference, on the default, pure and magnetic
-// scenes: speed (simulated s per wall s), overlaps, Q and Q~ with 95% intervals, the distribution of clog
-// durations (KS distance), and the energy drift of an isolated magnetic pair. Table, CSV and a chart.
+// siloscope bench accuracy: every numerical setting against a fine reference, on the default, pure and
+// magnetic scenes: speed (simulated s per wall s), overlaps, Q and Q~ with 95% intervals, the distribution of
+// clog durations (KS distance), and the energy drift of an isolated magnetic pair. Table, CSV and a chart.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "analysis/stats.h"
-#include "core/format.h"
 #include "app/accuracy.h"
 #include "app/campaign.h"
 #include "app/common.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/physics.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -18,7 +18,9 @@
 namespace app {
 
 namespace {
-std::string num6(double v) { return core::format_g(v, 6); }
+std::string num6(double v) {
+  return core::format_g(v, 6);
+}
 namespace fs = std::filesystem;
 
 struct AccuracyOptions {
@@ -30,7 +32,8 @@ struct AccuracyOptions {
 };
 
 constexpr const char* kHeader =
-    "setting,scene,dt_s,velocity_iterations,position_iterations,length_scale,continuous,dipole_cutoff_m,realizations,"
+    "setting,scene,dt_s,velocity_iterations,position_iterations,length_scale,continuous,dipole_cutoff_m,"
+    "realizations,"
     "failures,sim_per_wall,speedup_vs_reference,q_per_s,q_ci95,q_tilde_per_s,q_tilde_ci95,q_tilde_rel_error,"
     "q_tilde_within_reference_ci,overlap_mean_pct,overlap_max_pct,clogs,clog_ks_distance,avalanches,"
     "avalanche_mean,avalanche_ci95,avalanche_ks_distance,avalanche_ks_critical,gaps,gap_ks_distance,"
@@ -58,7 +61,8 @@ int bench_accuracy(const AccuracyOptions& o) {
   core::Scene base = o.scene.load();
   const int realizations = o.quick ? 3 : o.realizations;
   const double duration = o.quick ? 15 : o.scene.duration.value_or(60.0);
-  if (realizations < 2 || !(duration > 0)) throw core::InputError("--realizations must be >= 2 and --duration > 0");
+  if (realizations < 2 || !(duration > 0))
+    throw core::InputError("--realizations must be >= 2 and --duration > 0");
   io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
   base.duration = duration;
   struct SceneCase {
@@ -75,21 +79,25 @@ int bench_accuracy(const AccuracyOptions& o) {
     } else if (name == "vibrated") {
       s.kick_impulse_max = 5e-3;  // the kick of assets/scenes/paper-vibrated.toml: 100x the literal impulse
     } else if (name != "default") {
-      throw core::InputError("--scenes: '" + name + "' is not a scene case; allowed: default, pure, magnetic, vibrated");
+      throw core::InputError("--scenes: '" + name +
+                             "' is not a scene case; allowed: default, pure, magnetic, vibrated");
     }
     scenes.push_back({name, s});
   }
   std::printf("siloscope %s, bench accuracy: %d realizations x %g s per setting and scene, %d threads\n",
               io::version_string().c_str(), realizations, duration, o.threads);
   for (const auto& sc : scenes)
-    std::printf("scene %-8s: r = %g, chi = %g, mu = %.4g A*m^2, kick = %g N*s\n", sc.name.c_str(), sc.scene.size_ratio,
-                sc.scene.chi, sc.scene.mu, sc.scene.kick_impulse_max);
-  std::printf("KSa, KSg: KS distance of the avalanche sizes and of the gaps between original exits from the reference's,\n"
-              "over the distance two samples of one distribution exceed 5%% of the time (< 1: indistinguishable)\n\n");
+    std::printf("scene %-8s: r = %g, chi = %g, mu = %.4g A*m^2, kick = %g N*s\n", sc.name.c_str(),
+                sc.scene.size_ratio, sc.scene.chi, sc.scene.mu, sc.scene.kick_impulse_max);
+  std::printf(
+      "KSa, KSg: KS distance of the avalanche sizes and of the gaps between original exits from the "
+      "reference's,\n"
+      "over the distance two samples of one distribution exceed 5%% of the time (< 1: "
+      "indistinguishable)\n\n");
 
   std::string csv = std::string(kHeader) + "\n";
-  std::printf("%-17s %-8s %6s %6s %13s %5s %6s %6s %5s %13s %5s %5s %8s\n", "setting", "scene", "speed", "x ref",
-              "Q~ [1/s]", "in CI", "ovl %", "max %", "aval", "mean size", "KSa", "KSg", "E drift");
+  std::printf("%-17s %-8s %6s %6s %13s %5s %6s %6s %5s %13s %5s %5s %8s\n", "setting", "scene", "speed",
+              "x ref", "Q~ [1/s]", "in CI", "ovl %", "max %", "aval", "mean size", "KSa", "KSg", "E drift");
   core::Scene magnetic = base;
   magnetic.mu = core::mu_for_force_ratio(magnetic, 10.0);
   for (const auto& sc : scenes) {
@@ -101,14 +109,16 @@ int bench_accuracy(const AccuracyOptions& o) {
       // settings and the cutoff, to keep the benchmark's cost in bounds.
       const bool magnetic_case = sc.name == "magnetic";
       if (st.dipole_cutoff_fraction > 0 && !magnetic_case) continue;
-      if (magnetic_case && st.name != "reference" && st.name != "default" && st.dipole_cutoff_fraction == 0) continue;
+      if (magnetic_case && st.name != "reference" && st.name != "default" && st.dipole_cutoff_fraction == 0)
+        continue;
       if (interrupted()) return 130;
       SettingResult r = run_setting(sc.scene, st, realizations, o.threads);
       std::vector<double> qt;
       for (const auto& m : r.runs) qt.push_back(m.q_tilde);
       std::vector<double> q;
       for (const auto& m : r.runs) q.push_back(m.q);
-      auto eq = analysis::estimate(q), eqt = analysis::estimate(qt), eav = analysis::estimate(r.avalanche_sizes);
+      auto eq = analysis::estimate(q), eqt = analysis::estimate(qt),
+           eav = analysis::estimate(r.avalanche_sizes);
       // Throughput per core: the threads ran side by side, each realization single-threaded.
       const double speed = r.wall_seconds > 0 ? r.sim_seconds / r.wall_seconds : NAN;
       if (st.name == "reference") ref = r, ref_qt = eqt, ref_speed = speed;
@@ -129,29 +139,34 @@ int bench_accuracy(const AccuracyOptions& o) {
         }
       }
       const bool is_ref = st.name == "reference";
-      std::printf("%-17s %-8s %6.2f %6.2f %6.3f+-%5.3f %5s %6.2f %6.1f %5zu %6.1f+-%5.1f %5.2f %5.2f %8.2e%s\n",
-                  st.name.c_str(), sc.name.c_str(), speed, speed / ref_speed, eqt.mean, eqt.half_width,
-                  within ? "yes" : "no", 100 * r.overlap_mean, 100 * r.overlap_max, r.avalanche_sizes.size(), eav.mean,
-                  eav.half_width, is_ref ? 0.0 : ks_av / crit_av, is_ref ? 0.0 : ks_gap / crit_gap, drift,
-                  r.failures ? ("  FAILED " + std::to_string(r.failures) + "x: " + r.failure.substr(0, 80)).c_str() : "");
+      std::printf(
+          "%-17s %-8s %6.2f %6.2f %6.3f+-%5.3f %5s %6.2f %6.1f %5zu %6.1f+-%5.1f %5.2f %5.2f %8.2e%s\n",
+          st.name.c_str(), sc.name.c_str(), speed, speed / ref_speed, eqt.mean, eqt.half_width,
+          within ? "yes" : "no", 100 * r.overlap_mean, 100 * r.overlap_max, r.avalanche_sizes.size(),
+          eav.mean, eav.half_width, is_ref ? 0.0 : ks_av / crit_av, is_ref ? 0.0 : ks_gap / crit_gap, drift,
+          r.failures ? ("  FAILED " + std::to_string(r.failures) + "x: " + r.failure.substr(0, 80)).c_str()
+                     : "");
       std::fflush(stdout);
-      csv += st.name + "," + sc.name + "," + num6(st.dt) + "," + std::to_string(st.velocity_iterations) + "," +
-             std::to_string(st.position_iterations) + "," + num6(st.length_scale) + "," + (st.continuous ? "1" : "0") +
-             "," + num6(cfg.dipole_cutoff) + "," + std::to_string(realizations) + "," + std::to_string(r.failures) +
-             "," + num6(speed) + "," + num6(speed / ref_speed) + "," + num6(eq.mean) + "," + num6(eq.half_width) + "," +
-             num6(eqt.mean) + "," + num6(eqt.half_width) + "," + num6(rel) + "," + (within ? "1" : "0") + "," +
-             num6(100 * r.overlap_mean) + "," + num6(100 * r.overlap_max) + "," +
+      csv += st.name + "," + sc.name + "," + num6(st.dt) + "," + std::to_string(st.velocity_iterations) +
+             "," + std::to_string(st.position_iterations) + "," + num6(st.length_scale) + "," +
+             (st.continuous ? "1" : "0") + "," + num6(cfg.dipole_cutoff) + "," +
+             std::to_string(realizations) + "," + std::to_string(r.failures) + "," + num6(speed) + "," +
+             num6(speed / ref_speed) + "," + num6(eq.mean) + "," + num6(eq.half_width) + "," +
+             num6(eqt.mean) + "," + num6(eqt.half_width) + "," + num6(rel) + "," + (within ? "1" : "0") +
+             "," + num6(100 * r.overlap_mean) + "," + num6(100 * r.overlap_max) + "," +
              std::to_string(r.clog_durations.size()) + "," + num6(ks) + "," +
-             std::to_string(r.avalanche_sizes.size()) + "," + num6(eav.mean) + "," + num6(eav.half_width) + "," +
-             num6(ks_av) + "," + num6(crit_av) + "," + std::to_string(r.original_gaps.size()) + "," + num6(ks_gap) +
-             "," + num6(crit_gap) + "," + num6(drift) + "\n";
+             std::to_string(r.avalanche_sizes.size()) + "," + num6(eav.mean) + "," + num6(eav.half_width) +
+             "," + num6(ks_av) + "," + num6(crit_av) + "," + std::to_string(r.original_gaps.size()) + "," +
+             num6(ks_gap) + "," + num6(crit_gap) + "," + num6(drift) + "\n";
     }
   }
-  fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".") : fs::path(o.csv).parent_path());
+  fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".")
+                                                               : fs::path(o.csv).parent_path());
   io::write_file_atomic(o.csv, csv);
   std::printf("\nwritten %s\n", o.csv.c_str());
   if (!o.chart.empty()) {
-    std::string cmd = python_interpreter() + " " + SILOSCOPE_ACCURACY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
+    std::string cmd =
+        python_interpreter() + " " + SILOSCOPE_ACCURACY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
     if (std::system(cmd.c_str()) != 0) {
       std::fprintf(stderr, "siloscope: the chart could not be drawn (%s)\n", cmd.c_str());
       return 1;
@@ -163,17 +178,25 @@ int bench_accuracy(const AccuracyOptions& o) {
 
 void add_bench_accuracy_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<AccuracyOptions>();
-  auto* cmd = bench.add_subcommand("accuracy", "speed versus accuracy of every numerical setting against a reference");
+  auto* cmd = bench.add_subcommand("accuracy",
+                                   "speed versus accuracy of every numerical setting against a reference");
   cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
-  cmd->add_option("--realizations", o->realizations, "seeds per setting and scene")->check(whole_number(1, 1000))->capture_default_str();
-  cmd->add_option("--threads", o->threads, "realizations run side by side")->check(whole_number(1, 256))->capture_default_str();
+  cmd->add_option("--realizations", o->realizations, "seeds per setting and scene")
+      ->check(whole_number(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "realizations run side by side")
+      ->check(whole_number(1, 256))
+      ->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output")->capture_default_str();
   cmd->add_option("--chart", o->chart, "PNG chart (empty: none)")->capture_default_str();
-  cmd->add_option("--scenes", o->scenes, "scene cases: default, pure (chi = 0), magnetic (contact force 10 weights), vibrated (kick 5e-3 N*s)")
+  cmd->add_option("--scenes", o->scenes,
+                  "scene cases: default, pure (chi = 0), magnetic (contact force 10 weights), vibrated (kick "
+                  "5e-3 N*s)")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_flag("--quick", o->quick, "3 realizations of 15 s: a smoke run of the whole grid (default: 6 of --duration, 60 s)");
+  cmd->add_flag("--quick", o->quick,
+                "3 realizations of 15 s: a smoke run of the whole grid (default: 6 of --duration, 60 s)");
   cmd->callback([o, &action] { action = [o] { return bench_accuracy(*o); }; });
 }
 

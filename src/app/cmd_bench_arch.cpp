@@ -23,11 +23,12 @@ struct ArchBenchOptions {
   std::string csv;
 };
 
-
 int bench_arch(const ArchBenchOptions& o) {
   core::Scene scene = o.scene.load();
-  if (o.repeats < 1 || !(o.seconds > 0) || !(o.fps > 0)) throw core::InputError("--repeats, --seconds and --fps must be > 0");
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
+  if (o.repeats < 1 || !(o.seconds > 0) || !(o.fps > 0))
+    throw core::InputError("--repeats, --seconds and --fps must be > 0");
+  if (!o.csv.empty())
+    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
   const long steps_per_frame = std::max(1L, std::lround(1.0 / (o.fps * scene.dt)));
   std::printf("siloscope %s, bench arch: %g s simulated per repeat, detection every %ld steps (%g fps)\n",
               io::version_string().c_str(), o.seconds, steps_per_frame, o.fps);
@@ -60,7 +61,8 @@ int bench_arch(const ArchBenchOptions& o) {
       if (interrupted()) return 130;
     }
   }
-  const double us = analysis::median(per_call), slow = analysis::median(detect_wall) / analysis::median(plain_wall) - 1.0;
+  const double us = analysis::median(per_call),
+               slow = analysis::median(detect_wall) / analysis::median(plain_wall) - 1.0;
   std::printf("%-36s %10.1f  (target < 50)\n", "arch detection, us per call", us);
   std::printf("%-36s %9.1f%%\n", "frames with an arch found", 100.0 * calls_found / std::max(1L, calls));
   std::printf("%-36s %10.2f\n", "wall s without detection (median)", analysis::median(plain_wall));
@@ -69,7 +71,8 @@ int bench_arch(const ArchBenchOptions& o) {
   if (!o.csv.empty()) {
     std::string s = "metric,value,unit\n";
     s += "arch_detection_per_call," + std::to_string(us) + ",us\n";
-    s += "frames_with_arch," + std::to_string(static_cast<double>(calls_found) / std::max(1L, calls)) + ",1\n";
+    s +=
+        "frames_with_arch," + std::to_string(static_cast<double>(calls_found) / std::max(1L, calls)) + ",1\n";
     s += "slowdown_detection_every_frame," + std::to_string(slow) + ",1\n";
     io::write_file_atomic(o.csv, s);
   }

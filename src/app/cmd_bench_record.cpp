@@ -1,7 +1,7 @@
-// siloscope bench record: what filming costs against simulating. In one process, alternating, `run` (no video),
-// `record` at 720p30 and at 1080p30 of the same scene and duration, each repeated; prints the median wall times,
-// their ratios to `run` (the targets are ratios, which a shared, noisy machine can still compare), the per-frame
-// time of each recording stage, PNG frames per second at 1080p, and writes CSV.
+// siloscope bench record: what filming costs against simulating. In one process, alternating, `run` (no
+// video), `record` at 720p30 and at 1080p30 of the same scene and duration, each repeated; prints the median
+// wall times, their ratios to `run` (the targets are ratios, which a shared, noisy machine can still
+// compare), the per-frame time of each recording stage, PNG frames per second at 1080p, and writes CSV.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,7 +26,8 @@ namespace app {
 namespace {
 namespace fs = std::filesystem;
 
-const char* kHeader = "case,repeat,wall_s,ratio_to_run,frames,ms_sim,ms_draw,ms_readback,ms_convert,ms_encode,ms_png";
+const char* kHeader =
+    "case,repeat,wall_s,ratio_to_run,frames,ms_sim,ms_draw,ms_readback,ms_convert,ms_encode,ms_png";
 
 struct RecordBenchOptions {
   SceneOptions scene;
@@ -42,8 +43,8 @@ int bench_record(const RecordBenchOptions& o) {
   if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
   const double duration = o.scene.duration.value_or(20.0);
   if (!(duration > 0 && duration <= 600)) throw core::InputError("--duration must be in (0, 600] s");
-  const std::string scene = o.scene.path.empty() ? std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml"
-                                                 : o.scene.path;
+  const std::string scene =
+      o.scene.path.empty() ? std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml" : o.scene.path;
   if (o.binary.empty()) o.scene.load();  // validate before any work (another binary validates its own scenes)
   std::error_code ec;
   const fs::path self = o.binary.empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(o.binary);
@@ -109,7 +110,8 @@ int bench_record(const RecordBenchOptions& o) {
       std::printf(" %9.2f", c.name == "run" ? NAN : analysis::median(stage[c.name][s]));
     std::printf("\n");
   }
-  std::printf("targets: record_1080p30 <= 1.4x run, record_720p30 <= 1.2x run (ratios of medians of this run)\n");
+  std::printf(
+      "targets: record_1080p30 <= 1.4x run, record_720p30 <= 1.2x run (ratios of medians of this run)\n");
   for (auto& r : rows) {
     const std::string name = r.substr(0, r.find(','));
     const double w = std::stod(r.substr(r.find(',', r.find(',') + 1) + 1));
@@ -126,10 +128,12 @@ int bench_record(const RecordBenchOptions& o) {
 
 void add_bench_record_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<RecordBenchOptions>();
-  auto* cmd = bench.add_subcommand("record", "filming cost: run vs record at 720p and 1080p (ratios), per stage");
+  auto* cmd =
+      bench.add_subcommand("record", "filming cost: run vs record at 720p and 1080p (ratios), per stage");
   cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
-  cmd->add_option("--repeats", o->repeats, "repeats of each case (medians)")->check(whole_number(1, 100))
+  cmd->add_option("--repeats", o->repeats, "repeats of each case (medians)")
+      ->check(whole_number(1, 100))
       ->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output (one row per case and repeat)");
   cmd->add_option("--binary", o->binary, "time another siloscope binary (e.g. an older build) the same way");

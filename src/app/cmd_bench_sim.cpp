@@ -24,17 +24,20 @@ struct BenchOptions {
   std::string csv;
 };
 
-
 int bench_sim(const BenchOptions& o) {
   core::Scene scene = o.scene.load();
   if (o.repeats < 1 || o.steps < 1) throw core::InputError("--repeats and --steps must be >= 1");
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
-  std::printf("siloscope %s, bench sim: %lld disks, r = %g, chi = %g, mu = %g A*m^2, dt = %g s, iterations (%lld, %lld), "
-              "length_scale %g\n",
-              io::version_string().c_str(), static_cast<long long>(scene.n_total), scene.size_ratio, scene.chi,
-              scene.mu, scene.dt, static_cast<long long>(scene.velocity_iterations),
-              static_cast<long long>(scene.position_iterations), scene.length_scale);
-  std::printf("settling two copies of the scene (seed %llu)...\n", static_cast<unsigned long long>(scene.seed));
+  if (!o.csv.empty())
+    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
+  std::printf(
+      "siloscope %s, bench sim: %lld disks, r = %g, chi = %g, mu = %g A*m^2, dt = %g s, iterations (%lld, "
+      "%lld), "
+      "length_scale %g\n",
+      io::version_string().c_str(), static_cast<long long>(scene.n_total), scene.size_ratio, scene.chi,
+      scene.mu, scene.dt, static_cast<long long>(scene.velocity_iterations),
+      static_cast<long long>(scene.position_iterations), scene.length_scale);
+  std::printf("settling two copies of the scene (seed %llu)...\n",
+              static_cast<unsigned long long>(scene.seed));
   sim::Hopper ours(scene), bare(scene);
   sim::Hopper profiled(scene);
   profiled.set_profiling(true);
@@ -58,14 +61,17 @@ int bench_sim(const BenchOptions& o) {
     if (interrupted()) return 130;
   }
   const double m_ours = analysis::median(us_ours), m_bare = analysis::median(us_bare);
-  const double stages[] = {analysis::median(box2d), analysis::median(dipoles), analysis::median(kicks), analysis::median(book)};
+  const double stages[] = {analysis::median(box2d), analysis::median(dipoles), analysis::median(kicks),
+                           analysis::median(book)};
   const char* names[] = {"box2d_step", "dipoles", "kicks", "bookkeeping"};
   double stage_sum = 0;
   for (double s : stages) stage_sum += s;
 
-  std::printf("\n%d repeats of %d steps (%.1f s simulated each); medians\n", o.repeats, o.steps, o.steps * scene.dt);
+  std::printf("\n%d repeats of %d steps (%.1f s simulated each); medians\n", o.repeats, o.steps,
+              o.steps * scene.dt);
   std::printf("%-28s %12s %10s\n", "stage", "us/step", "share");
-  for (int k = 0; k < 4; ++k) std::printf("%-28s %12.1f %9.1f%%\n", names[k], stages[k], 100 * stages[k] / stage_sum);
+  for (int k = 0; k < 4; ++k)
+    std::printf("%-28s %12.1f %9.1f%%\n", names[k], stages[k], 100 * stages[k] / stage_sum);
   std::printf("%-28s %12.1f\n", "siloscope step", m_ours);
   std::printf("%-28s %12.1f\n", "bare Box2D step", m_bare);
   std::printf("%-28s %12.3f  (target <= 1.10)\n", "ratio siloscope / bare", m_ours / m_bare);
@@ -97,7 +103,8 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto* cmd = bench->add_subcommand("sim", "time the simulation step by stage against a bare Box2D loop");
   cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd, false);
-  cmd->add_option("--repeats", opts->repeats, "timed repeats (median reported)")->check(whole_number(1, 1000));
+  cmd->add_option("--repeats", opts->repeats, "timed repeats (median reported)")
+      ->check(whole_number(1, 1000));
   cmd->add_option("--steps", opts->steps, "steps per repeat")->check(whole_number(1, 100000000));
   cmd->add_option("--csv", opts->csv, "write the table as CSV here");
   cmd->callback([opts, &action] { action = [opts] { return bench_sim(*opts); }; });

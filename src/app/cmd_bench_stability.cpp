@@ -1,6 +1,7 @@
-// siloscope bench stability: where the methods fail. A map of time step against dipole strength for r = 0.2 and
-// 0.4: for every cell, do the static checks (dipole and kinematic safe time steps) refuse it, and does the integration
-// actually break (health monitor, run with --unsafe)? A good check refuses what breaks and accepts what does not.
+// siloscope bench stability: where the methods fail. A map of time step against dipole strength for r = 0.2
+// and 0.4: for every cell, do the static checks (dipole and kinematic safe time steps) refuse it, and does
+// the integration actually break (health monitor, run with --unsafe)? A good check refuses what breaks and
+// accepts what does not.
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -32,11 +33,13 @@ struct Cell {
 };
 
 int bench_stability(const StabilityOptions& o) {
-  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome");
+  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv,
+                        "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome");
   std::vector<Cell> cells;
   for (double r : {0.2, 0.4})
     for (double dt : {2.5e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2})
-      for (double ratio : {0.0, 1.0, 10.0, 100.0, 1000.0}) cells.push_back(Cell{r, dt, ratio, 0.0, 0.0, false, 0, {}});
+      for (double ratio : {0.0, 1.0, 10.0, 100.0, 1000.0})
+        cells.push_back(Cell{r, dt, ratio, 0.0, 0.0, false, 0, {}});
   std::printf("siloscope %s, bench stability: %zu cells, %g s of discharge each, %d threads\n",
               io::version_string().c_str(), cells.size(), o.seconds, o.threads);
   std::atomic<size_t> next{0};
@@ -72,7 +75,8 @@ int bench_stability(const StabilityOptions& o) {
 
   std::string csv = "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome\n";
   int missed = 0, correct = 0, conservative = 0;
-  std::printf("\n%-6s %-9s %-9s %-10s %-8s %-6s %s\n", "r", "dt [s]", "F/W", "safe dt", "refused", "broke", "outcome");
+  std::printf("\n%-6s %-9s %-9s %-10s %-8s %-6s %s\n", "r", "dt [s]", "F/W", "safe dt", "refused", "broke",
+              "outcome");
   for (const auto& c : cells) {
     const bool broke = c.warnings > 0 || !c.failure.empty();
     const char* outcome = c.refused ? (broke ? "refused-breaks" : "refused-runs-clean")
@@ -80,19 +84,22 @@ int bench_stability(const StabilityOptions& o) {
     missed += !c.refused && broke;
     correct += c.refused == broke;
     conservative += c.refused && !broke;
-    std::printf("%-6g %-9g %-9g %-10.3g %-8s %-6s %s\n", c.r, c.dt, c.ratio, c.safe_dt, c.refused ? "yes" : "no",
-                broke ? "yes" : "no", outcome);
+    std::printf("%-6g %-9g %-9g %-10.3g %-8s %-6s %s\n", c.r, c.dt, c.ratio, c.safe_dt,
+                c.refused ? "yes" : "no", broke ? "yes" : "no", outcome);
     char line[256];
-    std::snprintf(line, sizeof line, "%g,%g,%g,%.6g,%.6g,%d,%d,%s\n", c.r, c.dt, c.ratio, c.mu, c.safe_dt, c.refused,
-                  broke, outcome);
+    std::snprintf(line, sizeof line, "%g,%g,%g,%.6g,%.6g,%d,%d,%s\n", c.r, c.dt, c.ratio, c.mu, c.safe_dt,
+                  c.refused, broke, outcome);
     csv += line;
   }
-  std::printf("\n%d of %zu cells judged right; %d refused although they ran clean (conservative); %d accepted but broke\n",
-              correct, cells.size(), conservative, missed);
+  std::printf(
+      "\n%d of %zu cells judged right; %d refused although they ran clean (conservative); %d accepted but "
+      "broke\n",
+      correct, cells.size(), conservative, missed);
   io::write_file_atomic(o.csv, csv);
   std::printf("written %s\n", o.csv.c_str());
   if (!o.chart.empty()) {
-    std::string cmd = python_interpreter() + " " + SILOSCOPE_STABILITY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
+    std::string cmd =
+        python_interpreter() + " " + SILOSCOPE_STABILITY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
     if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "siloscope: the chart could not be drawn\n");
   }
   return missed == 0 ? 0 : 1;
@@ -101,10 +108,13 @@ int bench_stability(const StabilityOptions& o) {
 
 void add_bench_stability_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<StabilityOptions>();
-  auto* cmd = bench.add_subcommand("stability", "map time step x dipole strength: refused by the check, broken in fact");
+  auto* cmd = bench.add_subcommand("stability",
+                                   "map time step x dipole strength: refused by the check, broken in fact");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("--seconds", o->seconds, "s of discharge per cell")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "cells run side by side")->check(whole_number(1, 256))->capture_default_str();
+  cmd->add_option("--threads", o->threads, "cells run side by side")
+      ->check(whole_number(1, 256))
+      ->capture_default_str();
   cmd->add_option("--csv", o->csv, "CSV output")->capture_default_str();
   cmd->add_option("--chart", o->chart, "PNG chart (empty: none)")->capture_default_str();
   cmd->callback([o, &action] { action = [o] { return bench_stability(*o); }; });

@@ -1,5 +1,6 @@
-// siloscope export RUN --format xyz|csv: a recording's trajectory for the field's tools. Extended XYZ (one frame
-// per trajectory frame) loads in OVITO and ASE; CSV (one row per disk and frame) in pandas, R or a spreadsheet.
+// siloscope export RUN --format xyz|csv: a recording's trajectory for the field's tools. Extended XYZ (one
+// frame per trajectory frame) loads in OVITO and ASE; CSV (one row per disk and frame) in pandas, R or a
+// spreadsheet.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,10 +46,13 @@ void frame_range(const std::string& spec, long count, long& first, long& last) {
     last = number(spec.substr(colon + 1), count - 1);
   }
   if (first > last || last >= count)
-    throw core::InputError("--frames " + spec + ": the trajectory has frames 0 to " + std::to_string(count - 1));
+    throw core::InputError("--frames " + spec + ": the trajectory has frames 0 to " +
+                           std::to_string(count - 1));
 }
 
-std::string num(double v) { return core::format_g(v, 7); }
+std::string num(double v) {
+  return core::format_g(v, 7);
+}
 
 int export_run(const ExportOptions& o) {
   if (o.format != "xyz" && o.format != "csv")
@@ -66,7 +70,8 @@ int export_run(const ExportOptions& o) {
 
   fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
-  io::check_destination(out, o.force, "export file", o.format == "csv" ? io::OutputKind::Csv : io::OutputKind::Xyz,
+  io::check_destination(out, o.force, "export file",
+                        o.format == "csv" ? io::OutputKind::Csv : io::OutputKind::Xyz,
                         o.format == "csv" ? kCsvHeader : "");
 
   const size_t n = t.info().n_particles;
@@ -80,24 +85,26 @@ int export_run(const ExportOptions& o) {
     for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
     if (o.format == "xyz") {
       text += std::to_string(n) + "\n";
-      text += "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(-0.5 * w) + " 0 0\" " +
-              "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1 Time=" + num(f.t) +
-              " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
-              " exits_added=" + std::to_string(f.exits_added) + " units=SI pbc=\"F F F\" siloscope=\"" +
-              io::version_string() + "\"\n";
+      text +=
+          "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(-0.5 * w) + " 0 0\" " +
+          "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1 Time=" + num(f.t) +
+          " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
+          " exits_added=" + std::to_string(f.exits_added) + " units=SI pbc=\"F F F\" siloscope=\"" +
+          io::version_string() + "\"\n";
     }
     for (size_t i = 0; i < n; ++i) {
       const core::Particle& p = f.particles[i];
       // Species as chemical symbols, which ASE requires: H = original disk, He = added disk (docs/export.md).
       const bool original = p.species == core::Species::Original;
       if (o.format == "xyz")
-        text += std::string(original ? "H" : "He") + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) + " " +
-                num(p.vx) + " " + num(p.vy) + " 0 " + num(p.force) + " " + (in_arch[i] ? "1" : "0") + " " +
-                std::to_string(i) + "\n";
+        text += std::string(original ? "H" : "He") + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) +
+                " " + num(p.vx) + " " + num(p.vy) + " 0 " + num(p.force) + " " + (in_arch[i] ? "1" : "0") +
+                " " + std::to_string(i) + "\n";
       else
         text += std::to_string(k) + "," + num(f.t) + "," + std::to_string(i) + "," +
-                (original ? "original" : "added") + "," + num(p.x) + "," + num(p.y) + "," + num(p.radius) + "," +
-                num(p.vx) + "," + num(p.vy) + "," + num(p.force) + "," + (in_arch[i] ? "1" : "0") + "\n";
+                (original ? "original" : "added") + "," + num(p.x) + "," + num(p.y) + "," + num(p.radius) +
+                "," + num(p.vx) + "," + num(p.vy) + "," + num(p.force) + "," + (in_arch[i] ? "1" : "0") +
+                "\n";
     }
   }
   io::write_file_atomic(out, text);
@@ -110,7 +117,8 @@ void add_export_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand("export", "a recording's trajectory as extended XYZ (OVITO, ASE) or CSV");
   cmd->set_version_flag("--version", io::version_string());
-  cmd->add_option("run", o->run, "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
+  cmd->add_option("run", o->run,
+                  "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
       ->required();
   cmd->add_option("--format", o->format, "xyz (extended XYZ) or csv")->capture_default_str();
   cmd->add_option("--frames", o->frames, "K or A:B (inclusive; default: every frame)");

@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "app/common.h"
-#include "core/format.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -22,21 +22,22 @@ struct FiguresOptions {
   bool force = false;
 };
 
-
 int figures(const FiguresOptions& o) {
   // DIR may be a campaign's results directory (with analysis/) or an analysis directory itself.
   fs::path src = o.dir;
   if (!fs::exists(src / "points.csv") && fs::exists(src / "analysis" / "points.csv")) src /= "analysis";
   if (!fs::exists(src / "points.csv"))
-    throw core::InputError("figures: " + o.dir + " holds no points.csv (run `siloscope analyze` or `sweep` first)");
+    throw core::InputError("figures: " + o.dir +
+                           " holds no points.csv (run `siloscope analyze` or `sweep` first)");
   fs::path out = o.out.empty() ? src.parent_path() / "figures" : fs::path(o.out);
   const char* env = std::getenv("SILOSCOPE_FIGURES_SCRIPT");
   fs::path script = env ? env : SILOSCOPE_FIGURES_SCRIPT;
   if (!fs::exists(script)) throw core::InputError("figures: the script " + script.string() + " is missing");
   if (std::system((python_interpreter() + " -c 'import matplotlib' 2>/dev/null").c_str()) != 0)
-    throw core::RuntimeFault("figures: python3 with matplotlib is needed (Debian: apt-get install python3-matplotlib)");
-  // Drawn into a temporary directory, moved into place when complete; an existing figures directory is replaced
-  // only with --force and only when siloscope made it (its metadata.toml says so).
+    throw core::RuntimeFault(
+        "figures: python3 with matplotlib is needed (Debian: apt-get install python3-matplotlib)");
+  // Drawn into a temporary directory, moved into place when complete; an existing figures directory is
+  // replaced only with --force and only when siloscope made it (its metadata.toml says so).
   io::OutputDir dir(out, o.force);
   const fs::path tmp = dir.file("");
   std::string cmd = python_interpreter() + " " + core::shell_quote(script.string()) + " " +
@@ -47,8 +48,8 @@ int figures(const FiguresOptions& o) {
   io::RunInfo info{command_line(), {{"source", core::toml_string(src.string())}}, {}};
   std::string meta = "# siloscope figures metadata: made from the analysis in [run].source\n[siloscope]\n" +
                      std::string("version = ") + core::toml_string(io::version_string()) + "\n" +
-                     "command = " + core::toml_string(info.command) + "\n\n[run]\nsource = " +
-                     core::toml_string(fs::absolute(src).string()) + "\n";
+                     "command = " + core::toml_string(info.command) +
+                     "\n\n[run]\nsource = " + core::toml_string(fs::absolute(src).string()) + "\n";
   io::write_file_atomic(dir.file("metadata.toml"), meta);
   dir.commit();
   std::printf("figures in %s\n", out.c_str());
@@ -68,11 +69,13 @@ int claims(const ClaimsOptions& o) {
   for (const auto& r : o.results) {
     const auto eq = r.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw core::InputError("claims: '" + r + "': expected LABEL=RESULTS, e.g. literal=docs/campaigns/paper");
+      throw core::InputError("claims: '" + r +
+                             "': expected LABEL=RESULTS, e.g. literal=docs/campaigns/paper");
     fs::path dir = r.substr(eq + 1);
     if (!fs::exists(dir / "points.csv") && fs::exists(dir / "analysis" / "points.csv")) dir /= "analysis";
     if (!fs::exists(dir / "points.csv"))
-      throw core::InputError("claims: " + r.substr(eq + 1) + " holds no points.csv (run `siloscope analyze` first)");
+      throw core::InputError("claims: " + r.substr(eq + 1) +
+                             " holds no points.csv (run `siloscope analyze` first)");
     specs.push_back(r.substr(0, eq) + "=" + dir.string());
   }
   const fs::path out = o.out;
@@ -98,9 +101,11 @@ int claims(const ClaimsOptions& o) {
 
 void add_claims_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ClaimsOptions>();
-  auto* cmd = app.add_subcommand("claims", "the paper's seven claims against campaign results: a verdict table");
+  auto* cmd =
+      app.add_subcommand("claims", "the paper's seven claims against campaign results: a verdict table");
   cmd->set_version_flag("--version", io::version_string());
-  cmd->add_option("results", o->results, "LABEL=RESULTS (a campaign's results or analysis directory), one per preset")
+  cmd->add_option("results", o->results,
+                  "LABEL=RESULTS (a campaign's results or analysis directory), one per preset")
       ->required();
   cmd->add_option("--out", o->out, "the Markdown table, e.g. docs/campaigns/paper/claims.md")->required();
   cmd->add_flag("--force", o->force, "replace an earlier claims table");
@@ -111,7 +116,8 @@ void add_figures_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<FiguresOptions>();
   auto* cmd = app.add_subcommand("figures", "the paper's figures (PNG, SVG, PDF) from a campaign's tidy CSV");
   cmd->set_version_flag("--version", io::version_string());
-  cmd->add_option("dir", o->dir, "a sweep's results directory, or an analysis directory (points.csv)")->required();
+  cmd->add_option("dir", o->dir, "a sweep's results directory, or an analysis directory (points.csv)")
+      ->required();
   cmd->add_option("--out", o->out, "output directory (default: next to the analysis, figures/)");
   cmd->add_flag("--force", o->force, "replace an existing figures directory (only one siloscope made)");
   cmd->callback([o, &action] { action = [o] { return figures(*o); }; });

@@ -1,7 +1,8 @@
-// siloscope gallery RUN --out arches.pdf|svg|png: one sheet with every long-lasting arch of a run, each a zoomed
-// outlet view just before the 5 s rule removed it, members highlighted, labelled with the time, the clog's
-// duration, the members and their species. The run is re-simulated from its metadata (runs are deterministic:
-// the trajectory is not needed), and each re-simulated removal is checked against the run's own arches.csv.
+// siloscope gallery RUN --out arches.pdf|svg|png: one sheet with every long-lasting arch of a run, each a
+// zoomed outlet view just before the 5 s rule removed it, members highlighted, labelled with the time, the
+// clog's duration, the members and their species. The run is re-simulated from its metadata (runs are
+// deterministic: the trajectory is not needed), and each re-simulated removal is checked against the run's
+// own arches.csv.
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -43,10 +44,12 @@ int gallery(const GalleryOptions& o) {
   if (ext != ".pdf" && ext != ".svg" && ext != ".png")
     throw core::InputError("--out " + o.out + ": the sheet is .pdf, .svg or .png");
   if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
-    throw core::InputError("--tile " + std::to_string(o.tile) + ": allowed are even sizes from 120 to 2000 pixels");
+    throw core::InputError("--tile " + std::to_string(o.tile) +
+                           ": allowed are even sizes from 120 to 2000 pixels");
   const core::Scene scene = core::load_scene((run / "metadata.toml").string());
   const core::Events recorded = io::read_events(run);
-  if (recorded.arches.empty()) throw core::InputError("gallery: " + o.run + " has no long-lasting arch (arches.csv is empty)");
+  if (recorded.arches.empty())
+    throw core::InputError("gallery: " + o.run + " has no long-lasting arch (arches.csv is empty)");
   const size_t n = std::min(recorded.arches.size(), static_cast<size_t>(o.max_arches));
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "gallery", io::OutputKind::Sheet);
@@ -79,30 +82,33 @@ int gallery(const GalleryOptions& o) {
     f.arch = a.ids;
     f.since_last_exit = a.clog_duration;
     const render::OverlayData no_overlay;
-    core::Image img = painter.paint(f, geo, views, style, render::OverlayOptions::none(), no_overlay, o.tile, o.tile);
+    core::Image img =
+        painter.paint(f, geo, views, style, render::OverlayOptions::none(), no_overlay, o.tile, o.tile);
     char name[32];
     std::snprintf(name, sizeof name, "tile_%03zu.png", k);
     record::write_png(tmp / name, img);
     h.advance_to(a.t);
     const auto& again = h.events().arches;
     if (again.size() != k + 1 || again.back().ids != a.ids)
-      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " + std::to_string(k) +
-                               " at t = " + core::format_g(a.t, 6) + " s (a different build or physics?)");
+      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
+                               std::to_string(k) + " at t = " + core::format_g(a.t, 6) +
+                               " s (a different build or physics?)");
     int added = 0;
     std::string species;
     for (auto s : a.species) {
       added += s == core::Species::Added;
       species += std::string(species.empty() ? "" : ";") + core::species_name(s);
     }
-    index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) + "," +
-             std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," + core::arch_method_name(a.method) + "," +
-             core::format_g(a.geometry.span, 4) + "\n";
+    index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) +
+             "," + std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
+             core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "\n";
   }
   io::write_file_atomic(tmp / "index.csv", index);
-  const std::string title = "long-lasting arches of " + fs::absolute(run).filename().string() + ": r = " +
-                            core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) + ", mu = " +
-                            core::format_g(scene.mu) + " A m^2, kick " + core::format_g(scene.kick_impulse_max) +
-                            " N s, seed " + std::to_string(scene.seed) + " (" + std::to_string(n) + " of " +
+  const std::string title = "long-lasting arches of " + fs::absolute(run).filename().string() +
+                            ": r = " + core::format_g(scene.size_ratio) +
+                            ", chi = " + core::format_g(scene.chi) + ", mu = " + core::format_g(scene.mu) +
+                            " A m^2, kick " + core::format_g(scene.kick_impulse_max) + " N s, seed " +
+                            std::to_string(scene.seed) + " (" + std::to_string(n) + " of " +
                             std::to_string(recorded.arches.size()) + ")";
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
@@ -124,13 +130,17 @@ int gallery(const GalleryOptions& o) {
 
 void add_gallery_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<GalleryOptions>();
-  auto* cmd = app.add_subcommand("gallery", "one sheet (PDF, SVG or PNG) with every long-lasting arch of a run");
+  auto* cmd =
+      app.add_subcommand("gallery", "one sheet (PDF, SVG or PNG) with every long-lasting arch of a run");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("run", o->run, "a run or recording directory (metadata.toml, arches.csv)")->required();
   cmd->add_option("--out", o->out, "the sheet: .pdf, .svg or .png")->required();
-  cmd->add_option("--tile", o->tile, "tile size in pixels")->check(whole_number(120, 2000))->capture_default_str();
+  cmd->add_option("--tile", o->tile, "tile size in pixels")
+      ->check(whole_number(120, 2000))
+      ->capture_default_str();
   cmd->add_option("--columns", o->columns, "tiles per row (0: about square)")->check(whole_number(0, 20));
-  cmd->add_option("--max", o->max_arches, "at most this many arches, the first ones")->check(whole_number(1, 1000))
+  cmd->add_option("--max", o->max_arches, "at most this many arches, the first ones")
+      ->check(whole_number(1, 1000))
       ->capture_default_str();
   cmd->add_option("--palette", o->palette, "paper or colorblind")->capture_default_str();
   cmd->add_flag("--force", o->force, "replace an earlier gallery sheet");

@@ -6,13 +6,13 @@
 
 #include "app/common.h"
 #include "core/error.h"
+#include "core/physics.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/context.h"
 #include "render/overlay.h"
 #include "sim/hopper.h"
-#include "core/physics.h"
 #include "ui/inspector.h"
 #include "ui/window.h"
 
@@ -37,10 +37,10 @@ fs::path trajectory_path(const std::string& p) {
   fs::path path = p;
   if (fs::is_directory(path)) path /= "trajectory.sstraj";
   if (!fs::exists(path))
-    throw core::InputError(p + ": no trajectory here (record writes one; run writes one with --trajectory-fps 30)");
+    throw core::InputError(
+        p + ": no trajectory here (record writes one; run writes one with --trajectory-fps 30)");
   return path;
 }
-
 
 int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -50,7 +50,8 @@ int inspect(const InspectOptions& o) {
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet)
     std::fprintf(stderr, "trajectory: %ld frames%s, %zu clogs, opened in %.0f ms\n", traj.size(),
-                 traj.truncated() ? " (cut off: a partial last frame was dropped)" : "", insp.clogs().size(), open_ms);
+                 traj.truncated() ? " (cut off: a partial last frame was dropped)" : "", insp.clogs().size(),
+                 open_ms);
   if (!o.script.empty()) {
     render::OffscreenContext ctx;
     if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", ctx.description().c_str());
@@ -71,7 +72,8 @@ int inspect(const InspectOptions& o) {
 // The live window's simulation: a Hopper the window never sees (ui knows no simulation).
 class LiveHopper final : public ui::LiveSource {
  public:
-  explicit LiveHopper(const core::Scene& scene) : scene_(scene), hopper_(std::make_unique<sim::Hopper>(scene)) {}
+  explicit LiveHopper(const core::Scene& scene)
+      : scene_(scene), hopper_(std::make_unique<sim::Hopper>(scene)) {}
   void advance(double seconds) override { hopper_->advance_to(hopper_->time() + seconds); }
   core::Frame frame(bool forces) const override { return hopper_->frame(true, forces); }
   const core::Geometry& geometry() const override { return hopper_->geometry(); }
@@ -82,7 +84,9 @@ class LiveHopper final : public ui::LiveSource {
     const double ratio = unit > 0 ? (scene_.mu / unit) * (scene_.mu / unit) : 0.0;
     return {scene_.size_ratio, scene_.chi, ratio, scene_.kick_impulse_max};
   }
-  double mu_for(const ui::LiveParams& p) const override { return core::mu_for_force_ratio(with(p), p.force_ratio); }
+  double mu_for(const ui::LiveParams& p) const override {
+    return core::mu_for_force_ratio(with(p), p.force_ratio);
+  }
   void restart(const ui::LiveParams& p) override {
     core::Scene s = with(p);
     s.mu = core::mu_for_force_ratio(s, p.force_ratio);
@@ -117,22 +121,29 @@ int live(const LiveOptions& o) {
 
 void add_inspect_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<InspectOptions>();
-  auto* cmd = app.add_subcommand("inspect", "step through a recorded run frame by frame (window, or --script off-screen)");
+  auto* cmd = app.add_subcommand(
+      "inspect", "step through a recorded run frame by frame (window, or --script off-screen)");
   cmd->set_version_flag("--version", io::version_string());
-  cmd->add_option("run", o->path, "a run or recording directory (with trajectory.sstraj), or the file")->required();
-  cmd->add_option("--script", o->script, "run inspector commands from FILE off-screen, no window (see docs/inspector.md)");
+  cmd->add_option("run", o->path, "a run or recording directory (with trajectory.sstraj), or the file")
+      ->required();
+  cmd->add_option("--script", o->script,
+                  "run inspector commands from FILE off-screen, no window (see docs/inspector.md)");
   cmd->add_option("--size", o->size, "window size")->capture_default_str();
-  cmd->add_option("--screenshot", o->screenshot, "save the window's pixels to PNG after --frames frames, then close");
-  cmd->add_option("--frames", o->frames, "close the window after N frames (stepping one frame each)")->check(whole_number(0, 100000000));
+  cmd->add_option("--screenshot", o->screenshot,
+                  "save the window's pixels to PNG after --frames frames, then close");
+  cmd->add_option("--frames", o->frames, "close the window after N frames (stepping one frame each)")
+      ->check(whole_number(0, 100000000));
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return inspect(*o); }; });
 
   auto l = std::make_shared<LiveOptions>();
-  auto* lc = app.add_subcommand("live", "the simulation running in a window, with a panel to change mu, r, chi, kicks");
+  auto* lc = app.add_subcommand(
+      "live", "the simulation running in a window, with a panel to change mu, r, chi, kicks");
   lc->set_version_flag("--version", io::version_string());
   l->scene.add_to(*lc);
   lc->add_option("--size", l->size, "window size")->capture_default_str();
-  lc->add_option("--screenshot", l->screenshot, "save the window's pixels to PNG after --frames frames, then close");
+  lc->add_option("--screenshot", l->screenshot,
+                 "save the window's pixels to PNG after --frames frames, then close");
   lc->add_option("--frames", l->frames, "close the window after N frames")->check(whole_number(0, 100000000));
   lc->callback([l, &action] { action = [l] { return live(*l); }; });
 }

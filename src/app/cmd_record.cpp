@@ -10,12 +10,12 @@
 #include <thread>
 
 #include "analysis/measure.h"
-#include "core/format.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
 #include "app/queue.h"
 #include "app/recording.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -31,13 +31,16 @@
 namespace app {
 
 namespace {
-std::string num6(double v) { return core::format_g(v, 6); }
+std::string num6(double v) {
+  return core::format_g(v, 6);
+}
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 struct RecordOptions {
   SceneOptions scene;
-  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species", overlay = "all";
+  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species",
+                   overlay = "all";
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
   double color_max = 0;  // top of the speed (m/s) or force (N) colour scale; 0: the fixed default
@@ -50,9 +53,9 @@ struct Stages {
   double sim = 0, draw = 0, readback = 0, convert = 0, encode = 0, png = 0;
 };
 
-
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
 struct Panel {
@@ -89,7 +92,8 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
     std::vector<std::string> sets;
     std::stringstream ss(c);
     for (std::string item; std::getline(ss, item, ',');) sets.push_back(item);
-    if (sets.empty()) throw core::InputError("--compare '" + c + "': expected key=value[,key=value...], e.g. mu=2.2");
+    if (sets.empty())
+      throw core::InputError("--compare '" + c + "': expected key=value[,key=value...], e.g. mu=2.2");
     core::apply_overrides(s, sets);
     if (o.scene.seed) s.seed = *o.scene.seed;
     if (o.scene.duration) s.duration = *o.scene.duration;
@@ -105,12 +109,13 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
     add(s, fs::path(f).stem().string());
   }
   if (panels.size() > 4)
-    throw core::InputError("--compare: " + std::to_string(panels.size()) + " panels; a comparison has 2 to 4");
+    throw core::InputError("--compare: " + std::to_string(panels.size()) +
+                           " panels; a comparison has 2 to 4");
   for (const auto& p : panels)
     if (p.scene.dt != base.dt || p.scene.duration != base.duration)
-      throw core::InputError("--compare " + p.label + ": dt and duration must equal the base scene's (dt = " +
-                             num6(base.dt) + " s, duration = " + num6(base.duration) +
-                             " s): the panels run on one clock");
+      throw core::InputError("--compare " + p.label +
+                             ": dt and duration must equal the base scene's (dt = " + num6(base.dt) +
+                             " s, duration = " + num6(base.duration) + " s): the panels run on one clock");
   for (size_t k = 0; k < panels.size(); ++k) panels[k].subdir = "panel" + std::to_string(k) + "/";
   return panels;
 }
@@ -126,13 +131,19 @@ int record_movie(const RecordOptions& o) {
   video.crf = o.crf;
   video.preset = o.preset;
   if (!o.no_movie) record::validate(video);
-  if (!(o.speed > 0) || o.speed > 1000) throw core::InputError("--speed " + num6(o.speed) + ": allowed range is (0, 1000] simulated s per video s");
-  if (!(o.slowmo >= 1) || o.slowmo > 100) throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
+  if (!(o.speed > 0) || o.speed > 1000)
+    throw core::InputError("--speed " + num6(o.speed) +
+                           ": allowed range is (0, 1000] simulated s per video s");
+  if (!(o.slowmo >= 1) || o.slowmo > 100)
+    throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
   const FrameClock clock = make_frame_clock(scene.dt, o.fps, o.speed, o.slowmo);
   video.frame_rate = clock.video_fps;
-  if (o.png_every < 0) throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
-  if (o.no_movie && o.png_every == 0) throw core::InputError("--no-movie without --png-every would record nothing");
-  if (o.fps < 1 || o.fps > 240) throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
+  if (o.png_every < 0)
+    throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
+  if (o.no_movie && o.png_every == 0)
+    throw core::InputError("--no-movie without --png-every would record nothing");
+  if (o.fps < 1 || o.fps > 240)
+    throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
   render::Style style;
   style.palette = render::parse_palette(o.palette);
   style.color = render::parse_color_mode(o.color);
@@ -202,7 +213,8 @@ int record_movie(const RecordOptions& o) {
       std::vector<core::Frame> fs;
       while (frames.pop(fs)) {
         std::vector<render::PanelInput> in;
-        for (size_t k = 0; k < n_panels; ++k) in.push_back({&fs[k], &panels[k].geo, &panels[k].views, &panels[k].odata});
+        for (size_t k = 0; k < n_panels; ++k)
+          in.push_back({&fs[k], &panels[k].geo, &panels[k].views, &panels[k].odata});
         core::Image img = painter.paint(in, style, overlay, video.width, video.height);
         st.draw = painter.timing().draw_s;
         st.readback = painter.timing().readback_s;
@@ -254,15 +266,16 @@ int record_movie(const RecordOptions& o) {
     auto t0 = Clock::now();
     in_parallel([&](Panel& p) {
       p.hopper = std::make_unique<sim::Hopper>(p.scene);
-      const std::string meta = n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(p.scene, info);
-      p.trajectory = std::make_unique<io::TrajectoryWriter>(dir.file(p.subdir + "trajectory.sstraj"),
-                                                            trajectory_info(*p.hopper, clock.frame_interval, meta));
+      const std::string meta =
+          n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(p.scene, info);
+      p.trajectory = std::make_unique<io::TrajectoryWriter>(
+          dir.file(p.subdir + "trajectory.sstraj"), trajectory_info(*p.hopper, clock.frame_interval, meta));
     });
     sim::Hopper& lead = *panels[0].hopper;
-    // Frames every clock.steps time steps, or every clock.slow_steps around a long-lasting arch's removal (from
-    // 0.5 s before the clog_timeout rule fires to 1 s after, in any panel), both known from the current state.
-    // Whole steps: every frame shows the state at an exact multiple of dt, and the trajectory and the MP4 carry
-    // that time. Events on screen: see EventMarks.
+    // Frames every clock.steps time steps, or every clock.slow_steps around a long-lasting arch's removal
+    // (from 0.5 s before the clog_timeout rule fires to 1 s after, in any panel), both known from the current
+    // state. Whole steps: every frame shows the state at an exact multiple of dt, and the trajectory and the
+    // MP4 carry that time. Events on screen: see EventMarks.
     long next_steps = 0;
     for (long k = 0; lead.time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
       if (next_steps > 0)
@@ -329,47 +342,50 @@ int record_movie(const RecordOptions& o) {
     h.finish();
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
     io::RunInfo pinfo = info;
-    pinfo.facts = {{"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
-                   {"frames", std::to_string(encoded)},
-                   {"trajectory", "\"trajectory.sstraj\""},
-                   {"trajectory_bytes_per_frame", std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total)))},
-                   {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
-                   {"fps", std::to_string(o.fps)},
-                   {"steps_per_frame", std::to_string(clock.steps)},
-                   {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
-                   {"video_fps", core::format_toml_float(clock.video_fps)},
-                   {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
-                   {"speed_sim_s_per_video_s", num6(o.speed)},
-                   {"slowmo", num6(o.slowmo)},
-                   {"slowmo_frames", std::to_string(slow_frames)},
-                   {"camera", core::toml_string(o.camera)},
-                   {"palette", core::toml_string(o.palette)},
-                   {"color", core::toml_string(o.color)},
-                   {"color_scale_max", core::format_toml_float(style.color == render::ColorMode::Speed ? style.speed_max
-                                                                                                     : style.force_max)},
-                   {"overlay", core::toml_string(o.overlay)},
-                   {"crf", std::to_string(o.crf)},
-                   {"preset", core::toml_string(o.preset)},
-                   {"png_every", std::to_string(o.png_every)},
-                   {"panels", std::to_string(n_panels)},
-                   {"panel_label", core::toml_string(p.label)},
-                   {"interrupted", was_interrupted ? "true" : "false"},
-                   {"simulated_s", num6(h.time())},
-                   {"gl_renderer", core::toml_string(gl_renderer)},
-                   {"wall_s", num6(wall)},
-                   {"ms_per_frame_sim", num6(st.sim * per)},
-                   {"ms_per_frame_draw", num6(st.draw * per)},
-                   {"ms_per_frame_readback", num6(st.readback * per)},
-                   {"ms_per_frame_convert", num6(st.convert * per)},
-                   {"ms_per_frame_encode", num6(st.encode * per)},
-                   {"ms_per_frame_png", num6(st.png * per)}};
+    pinfo.facts = {
+        {"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
+        {"frames", std::to_string(encoded)},
+        {"trajectory", "\"trajectory.sstraj\""},
+        {"trajectory_bytes_per_frame",
+         std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total)))},
+        {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
+        {"fps", std::to_string(o.fps)},
+        {"steps_per_frame", std::to_string(clock.steps)},
+        {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
+        {"video_fps", core::format_toml_float(clock.video_fps)},
+        {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
+        {"speed_sim_s_per_video_s", num6(o.speed)},
+        {"slowmo", num6(o.slowmo)},
+        {"slowmo_frames", std::to_string(slow_frames)},
+        {"camera", core::toml_string(o.camera)},
+        {"palette", core::toml_string(o.palette)},
+        {"color", core::toml_string(o.color)},
+        {"color_scale_max", core::format_toml_float(
+                                style.color == render::ColorMode::Speed ? style.speed_max : style.force_max)},
+        {"overlay", core::toml_string(o.overlay)},
+        {"crf", std::to_string(o.crf)},
+        {"preset", core::toml_string(o.preset)},
+        {"png_every", std::to_string(o.png_every)},
+        {"panels", std::to_string(n_panels)},
+        {"panel_label", core::toml_string(p.label)},
+        {"interrupted", was_interrupted ? "true" : "false"},
+        {"simulated_s", num6(h.time())},
+        {"gl_renderer", core::toml_string(gl_renderer)},
+        {"wall_s", num6(wall)},
+        {"ms_per_frame_sim", num6(st.sim * per)},
+        {"ms_per_frame_draw", num6(st.draw * per)},
+        {"ms_per_frame_readback", num6(st.readback * per)},
+        {"ms_per_frame_convert", num6(st.convert * per)},
+        {"ms_per_frame_encode", num6(st.encode * per)},
+        {"ms_per_frame_png", num6(st.png * per)}};
     ms.push_back(write_run_outputs(dir.file(p.subdir), p.scene, h, analysed, pinfo));
   }
   if (n_panels > 1) {
     // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
     io::RunInfo cinfo = info;
     std::string labels;
-    for (const auto& p : panels) labels += std::string(labels.empty() ? "" : ", ") + core::toml_string(p.label);
+    for (const auto& p : panels)
+      labels += std::string(labels.empty() ? "" : ", ") + core::toml_string(p.label);
     cinfo.facts = {{"movie", core::toml_string(o.no_movie ? std::string() : movie_path.filename().string())},
                    {"frames", std::to_string(encoded)},
                    {"panels", std::to_string(n_panels)},
@@ -377,18 +393,22 @@ int record_movie(const RecordOptions& o) {
                    {"interrupted", was_interrupted ? "true" : "false"},
                    {"simulated_s", num6(panels[0].hopper->time())},
                    {"wall_s", num6(wall)}};
-    io::write_file_atomic(dir.file("metadata.toml"), "# a comparison movie: each panelK/ holds one panel's run\n" +
-                                                         io::metadata_toml(scene, cinfo));
+    io::write_file_atomic(
+        dir.file("metadata.toml"),
+        "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));
   }
   dir.commit();
 
   if (!o.quiet) {
     std::printf("renderer    %s\n", gl_renderer.c_str());
-    std::printf("recorded    %ld frames (%.1f s of discharge%s) in %.1f s wall: %.2fx real time, %.1f frames/s\n",
-                encoded, shown, was_interrupted ? ", interrupted" : "", wall, shown / wall, encoded / wall);
-    std::printf("per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f ms"
-                " (stages overlap)\n",
-                st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
+    std::printf(
+        "recorded    %ld frames (%.1f s of discharge%s) in %.1f s wall: %.2fx real time, %.1f frames/s\n",
+        encoded, shown, was_interrupted ? ", interrupted" : "", wall, shown / wall, encoded / wall);
+    std::printf(
+        "per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f "
+        "ms"
+        " (stages overlap)\n",
+        st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
     for (size_t k = 0; k < n_panels; ++k) {
       if (n_panels > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
       std::printf("%s", analysis::summary_text(ms[k]).c_str());
@@ -402,33 +422,48 @@ int record_movie(const RecordOptions& o) {
 
 void add_record_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RecordOptions>();
-  auto* cmd = app.add_subcommand("record", "film a discharge: an MP4 movie, optional PNG frames, events and metadata");
+  auto* cmd = app.add_subcommand("record",
+                                 "film a discharge: an MP4 movie, optional PNG frames, events and metadata");
   cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd);
   cmd->add_option("--out", o->out, "recordings/NAME: writes NAME.mp4 and the directory NAME/")->required();
-  cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")->capture_default_str();
-  cmd->add_option("--fps", o->fps, "video frames per second")->check(whole_number(1, 240))->capture_default_str();
-  cmd->add_option("--speed", o->speed, "simulated seconds per video second (0.25 = 4x slow motion)")->capture_default_str();
-  cmd->add_option("--slowmo", o->slowmo,
-                  "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
+  cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")
       ->capture_default_str();
-  cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")->capture_default_str();
-  cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")->check(whole_number(0, 1000000))->capture_default_str();
-  cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")->check(whole_number(0, 51))->capture_default_str();
+  cmd->add_option("--fps", o->fps, "video frames per second")
+      ->check(whole_number(1, 240))
+      ->capture_default_str();
+  cmd->add_option("--speed", o->speed, "simulated seconds per video second (0.25 = 4x slow motion)")
+      ->capture_default_str();
+  cmd->add_option(
+         "--slowmo", o->slowmo,
+         "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
+      ->capture_default_str();
+  cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
+      ->capture_default_str();
+  cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")
+      ->check(whole_number(0, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--crf", o->crf, "H.264 quality, 0 (lossless) to 51")
+      ->check(whole_number(0, 51))
+      ->capture_default_str();
   cmd->add_option("--preset", o->preset, "x264 preset, ultrafast .. veryslow")->capture_default_str();
-  cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")->capture_default_str();
+  cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")
+      ->capture_default_str();
   cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();
-  cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")->capture_default_str();
+  cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")
+      ->capture_default_str();
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
   cmd->add_option("--color-max", o->color_max,
                   "top of the colour scale for --color speed (m/s) or force (N); default: the fixed scale "
                   "(0.5 m/s, 20 N), the same in every movie");
-  cmd->add_option("--compare", o->compare,
-                  "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "
-                  "one clock; with a single --compare the base scene is the first panel)");
-  cmd->add_option("--compare-scene", o->compare_scene, "a comparison panel from another scene file (repeatable)");
+  cmd->add_option(
+      "--compare", o->compare,
+      "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "
+      "one clock; with a single --compare the base scene is the first panel)");
+  cmd->add_option("--compare-scene", o->compare_scene,
+                  "a comparison panel from another scene file (repeatable)");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return record_movie(*o); }; });
 }

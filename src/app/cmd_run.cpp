@@ -2,10 +2,10 @@
 #include <cstdio>
 
 #include "analysis/measure.h"
-#include "core/format.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -23,11 +23,11 @@ struct RunOptions {
   bool quiet = false;
 };
 
-
 int run(const RunOptions& o) {
   const core::Scene scene = o.scene.load();
   if (o.trajectory_fps < 0 || o.trajectory_fps > 1.0 / scene.dt)
-    throw core::InputError("--trajectory-fps " + std::to_string(o.trajectory_fps) + ": allowed range is 0 to 1/dt");
+    throw core::InputError("--trajectory-fps " + std::to_string(o.trajectory_fps) +
+                           ": allowed range is 0 to 1/dt");
   io::OutputDir dir(o.out, o.force);  // checked before hours of simulation, not after
   install_interrupt_handler();
 
@@ -40,7 +40,8 @@ int run(const RunOptions& o) {
   if (o.trajectory_fps > 0) {
     io::RunInfo tinfo{command_line(), {}, {}};
     trajectory = std::make_unique<io::TrajectoryWriter>(
-        dir.file("trajectory.sstraj"), trajectory_info(hopper, 1.0 / o.trajectory_fps, io::metadata_toml(scene, tinfo)));
+        dir.file("trajectory.sstraj"),
+        trajectory_info(hopper, 1.0 / o.trajectory_fps, io::metadata_toml(scene, tinfo)));
   }
   auto record_frame = [&] {
     // Frames at k / fps of simulated time, to the nearest step.

@@ -1,5 +1,6 @@
-// siloscope scene --keys | scene FILE [--set k=v ...]: every scene key with its unit, default, range and meaning;
-// or a scene file validated and resolved (what the file and --set made of it, and the derived facts).
+// siloscope scene --keys | scene FILE [--set k=v ...]: every scene key with its unit, default, range and
+// meaning; or a scene file validated and resolved (what the file and --set made of it, and the derived
+// facts).
 #include <cstdio>
 
 #include "app/common.h"
@@ -19,9 +20,12 @@ std::string range_of(const core::Field& f) {
   return std::visit(
       [&](auto ptr) -> std::string {
         using T = std::decay_t<decltype(core::Scene{}.*ptr)>;
-        if constexpr (std::is_same_v<T, bool>) return "true|false";
-        else if constexpr (std::is_same_v<T, std::string>) return f.choices ? f.choices : "";
-        else return "[" + core::format_g(f.min, 10) + ", " + core::format_g(f.max, 20) + "]";
+        if constexpr (std::is_same_v<T, bool>)
+          return "true|false";
+        else if constexpr (std::is_same_v<T, std::string>)
+          return f.choices ? f.choices : "";
+        else
+          return "[" + core::format_g(f.min, 10) + ", " + core::format_g(f.max, 20) + "]";
       },
       f.ptr);
 }
@@ -37,7 +41,8 @@ int scene_cmd(const SceneCmdOptions& o) {
     }
     return 0;
   }
-  if (o.scene.path.empty()) throw core::InputError("scene: give a scene file to check, or --keys to list every key");
+  if (o.scene.path.empty())
+    throw core::InputError("scene: give a scene file to check, or --keys to list every key");
   const core::Scene s = o.scene.load();
   std::printf("# %s is valid. Resolved scene (file, then --set, --seed, --duration):\n%s\n[derived]\n",
               o.scene.path.c_str(), core::scene_toml(s).c_str());
@@ -48,7 +53,8 @@ int scene_cmd(const SceneCmdOptions& o) {
 
 void add_scene_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SceneCmdOptions>();
-  auto* cmd = app.add_subcommand("scene", "list every scene key (--keys), or validate and resolve a scene file");
+  auto* cmd =
+      app.add_subcommand("scene", "list every scene key (--keys), or validate and resolve a scene file");
   cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
   cmd->add_flag("--keys", o->keys, "list every key: unit, default, allowed values, meaning");

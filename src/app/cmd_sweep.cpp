@@ -4,8 +4,8 @@
 // Each realization is one `siloscope run` process writing its own directory atomically, so a crash loses at
 // most the realizations in flight, a rerun skips what is finished, and results do not depend on how the work
 // was split (seeds come from the campaign, not from the worker).
-#include <spawn.h>
 #include <fcntl.h>
+#include <spawn.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,9 +21,9 @@
 #include <thread>
 
 #include "app/campaign.h"
-#include "core/format.h"
 #include "app/common.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -47,7 +47,6 @@ struct Job {
   std::string dir;   // relative to the results directory
   std::string line;  // the shell command, run from the results directory
 };
-
 
 std::string self_exe() {
   std::error_code ec;
@@ -84,8 +83,8 @@ std::string without_realizations(const std::string& text) {
   return out;
 }
 
-// Prepare the results directory: the campaign file it belongs to, the scene of each point. Refuses a directory
-// that holds a different campaign.
+// Prepare the results directory: the campaign file it belongs to, the scene of each point. Refuses a
+// directory that holds a different campaign.
 void prepare_results(const Campaign& c, const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir / "scenes", ec);
@@ -95,8 +94,11 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
     std::ifstream in(stamp);
     std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (without_realizations(old) != without_realizations(c.text))
-      throw core::InputError("results directory " + dir.string() + " holds a different campaign (its campaign.toml "
-                             "differs from " + c.path + " in more than `realizations`); choose another --results "
+      throw core::InputError("results directory " + dir.string() +
+                             " holds a different campaign (its campaign.toml "
+                             "differs from " +
+                             c.path +
+                             " in more than `realizations`); choose another --results "
                              "directory");
     if (old != c.text) io::write_file_atomic(stamp, c.text);
   } else {
@@ -105,8 +107,8 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   for (size_t p = 0; p < c.points.size(); ++p) {
     char name[32];
     std::snprintf(name, sizeof name, "p%03zu.toml", p);
-    std::string text = "# point " + std::to_string(p) + " of campaign " + c.name + ": " + c.points[p].label + "\n" +
-                       core::scene_toml(c.points[p].scene);
+    std::string text = "# point " + std::to_string(p) + " of campaign " + c.name + ": " + c.points[p].label +
+                       "\n" + core::scene_toml(c.points[p].scene);
     io::write_file_atomic(dir / "scenes" / name, text);
   }
   // Runs of an earlier sweep that was killed (kill -9) may still be going: wait for those (they will finish
@@ -120,7 +122,9 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
     const pid_t pid = static_cast<pid_t>(std::atol(name.substr(name.rfind('-') + 1).c_str()));
     bool said = false;
     while (pid > 0 && ::kill(pid, 0) == 0 && fs::exists(p)) {
-      if (!said) std::fprintf(stderr, "siloscope: waiting for a realization left running by an earlier sweep (pid %d)\n", pid);
+      if (!said)
+        std::fprintf(stderr,
+                     "siloscope: waiting for a realization left running by an earlier sweep (pid %d)\n", pid);
       said = true;
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
@@ -128,8 +132,8 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   }
 }
 
-// Realization-major: every point gets its k-th realization before any gets its (k+1)-th, so a campaign stopped
-// at any moment has nearly the same number of realizations at every point.
+// Realization-major: every point gets its k-th realization before any gets its (k+1)-th, so a campaign
+// stopped at any moment has nearly the same number of realizations at every point.
 std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std::string& binary, int up_to,
                               size_t& done) {
   std::vector<Job> jobs;
@@ -144,8 +148,8 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
       }
       char scene[48];
       std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
-      j.line = core::shell_quote(binary) + " run " + scene + " --seed " + std::to_string(c.realization_seed(p, k)) +
-               " --quiet --out " + j.dir;
+      j.line = core::shell_quote(binary) + " run " + scene + " --seed " +
+               std::to_string(c.realization_seed(p, k)) + " --quiet --out " + j.dir;
       jobs.push_back(j);
     }
   }
@@ -158,13 +162,22 @@ void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& j
   io::write_file_atomic(dir / "jobs.txt", list);
   std::string slurm =
       "#!/bin/bash\n"
-      "# SLURM array for campaign " + c.name + ": one realization per task. Submit from this directory:\n"
-      "#   sbatch --array=1-" + std::to_string(jobs.size()) + " jobs.slurm\n"
-      "# Throttle to K tasks at a time with --array=1-" + std::to_string(jobs.size()) + "%K. A task that is cancelled,\n"
+      "# SLURM array for campaign " +
+      c.name +
+      ": one realization per task. Submit from this directory:\n"
+      "#   sbatch --array=1-" +
+      std::to_string(jobs.size()) +
+      " jobs.slurm\n"
+      "# Throttle to K tasks at a time with --array=1-" +
+      std::to_string(jobs.size()) +
+      "%K. A task that is cancelled,\n"
       "# pre-empted or times out leaves nothing under its run directory; rerun `siloscope sweep CAMPAIGN\n"
-      "# --emit-jobs --results THIS_DIR` and submit again: only missing realizations are listed (docs/cluster.md).\n"
+      "# --emit-jobs --results THIS_DIR` and submit again: only missing realizations are listed "
+      "(docs/cluster.md).\n"
       "#SBATCH --requeue\n"
-      "#SBATCH --job-name=siloscope-" + c.name + "\n"
+      "#SBATCH --job-name=siloscope-" +
+      c.name +
+      "\n"
       "#SBATCH --cpus-per-task=1\n"
       "#SBATCH --output=logs/slurm-%A_%a.out\n"
       "set -euo pipefail\n"
@@ -174,9 +187,11 @@ void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& j
       "eval \"$line\"\n";
   io::write_file_atomic(dir / "jobs.slurm", slurm);
   std::printf("%zu jobs written to %s/jobs.txt (finished realizations left out)\n", jobs.size(), dir.c_str());
-  std::printf("GNU parallel:  cd %s && parallel --joblog logs/parallel.log -j $(nproc) < jobs.txt\n", dir.c_str());
+  std::printf("GNU parallel:  cd %s && parallel --joblog logs/parallel.log -j $(nproc) < jobs.txt\n",
+              dir.c_str());
   std::printf("SLURM:         cd %s && sbatch --array=1-%zu jobs.slurm\n", dir.c_str(), jobs.size());
-  std::printf("then:          siloscope analyze %s/runs --out %s/analysis --force\n", dir.c_str(), dir.c_str());
+  std::printf("then:          siloscope analyze %s/runs --out %s/analysis --force\n", dir.c_str(),
+              dir.c_str());
 }
 
 pid_t spawn_job(const Job& j, const fs::path& dir) {
@@ -196,14 +211,15 @@ int sweep(const SweepOptions& o) {
   const fs::path dir = fs::absolute(o.results.empty() ? fs::path("results") / c.name : fs::path(o.results));
   const std::string binary = o.binary.empty() ? self_exe() : o.binary;
   if (o.dry_run) {
-    std::printf("campaign %s: %zu points x %d realizations of %g s\n", c.name.c_str(), c.points.size(), c.realizations,
-                c.duration);
+    std::printf("campaign %s: %zu points x %d realizations of %g s\n", c.name.c_str(), c.points.size(),
+                c.realizations, c.duration);
     for (size_t p = 0; p < c.points.size(); ++p)
       std::printf("  p%03zu  %-48s mu = %.6g A*m^2  first seed %llu\n", p, c.points[p].label.c_str(),
                   c.points[p].scene.mu, static_cast<unsigned long long>(c.realization_seed(p, 0)));
     return 0;
   }
-  const int workers = o.workers > 0 ? o.workers : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int workers =
+      o.workers > 0 ? o.workers : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
@@ -251,11 +267,15 @@ int sweep(const SweepOptions& o) {
     const Job& j = jobs[job_index];
     running.erase(it);
     bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit 75)
-    // or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run again.
+    // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit
+    // 75) or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run
+    // again.
     if (!ok && !interrupted() && fs::exists(dir / j.dir / "metadata.toml")) ok = true;
     if (!ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 75) {
-      if (!o.quiet) std::fprintf(stderr, "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n", j.dir.c_str());
+      if (!o.quiet)
+        std::fprintf(stderr,
+                     "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n",
+                     j.dir.c_str());
       std::this_thread::sleep_for(std::chrono::milliseconds(300));
       if (fs::exists(dir / j.dir / "metadata.toml")) {
         ok = true;
@@ -267,7 +287,8 @@ int sweep(const SweepOptions& o) {
     if (!ok && !interrupted()) {
       char log[64];
       std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
-      failures.push_back(j.dir + " (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) +
+      failures.push_back(j.dir + " (exit " +
+                         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) +
                          ", see " + (dir / log).string() + ")");
       std::fprintf(stderr, "\nsiloscope: realization %s failed; the others go on\n", failures.back().c_str());
     }
@@ -293,7 +314,8 @@ int sweep(const SweepOptions& o) {
 
 void add_sweep_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SweepOptions>();
-  auto* cmd = app.add_subcommand("sweep", "run a campaign (a grid of scenes x realizations) on all cores, resumably");
+  auto* cmd =
+      app.add_subcommand("sweep", "run a campaign (a grid of scenes x realizations) on all cores, resumably");
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("campaign", o->campaign, "campaign file, e.g. assets/campaigns/quick.toml")->required();
   cmd->add_option("--results", o->results, "results directory (default: results/NAME)");
@@ -302,7 +324,8 @@ void add_sweep_command(CLI::App& app, Action& action) {
   cmd->add_option("--up-to", o->up_to,
                   "run only the first K realizations of every point (a first pass over the whole grid)")
       ->check(whole_number(1, 1000000));
-  cmd->add_flag("--emit-jobs", o->emit_jobs, "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
+  cmd->add_flag("--emit-jobs", o->emit_jobs,
+                "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
   cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
   cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");
   cmd->add_flag("--no-analyze", o->no_analyze, "do not aggregate into RESULTS/analysis at the end");

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "analysis/tidy.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "analysis/tidy.h"
 #include "io/events_csv.h"
 #include "io/output.h"
 #include "io/trajectory.h"
@@ -29,13 +29,16 @@ void on_signal(int sig) {
 }  // namespace
 
 void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
-  auto* opt = cmd.add_option("scene", path, "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
+  auto* opt = cmd.add_option("scene", path,
+                             "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
   if (scene_required) opt->required();
   cmd.add_option("--seed", seed, "random seed (overrides the scene's)")
       ->check(whole_number(0, 18446744073709551615.0L));
-  cmd.add_option("--duration", duration, "seconds of discharge after the aperture opens (overrides the scene's)");
+  cmd.add_option("--duration", duration,
+                 "seconds of discharge after the aperture opens (overrides the scene's)");
   cmd.add_option("--set", overrides, "override a scene key, e.g. --set mu=1.0 (repeatable)")->take_all();
-  cmd.add_flag("--unsafe", unsafe, "let the health monitor warn instead of stopping (results may be garbage)");
+  cmd.add_flag("--unsafe", unsafe,
+               "let the health monitor warn instead of stopping (results may be garbage)");
 }
 
 core::Scene SceneOptions::load() const {
@@ -43,7 +46,8 @@ core::Scene SceneOptions::load() const {
   core::apply_overrides(s, overrides);
   if (seed) s.seed = *seed;
   if (duration) {
-    if (!(*duration >= 0)) throw core::InputError("--duration " + std::to_string(*duration) + ": must be >= 0 s");
+    if (!(*duration >= 0))
+      throw core::InputError("--duration " + std::to_string(*duration) + ": must be >= 0 s");
     s.duration = *duration;
   }
   if (unsafe) s.unsafe = true;
@@ -51,9 +55,13 @@ core::Scene SceneOptions::load() const {
   return s;
 }
 
-std::string python_interpreter() { return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
+std::string python_interpreter() {
+  return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+}
 
-std::string command_line() { return g_command; }
+std::string command_line() {
+  return g_command;
+}
 
 analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
   analysis::Measurements m = analysis::measure(h.events(), duration);
@@ -63,11 +71,12 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
   return m;
 }
 
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene, const sim::Hopper& h,
-                                         double duration, io::RunInfo info) {
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
+                                         const sim::Hopper& h, double duration, io::RunInfo info) {
   const analysis::Measurements m = measure_run(h, duration);
   io::write_events(dir, h.events());
-  io::write_file_atomic(dir / "summary.csv", analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
+  io::write_file_atomic(dir / "summary.csv",
+                        analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir / "survival.csv", analysis::survival_csv(scene, h.events().exits));
   info.health = health_facts(h);
   io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(scene, info));
@@ -127,7 +136,9 @@ void install_interrupt_handler() {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 }
-bool interrupted() { return g_signals.load() > 0; }
+bool interrupted() {
+  return g_signals.load() > 0;
+}
 
 Progress::Progress(std::string label, double total, bool enabled)
     : label_(std::move(label)), total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {
@@ -145,8 +156,8 @@ void Progress::update(double done, const std::string& extra) {
   constexpr int kWidth = 30;
   std::string bar(static_cast<size_t>(frac * kWidth), '#');
   bar.resize(kWidth, '.');
-  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %s  ETA %4.0f s ", label_.c_str(), bar.c_str(), 100 * frac, extra.c_str(),
-               eta);
+  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %s  ETA %4.0f s ", label_.c_str(), bar.c_str(), 100 * frac,
+               extra.c_str(), eta);
   std::fflush(stderr);
 }
 

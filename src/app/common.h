@@ -33,9 +33,10 @@ std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper&
 // A finished run's measurements over `duration` s of discharge, with its health (for summary.csv).
 analysis::Measurements measure_run(const sim::Hopper& h, double duration);
 // A run's outputs, written the same way by run and record into `dir`: exits/clogs/arches.csv, summary.csv,
-// survival.csv and metadata.toml (info, with the run's health added). Returns the measurements of `duration` s.
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene, const sim::Hopper& h,
-                                         double duration, io::RunInfo info);
+// survival.csv and metadata.toml (info, with the run's health added). Returns the measurements of `duration`
+// s.
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
+                                         const sim::Hopper& h, double duration, io::RunInfo info);
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);

@@ -11,7 +11,9 @@
 namespace app {
 
 namespace {
-std::string num6(double v) { return core::format_g(v, 6); }
+std::string num6(double v) {
+  return core::format_g(v, 6);
+}
 }  // namespace
 
 FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo) {
@@ -19,17 +21,19 @@ FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo) {
   const double wanted = speed / fps;  // simulated seconds per video frame asked for
   const double exact = wanted / dt;
   if (exact < 0.5)
-    throw core::InputError("--speed " + num6(speed) + " at --fps " + std::to_string(fps) + " asks for a frame every " +
-                           num6(wanted) + " s of simulation, less than one time step (dt = " + num6(dt) +
+    throw core::InputError("--speed " + num6(speed) + " at --fps " + std::to_string(fps) +
+                           " asks for a frame every " + num6(wanted) +
+                           " s of simulation, less than one time step (dt = " + num6(dt) +
                            " s); use --speed >= " + num6(fps * dt) + " or a lower --fps");
   c.steps = std::max(1L, std::lround(exact));
-  // A whole number of steps per frame; the rate written into the movie follows it (33 steps of 1 ms at 30 fps:
-  // 1000/33 = 30.30 frames per video second), so video time stays equal to simulated time / speed.
+  // A whole number of steps per frame; the rate written into the movie follows it (33 steps of 1 ms at 30
+  // fps: 1000/33 = 30.30 frames per video second), so video time stays equal to simulated time / speed.
   if (std::abs(c.steps - exact) / exact > 0.05)
-    throw core::InputError("--speed " + num6(speed) + " at --fps " + std::to_string(fps) + " needs " + num6(exact) +
-                           " time steps per frame; the nearest whole number (" + std::to_string(c.steps) +
-                           ") would change the frame rate by more than 5%; use --speed " +
-                           num6(c.steps * dt * fps) + " or " + num6(std::max(1L, c.steps + (exact > c.steps ? 1 : -1)) * dt * fps));
+    throw core::InputError(
+        "--speed " + num6(speed) + " at --fps " + std::to_string(fps) + " needs " + num6(exact) +
+        " time steps per frame; the nearest whole number (" + std::to_string(c.steps) +
+        ") would change the frame rate by more than 5%; use --speed " + num6(c.steps * dt * fps) + " or " +
+        num6(std::max(1L, c.steps + (exact > c.steps ? 1 : -1)) * dt * fps));
   c.slow_steps = std::max(1L, std::lround(c.steps / slowmo));
   if (slowmo > 1 && c.steps / slowmo < 0.5)
     throw core::InputError("--slowmo " + num6(slowmo) + " would need less than one time step per frame (" +
@@ -50,7 +54,8 @@ void EventMarks::update(const sim::Hopper& h, core::Frame& f) {
     for (size_t k = 0; k < a.ids.size() && k < a.x.size(); ++k)
       rings_.push_back({a.x[k], a.y[k], static_cast<float>(h.radii()[static_cast<size_t>(a.ids[k])])});
     char text[96];
-    std::snprintf(text, sizeof text, "arch removed (%.0f s rule): %zu disks", h.scene().clog_timeout, a.ids.size());
+    std::snprintf(text, sizeof text, "arch removed (%.0f s rule): %zu disks", h.scene().clog_timeout,
+                  a.ids.size());
     start(text, a.t, true);
     arches_seen_ = arches.size();
   }

@@ -23,8 +23,8 @@ struct FrameClock {
 FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo);
 
 // The marks record puts on its frames (core::Marks): the members of the last rule removal, ringed where they
-// stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames and
-// kMinSeconds of simulated time.
+// stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames
+// and kMinSeconds of simulated time.
 class EventMarks {
  public:
   static constexpr int kMinFrames = 10;

@@ -19,8 +19,8 @@ double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
 
 std::vector<int> shortest_wall_path(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach) {
   const int n = g.size();
-  // Breadth-first search by layers from every low left-wall disk. Within a layer (same particle count) each disk
-  // keeps the predecessor that minimises the sum of heights: this is the lexicographic optimum of
+  // Breadth-first search by layers from every low left-wall disk. Within a layer (same particle count) each
+  // disk keeps the predecessor that minimises the sum of heights: this is the lexicographic optimum of
   // (particle count, sum of heights), i.e. fewest particles, ties to the lowest.
   std::vector<int> layer_of(n, -1), prev(n, -1);
   std::vector<double> sum_y(n, std::numeric_limits<double>::infinity());
@@ -85,8 +85,9 @@ ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>&
   if (ids.empty()) return a;
   a.span = (pos[ids.back()].x + radius[ids.back()]) - (pos[ids.front()].x - radius[ids.front()]);
   for (int i : ids) a.height = std::max(a.height, pos[i].y);
-  // Angle at each interior member from the bond to its left neighbour, counter-clockwise through "down", to the
-  // bond to its right neighbour: 180 deg is flat, below 180 a dome, above 180 a defect pointing at the outlet.
+  // Angle at each interior member from the bond to its left neighbour, counter-clockwise through "down", to
+  // the bond to its right neighbour: 180 deg is flat, below 180 a dome, above 180 a defect pointing at the
+  // outlet.
   for (size_t k = 1; k + 1 < ids.size(); ++k) {
     Vec2 u = pos[ids[k - 1]] - pos[ids[k]], v = pos[ids[k + 1]] - pos[ids[k]];
     double ang = std::atan2(v.y, v.x) - std::atan2(u.y, u.x);

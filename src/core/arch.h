@@ -48,8 +48,8 @@ ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>&
 std::vector<int> visible_from_aperture(const std::vector<Vec2>& pos, const std::vector<double>& radius,
                                        double range);
 
-// Contacts rebuilt from positions: disks closer than the sum of their radii plus `tolerance` (m) touch, and so
-// do disks within `tolerance` of a hopper wall. Only disks below `max_height` are considered.
+// Contacts rebuilt from positions: disks closer than the sum of their radii plus `tolerance` (m) touch, and
+// so do disks within `tolerance` of a hopper wall. Only disks below `max_height` are considered.
 ContactGraph contacts_from_positions(const std::vector<Vec2>& pos, const std::vector<double>& radius,
                                      const Geometry& geo, double tolerance, double max_height);
 

@@ -22,12 +22,12 @@ inline std::string format_toml_float(double v, int digits = 9) {
   return s;
 }
 
-// The shortest text that reads back as exactly v, kept a TOML float ("20.0", "0.065", "5e-05"): scene files and
-// messages that quote a value the user wrote.
+// The shortest text that reads back as exactly v, kept a TOML float ("20.0", "0.065", "5e-05"): scene files
+// and messages that quote a value the user wrote.
 std::string format_shortest(double v);
 
-// A TOML basic string with every character escaped as TOML requires (quotes, backslashes, control characters),
-// written by the TOML library: any path or command line round-trips through metadata.toml.
+// A TOML basic string with every character escaped as TOML requires (quotes, backslashes, control
+// characters), written by the TOML library: any path or command line round-trips through metadata.toml.
 std::string toml_string(const std::string& s);
 
 // A string quoted for /bin/sh.

@@ -9,14 +9,16 @@
 namespace core {
 
 enum class Species : std::uint8_t { Original = 0, Added = 1 };
-inline const char* species_name(Species s) { return s == Species::Original ? "original" : "added"; }
+inline const char* species_name(Species s) {
+  return s == Species::Original ? "original" : "added";
+}
 
 struct Particle {
-  float x, y;      // m, centre
-  float angle;     // rad
-  float vx, vy;    // m/s
-  float radius;    // m
-  float force;     // N, sum of contact normal force magnitudes on this disk over the last step
+  float x, y;    // m, centre
+  float angle;   // rad
+  float vx, vy;  // m/s
+  float radius;  // m
+  float force;   // N, sum of contact normal force magnitudes on this disk over the last step
   Species species;
 };
 
@@ -32,12 +34,12 @@ struct Marks {
 };
 
 struct Frame {
-  double t = 0;                        // s since the aperture opened (negative while settling)
-  std::uint64_t step = 0;              // time steps since the start of settling
-  std::vector<Particle> particles;     // indexed by particle id
-  std::vector<int> arch;               // ids of the current blocking arch, left to right; empty if none
-  double since_last_exit = 0;          // s, the clog timer
-  std::int64_t exits_original = 0;     // exits so far of each species
+  double t = 0;                     // s since the aperture opened (negative while settling)
+  std::uint64_t step = 0;           // time steps since the start of settling
+  std::vector<Particle> particles;  // indexed by particle id
+  std::vector<int> arch;            // ids of the current blocking arch, left to right; empty if none
+  double since_last_exit = 0;       // s, the clog timer
+  std::int64_t exits_original = 0;  // exits so far of each species
   std::int64_t exits_added = 0;
   Marks marks;
 };
@@ -57,10 +59,10 @@ enum class ClogEnd : std::uint8_t {
 const char* clog_end_name(ClogEnd e);
 
 struct ClogEvent {
-  double start;     // s, the last exit before the gap
-  double end;       // s, the next exit, the rule, or the end of the run
+  double start;  // s, the last exit before the gap
+  double end;    // s, the next exit, the rule, or the end of the run
   ClogEnd ended_by;
-  bool arrested;    // at some kick during the clog an arch stood and the outlet disks had held still
+  bool arrested;  // at some kick during the clog an arch stood and the outlet disks had held still
 };
 
 struct ArchGeometry {
@@ -70,10 +72,12 @@ struct ArchGeometry {
 };
 
 // A long-lasting arch: the clog_timeout rule fired and removed these particles.
-// How the 5 s rule found the members of the arch it removed (scene key arch_method): the contact path across the
-// aperture, or the disks visible from the aperture (the named fallback of either).
+// How the 5 s rule found the members of the arch it removed (scene key arch_method): the contact path across
+// the aperture, or the disks visible from the aperture (the named fallback of either).
 enum class ArchMethod : std::uint8_t { ContactPath = 0, Visible = 1 };
-inline const char* arch_method_name(ArchMethod m) { return m == ArchMethod::Visible ? "visible" : "contact_path"; }
+inline const char* arch_method_name(ArchMethod m) {
+  return m == ArchMethod::Visible ? "visible" : "contact_path";
+}
 // False if `text` names no method.
 inline bool parse_arch_method(const std::string& text, ArchMethod& out) {
   if (text == "contact_path") return out = ArchMethod::ContactPath, true;
@@ -88,7 +92,7 @@ struct ArchEvent {
   std::vector<Species> species;  // of each member
   ArchGeometry geometry;
   ArchMethod method = ArchMethod::ContactPath;  // how the members were found
-  std::vector<float> x, y;       // m, where each member stood when it was removed
+  std::vector<float> x, y;                      // m, where each member stood when it was removed
 };
 
 struct Events {

@@ -12,11 +12,21 @@ namespace core {
 struct Vec2 {
   double x = 0, y = 0;
 };
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator*(double k, Vec2 a) { return {k * a.x, k * a.y}; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double length(Vec2 a) { return std::sqrt(dot(a, a)); }
+inline Vec2 operator+(Vec2 a, Vec2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline Vec2 operator-(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline Vec2 operator*(double k, Vec2 a) {
+  return {k * a.x, k * a.y};
+}
+inline double dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double length(Vec2 a) {
+  return std::sqrt(dot(a, a));
+}
 
 struct Segment {
   Vec2 a, b;
@@ -35,9 +45,7 @@ struct Geometry {
   std::array<Segment, static_cast<int>(Wall::Count)> walls;
 
   // Angle of each hopper wall from the vertical, radians.
-  double wall_angle_from_vertical() const {
-    return std::atan((half_width - half_aperture) / hopper_height);
-  }
+  double wall_angle_from_vertical() const { return std::atan((half_width - half_aperture) / hopper_height); }
   // Inner half-width of the container at height y (m): the hopper narrows linearly below H_t.
   double half_width_at(double y) const {
     if (y >= hopper_height) return half_width;

@@ -11,7 +11,9 @@ constexpr double kPi = 3.14159265358979323846;
 // 3 mu0 / (4 pi): the dipole force between two perpendicular dipoles is 3e-7 mu^2 / r^4 N (mu in A*m^2).
 constexpr double kDipolePrefactor = 3e-7;
 
-inline double mass_of(double radius, double density) { return kPi * radius * radius * density; }
+inline double mass_of(double radius, double density) {
+  return kPi * radius * radius * density;
+}
 
 // Dipole force between two added disks in contact, N.
 inline double dipole_contact_force(const Scene& s) {
@@ -30,7 +32,8 @@ inline double dipole_safe_dt(const Scene& s) {
   return 1.0 / omega;
 }
 
-// mu (A*m^2) for which the contact dipole force between two added disks is `ratio` times an added disk's weight.
+// mu (A*m^2) for which the contact dipole force between two added disks is `ratio` times an added disk's
+// weight.
 inline double mu_for_force_ratio(const Scene& s, double ratio) {
   const double d = 2.0 * s.radius_added();
   const double weight = mass_of(s.radius_added(), s.density) * s.gravity;

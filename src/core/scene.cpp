@@ -36,12 +36,15 @@ std::string unit_text(const Field& f) {
 }
 }  // namespace
 
-std::int64_t Scene::n_added() const { return std::llround(chi * static_cast<double>(n_total)); }
+std::int64_t Scene::n_added() const {
+  return std::llround(chi * static_cast<double>(n_total));
+}
 
 const std::vector<Field>& scene_fields() {
   // key, member, unit, min, max, choices, doc
   static const std::vector<Field> fields = {
-      {"radius_original", &Scene::radius_original, "m", 1e-3, 1.0, nullptr, "radius r_o of the original disks"},
+      {"radius_original", &Scene::radius_original, "m", 1e-3, 1.0, nullptr,
+       "radius r_o of the original disks"},
       {"size_ratio", &Scene::size_ratio, "1", 0.2, 1.0, nullptr, "r = r_a / r_o, size ratio of added disks"},
       {"n_total", &Scene::n_total, "1", 1, 5000, nullptr, "N_o + N_a, total number of disks"},
       {"chi", &Scene::chi, "1", 0.0, 1.0, nullptr, "N_a / (N_o + N_a), number fraction of added disks"},
@@ -61,13 +64,15 @@ const std::vector<Field>& scene_fields() {
       {"kick_period", &Scene::kick_period, "s", 1e-4, 1e4, nullptr, "time between kicks"},
       {"kick_impulse_max", &Scene::kick_impulse_max, "N*s", 0.0, 1e3, nullptr,
        "kick impulse magnitudes are uniform in [0, this]"},
-      {"global_kick", &Scene::global_kick, "", 0, 0, nullptr, "also kick every particle by one shared impulse"},
+      {"global_kick", &Scene::global_kick, "", 0, 0, nullptr,
+       "also kick every particle by one shared impulse"},
       {"settle_kicks", &Scene::settle_kicks, "", 0, 0, nullptr, "also kick while settling (aperture closed)"},
       {"settle_time", &Scene::settle_time, "s", 0.0, 1e4, nullptr, "settling with the aperture closed"},
       {"duration", &Scene::duration, "s", 0.0, 1e6, nullptr, "discharge time after the aperture opens"},
       {"clog_timeout", &Scene::clog_timeout, "s", 1e-3, 1e6, nullptr,
        "time without exits before the blocking arch is removed"},
-      {"clog_min_gap", &Scene::clog_min_gap, "s", 0.0, 1e6, nullptr, "exit gaps this long are recorded as clogs"},
+      {"clog_min_gap", &Scene::clog_min_gap, "s", 0.0, 1e6, nullptr,
+       "exit gaps this long are recorded as clogs"},
       {"arrest_hold", &Scene::arrest_hold, "s", 1e-6, 1e4, nullptr,
        "a clog is arrested when the outlet disks held still this long before a kick"},
       {"arrest_shift", &Scene::arrest_shift, "1", 0.0, 10.0, nullptr,
@@ -100,10 +105,14 @@ std::string field_text(const Scene& s, const Field& f) {
       [&](auto ptr) -> std::string {
         const auto& v = s.*ptr;
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, double>) return format_shortest(v);
-        else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return toml_string(v);
-        else return std::to_string(v);
+        if constexpr (std::is_same_v<T, double>)
+          return format_shortest(v);
+        else if constexpr (std::is_same_v<T, bool>)
+          return v ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>)
+          return toml_string(v);
+        else
+          return std::to_string(v);
       },
       f.ptr);
 }
@@ -122,12 +131,16 @@ void set_field(Scene& s, const std::string& key, const std::string& value, const
         if constexpr (std::is_same_v<T, double>) {
           char* end = nullptr;
           double d = std::strtod(value.c_str(), &end);
-          if (value.empty() || *end != '\0' || !std::isfinite(d)) bad(origin, key, value, "expected a finite number");
+          if (value.empty() || *end != '\0' || !std::isfinite(d))
+            bad(origin, key, value, "expected a finite number");
           v = d;
         } else if constexpr (std::is_same_v<T, bool>) {
-          if (value == "true" || value == "1") v = true;
-          else if (value == "false" || value == "0") v = false;
-          else bad(origin, key, value, "expected true or false");
+          if (value == "true" || value == "1")
+            v = true;
+          else if (value == "false" || value == "0")
+            v = false;
+          else
+            bad(origin, key, value, "expected true or false");
         } else if constexpr (std::is_same_v<T, std::string>) {
           std::string t = value;
           if (t.size() >= 2 && t.front() == '"' && t.back() == '"') t = t.substr(1, t.size() - 2);
@@ -136,8 +149,10 @@ void set_field(Scene& s, const std::string& key, const std::string& value, const
           char* end = nullptr;
           errno = 0;
           T i{};
-          if constexpr (std::is_unsigned_v<T>) i = std::strtoull(value.c_str(), &end, 10);
-          else i = std::strtoll(value.c_str(), &end, 10);
+          if constexpr (std::is_unsigned_v<T>)
+            i = std::strtoull(value.c_str(), &end, 10);
+          else
+            i = std::strtoll(value.c_str(), &end, 10);
           bool negative_unsigned = std::is_unsigned_v<T> && value.find('-') != std::string::npos;
           if (value.empty() || *end != '\0' || errno != 0 || negative_unsigned)
             bad(origin, key, value, "expected a whole number in " + range_text(*f));
@@ -172,12 +187,15 @@ void validate(const Scene& s) {
   // Relations between fields.
   if (s.aperture <= 2.0 * s.radius_added() && s.n_added() > 0)
     bad(origin, "aperture", format_shortest(s.aperture),
-        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_added()) + " m)");
+        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_added()) +
+            " m)");
   if (s.aperture <= 2.0 * s.radius_original && s.n_original() > 0)
     bad(origin, "aperture", format_shortest(s.aperture),
-        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_original) + " m)");
+        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_original) +
+            " m)");
   if (s.aperture >= s.silo_width)
-    bad(origin, "aperture", format_shortest(s.aperture), "it must be narrower than silo_width = " + format_shortest(s.silo_width));
+    bad(origin, "aperture", format_shortest(s.aperture),
+        "it must be narrower than silo_width = " + format_shortest(s.silo_width));
   if (2.0 * s.radius_original >= s.silo_width)
     bad(origin, "radius_original", format_shortest(s.radius_original), "a disk must fit in silo_width");
   // Kicks land on steps: the period must be a whole number of steps (to 1e-6 of a step).
@@ -188,8 +206,8 @@ void validate(const Scene& s) {
   const double hold_steps = std::round(s.arrest_hold / s.dt);
   if (hold_steps < 1.0 || hold_steps >= std::round(steps_per_kick))
     bad(origin, "arrest_hold", format_shortest(s.arrest_hold),
-        "it must be at least dt = " + format_shortest(s.dt) + " s and shorter than kick_period = " +
-            format_shortest(s.kick_period) + " s");
+        "it must be at least dt = " + format_shortest(s.dt) +
+            " s and shorter than kick_period = " + format_shortest(s.kick_period) + " s");
   if (s.clog_min_gap >= s.clog_timeout)
     bad(origin, "clog_min_gap", format_shortest(s.clog_min_gap),
         "it must be shorter than clog_timeout = " + format_shortest(s.clog_timeout) + " s");
@@ -199,8 +217,9 @@ void validate(const Scene& s) {
   double area_box = s.silo_width * s.silo_height + 0.5 * (s.silo_width + s.aperture) * s.hopper_height;
   if (area_disks / 0.8 > 0.9 * area_box)
     bad(origin, "n_total", std::to_string(s.n_total),
-        "the disks' packed area " + format_shortest(area_disks / 0.8) + " m^2 does not fit in the container (" +
-            format_shortest(area_box) + " m^2); raise silo_height or lower n_total");
+        "the disks' packed area " + format_shortest(area_disks / 0.8) +
+            " m^2 does not fit in the container (" + format_shortest(area_box) +
+            " m^2); raise silo_height or lower n_total");
 }
 
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
@@ -208,8 +227,8 @@ void check_text_file(const std::string& path, const std::string& what, const std
   std::error_code ec;
   const fs::path p(path);
   if (fs::is_directory(p, ec))
-    throw InputError(path + " is a directory, not a " + what + (dir_hint.empty() ? "" : "; did you mean " +
-                     (p / dir_hint).string() + "?"));
+    throw InputError(path + " is a directory, not a " + what +
+                     (dir_hint.empty() ? "" : "; did you mean " + (p / dir_hint).string() + "?"));
   if (!fs::exists(p, ec)) throw InputError(path + ": cannot open " + what + ": no such file");
   if (!fs::is_regular_file(p, ec))
     throw InputError(path + ": a " + what + " must be a regular file (this is a device, pipe or socket)");
@@ -234,8 +253,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     tbl = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream o;
-    o << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": malformed TOML: "
-      << e.description();
+    o << path << ":" << e.source().begin.line << ":" << e.source().begin.column
+      << ": malformed TOML: " << e.description();
     throw InputError(o.str());
   }
   // A run's metadata.toml keeps the scene in a [scene] table: loading it repeats the run.
@@ -250,12 +269,17 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     const Field* f = find_field(key);
     if (!f) set_field(s, key, "", where);  // throws "unknown key" with the list of keys
     std::string text;
-    if (auto v = node.as_floating_point()) text = format_shortest(v->get());
-    else if (auto i = node.as_integer()) text = std::to_string(i->get());
-    else if (auto b = node.as_boolean()) text = b->get() ? "true" : "false";
-    else if (auto t = node.as_string()) text = t->get();
-    else throw InputError(where + ": " + key + " must be a number, boolean or string, not a " +
-                          std::string(toml::impl::node_type_friendly_names[static_cast<int>(node.type())]));
+    if (auto v = node.as_floating_point())
+      text = format_shortest(v->get());
+    else if (auto i = node.as_integer())
+      text = std::to_string(i->get());
+    else if (auto b = node.as_boolean())
+      text = b->get() ? "true" : "false";
+    else if (auto t = node.as_string())
+      text = t->get();
+    else
+      throw InputError(where + ": " + key + " must be a number, boolean or string, not a " +
+                       std::string(toml::impl::node_type_friendly_names[static_cast<int>(node.type())]));
     bool is_text_field = std::holds_alternative<std::string Scene::*>(f->ptr);
     if (is_text_field != static_cast<bool>(node.as_string()))
       throw InputError(where + ": " + key + " = " + text + " has the wrong type; expected " +

@@ -12,20 +12,21 @@
 
 namespace core {
 
-// Defaults follow ../shared/model.md (Carlevaro et al., Granular Matter 24, 2022). The allowed range, unit and
-// meaning of every field are written once, in the field table of scene.cpp (`siloscope scene --keys` prints it).
+// Defaults follow ../shared/model.md (Carlevaro et al., Granular Matter 24, 2022). The allowed range, unit
+// and meaning of every field are written once, in the field table of scene.cpp (`siloscope scene --keys`
+// prints it).
 struct Scene {
   // --- particles ---
-  double radius_original = 0.065;  // m, r_o
-  double size_ratio = 0.4;         // r = r_a / r_o
-  std::int64_t n_total = 250;      // N_o + N_a
-  double chi = 0.4;                // N_a / (N_o + N_a), number fraction of added disks
-  double density = 1.0;            // kg/m^2, areal, both species
-  double friction = 0.5;           // particle-particle and particle-wall, static = dynamic
-  double restitution = 0.1;        // coefficient of restitution
+  double radius_original = 0.065;      // m, r_o
+  double size_ratio = 0.4;             // r = r_a / r_o
+  std::int64_t n_total = 250;          // N_o + N_a
+  double chi = 0.4;                    // N_a / (N_o + N_a), number fraction of added disks
+  double density = 1.0;                // kg/m^2, areal, both species
+  double friction = 0.5;               // particle-particle and particle-wall, static = dynamic
+  double restitution = 0.1;            // coefficient of restitution
   double restitution_threshold = 1.0;  // m/s; impacts slower than this are perfectly inelastic (Box2D rule)
-  double mu = 0.0;                 // A*m^2, dipole moment of added disks (perpendicular to the plane)
-  double dipole_cutoff = 0.0;      // m; dipole pairs farther apart are skipped; 0 = all pairs
+  double mu = 0.0;                     // A*m^2, dipole moment of added disks (perpendicular to the plane)
+  double dipole_cutoff = 0.0;          // m; dipole pairs farther apart are skipped; 0 = all pairs
 
   // --- container ---
   double silo_width = 1.00;     // m, W
@@ -38,28 +39,29 @@ struct Scene {
   double kick_period = 0.1;        // s, time between kicks
   double kick_impulse_max = 5e-5;  // N*s; impulse magnitudes uniform in [0, this]
   bool global_kick = true;         // one extra impulse, same law, applied to every particle at each kick
-  bool settle_kicks = false;       // also kick while settling with the aperture closed (strong kicks fling disks out)
+  bool settle_kicks =
+      false;  // also kick while settling with the aperture closed (strong kicks fling disks out)
 
   // --- protocol ---
-  double settle_time = 4.0;      // s, settling with the aperture closed before t = 0
-  double duration = 150.0;       // s of discharge after the aperture opens
-  double clog_timeout = 5.0;     // s without an exit before the blocking arch is removed (the 5 s rule)
-  double clog_min_gap = 0.5;     // s; an exit gap at least this long is recorded as a clog
+  double settle_time = 4.0;   // s, settling with the aperture closed before t = 0
+  double duration = 150.0;    // s of discharge after the aperture opens
+  double clog_timeout = 5.0;  // s without an exit before the blocking arch is removed (the 5 s rule)
+  double clog_min_gap = 0.5;  // s; an exit gap at least this long is recorded as a clog
   // A clog is "arrested" at a kick when a blocking arch stands and every disk near the outlet moved less than
   // arrest_shift of its own radius over the arrest_hold seconds before the kick (see sim/clog.h).
-  double arrest_hold = 0.05;     // s
-  double arrest_shift = 0.1;     // fraction of a disk's radius
-  double arch_wall_reach = 1.36; // m; wall contacts below this height anchor arches (default: the hopper)
+  double arrest_hold = 0.05;      // s
+  double arrest_shift = 0.1;      // fraction of a disk's radius
+  double arch_wall_reach = 1.36;  // m; wall contacts below this height anchor arches (default: the hopper)
   std::string arch_method = "contact_path";  // contact_path | visible; how the 5 s rule picks the arch
-  double reinject_gap = 0.05;    // m, clearance between a re-injected disk and the column top
+  double reinject_gap = 0.05;                // m, clearance between a re-injected disk and the column top
 
   // --- numerics (not in the paper; chosen by the speed-versus-accuracy study) ---
-  double dt = 1e-3;                    // s, fixed time step
+  double dt = 1e-3;                      // s, fixed time step
   std::int64_t velocity_iterations = 8;  // Box2D velocity solver iterations
   std::int64_t position_iterations = 3;  // Box2D position solver iterations
-  double length_scale = 10.0;          // Box2D length units per metre
-  bool continuous = false;             // Box2D continuous collision for the disks
-  bool unsafe = false;                 // let the health monitor warn instead of stopping
+  double length_scale = 10.0;            // Box2D length units per metre
+  bool continuous = false;               // Box2D continuous collision for the disks
+  bool unsafe = false;                   // let the health monitor warn instead of stopping
 
   std::uint64_t seed = 1;  // one seed determines the whole run
 
@@ -76,8 +78,8 @@ struct Field {
   const char* key;
   Ptr ptr;
   const char* unit;
-  double min, max;              // numeric range (inclusive), ignored for bool and text
-  const char* choices;          // for text fields: "a|b"
+  double min, max;      // numeric range (inclusive), ignored for bool and text
+  const char* choices;  // for text fields: "a|b"
   const char* doc;
 };
 

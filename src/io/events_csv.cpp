@@ -18,7 +18,6 @@ const char* kClogsHeader = "start_s,end_s,duration_s,ended_by,arrested";
 const char* kArchesHeader =
     "t_s,clog_duration_s,method,n_members,n_added,ids,species,span_m,height_m,max_angle_deg";
 
-
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::string cur;
@@ -52,7 +51,8 @@ class CsvReader {
   double real(const std::string& s, const char* what) {
     char* end = nullptr;
     double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || *end || !std::isfinite(v)) fail(std::string(what) + " = '" + s + "' is not a finite number");
+    if (s.empty() || *end || !std::isfinite(v))
+      fail(std::string(what) + " = '" + s + "' is not a finite number");
     return v;
   }
   long integer(const std::string& s, const char* what) {
@@ -80,15 +80,16 @@ class CsvReader {
 
 std::string exits_csv(const core::Events& ev) {
   std::string s = std::string(kExitsHeader) + "\n";
-  for (const auto& e : ev.exits) s += core::format_g(e.t) + "," + std::to_string(e.id) + "," + core::species_name(e.species) + "\n";
+  for (const auto& e : ev.exits)
+    s += core::format_g(e.t) + "," + std::to_string(e.id) + "," + core::species_name(e.species) + "\n";
   return s;
 }
 
 std::string clogs_csv(const core::Events& ev) {
   std::string s = std::string(kClogsHeader) + "\n";
   for (const auto& c : ev.clogs)
-    s += core::format_g(c.start) + "," + core::format_g(c.end) + "," + core::format_g(c.end - c.start) + "," + core::clog_end_name(c.ended_by) + "," +
-         (c.arrested ? "1" : "0") + "\n";
+    s += core::format_g(c.start) + "," + core::format_g(c.end) + "," + core::format_g(c.end - c.start) + "," +
+         core::clog_end_name(c.ended_by) + "," + (c.arrested ? "1" : "0") + "\n";
   return s;
 }
 
@@ -102,9 +103,10 @@ std::string arches_csv(const core::Events& ev) {
       sp += (k ? ";" : "") + std::string(core::species_name(a.species[k]));
       added += a.species[k] == core::Species::Added;
     }
-    s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," + core::arch_method_name(a.method) + "," + std::to_string(a.ids.size()) + "," +
-         std::to_string(added) + "," + ids + "," + sp + "," + core::format_g(a.geometry.span) + "," + core::format_g(a.geometry.height) +
-         "," + core::format_g(a.geometry.max_angle_deg) + "\n";
+    s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," +
+         core::arch_method_name(a.method) + "," + std::to_string(a.ids.size()) + "," + std::to_string(added) +
+         "," + ids + "," + sp + "," + core::format_g(a.geometry.span) + "," +
+         core::format_g(a.geometry.height) + "," + core::format_g(a.geometry.max_angle_deg) + "\n";
   }
   return s;
 }
@@ -131,9 +133,11 @@ core::Events read_events(const std::filesystem::path& dir) {
   {
     CsvReader r(dir / "clogs.csv", kClogsHeader);
     while (r.next(c)) {
-      core::ClogEvent e{r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous, c[4] == "1"};
+      core::ClogEvent e{r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous,
+                        c[4] == "1"};
       bool known = false;
-      for (auto k : {core::ClogEnd::Spontaneous, core::ClogEnd::Vibration, core::ClogEnd::Rule, core::ClogEnd::RunEnd})
+      for (auto k :
+           {core::ClogEnd::Spontaneous, core::ClogEnd::Vibration, core::ClogEnd::Rule, core::ClogEnd::RunEnd})
         if (c[3] == core::clog_end_name(k)) e.ended_by = k, known = true;
       if (!known) r.fail("ended_by = '" + c[3] + "' is not spontaneous, vibration, rule or run_end");
       if (e.end < e.start) r.fail("a clog ends before it starts");
@@ -146,7 +150,8 @@ core::Events read_events(const std::filesystem::path& dir) {
       core::ArchEvent a;
       a.t = r.real(c[0], "t_s");
       a.clog_duration = r.real(c[1], "clog_duration_s");
-      if (!core::parse_arch_method(c[2], a.method)) r.fail("method '" + c[2] + "' is not contact_path or visible");
+      if (!core::parse_arch_method(c[2], a.method))
+        r.fail("method '" + c[2] + "' is not contact_path or visible");
       long n = r.integer(c[3], "n_members");
       auto ids = c[5].empty() ? std::vector<std::string>{} : split(c[5], ';');
       auto sp = c[6].empty() ? std::vector<std::string>{} : split(c[6], ';');

@@ -16,7 +16,9 @@
 namespace io {
 
 namespace {
-std::string quoted(const std::string& s) { return core::toml_string(s); }
+std::string quoted(const std::string& s) {
+  return core::toml_string(s);
+}
 }  // namespace
 
 std::string version_string() {
@@ -35,8 +37,10 @@ std::vector<std::pair<std::string, std::string>> derived_facts(const core::Scene
       {"radius_added_m", core::format_toml_float(ra)},
       {"mass_original_kg", core::format_toml_float(core::mass_of(s.radius_original, s.density))},
       {"mass_added_kg", core::format_toml_float(ma)},
-      {"hopper_wall_angle_from_vertical_deg", core::format_toml_float(g.wall_angle_from_vertical() * 180 / kPi)},
-      {"angle_between_hopper_walls_deg", core::format_toml_float(2 * g.wall_angle_from_vertical() * 180 / kPi)},
+      {"hopper_wall_angle_from_vertical_deg",
+       core::format_toml_float(g.wall_angle_from_vertical() * 180 / kPi)},
+      {"angle_between_hopper_walls_deg",
+       core::format_toml_float(2 * g.wall_angle_from_vertical() * 180 / kPi)},
       {"aperture_over_original_diameter", core::format_toml_float(s.aperture / (2 * s.radius_original))},
       {"dipole_contact_force_over_weight", core::format_toml_float(contact_force / (ma * s.gravity))},
       {"dipole_safe_dt_s", std::isfinite(safe_dt) ? core::format_toml_float(safe_dt) : "inf"},

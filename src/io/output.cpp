@@ -45,7 +45,9 @@ bool siloscope_directory(const fs::path& d) {
   return fs::is_regular_file(d / "campaign.toml", ec) && fs::is_directory(d / "scenes", ec);
 }
 
-bool pid_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+bool pid_alive(long pid) {
+  return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+}
 }  // namespace
 
 std::string foreign_output(const fs::path& path, OutputKind kind, const std::string& csv_header) {
@@ -56,13 +58,15 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
     case OutputKind::Directory:
       if (fs::is_regular_file(st)) return "a regular file, not a siloscope output directory";
       if (!fs::is_directory(st)) return "not a regular file or directory";
-      if (!siloscope_directory(path)) return "a directory siloscope did not write (it holds no siloscope metadata.toml)";
+      if (!siloscope_directory(path))
+        return "a directory siloscope did not write (it holds no siloscope metadata.toml)";
       return "";
     case OutputKind::Movie:
       if (fs::is_directory(st)) return "a directory, not a siloscope MP4";
       if (!fs::is_regular_file(st)) return "not a regular file";
       // The MP4's comment tag holds the run's metadata; +faststart puts it near the start of the file.
-      if (!file_contains(path, "siloscope run metadata", 8u << 20)) return "a file that is not a siloscope MP4";
+      if (!file_contains(path, "siloscope run metadata", 8u << 20))
+        return "a file that is not a siloscope MP4";
       return "";
     case OutputKind::Csv:
       if (fs::is_directory(st)) return "a directory, not a CSV file";
@@ -73,7 +77,8 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
     case OutputKind::Sheet:
       if (fs::is_directory(st)) return "a directory, not a figure sheet";
       if (!fs::is_regular_file(st)) return "not a regular file";
-      if (!file_contains(path, "siloscope gallery", 32u << 20)) return "a file that is not a siloscope gallery sheet";
+      if (!file_contains(path, "siloscope gallery", 32u << 20))
+        return "a file that is not a siloscope gallery sheet";
       return "";
     case OutputKind::Xyz:
       if (fs::is_directory(st)) return "a directory, not an XYZ file";
@@ -88,7 +93,8 @@ void check_destination(const fs::path& path, bool force, const std::string& what
                        const std::string& csv_header) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(path, ec))) {
-    if (!force) throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
+    if (!force)
+      throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
     const std::string why = foreign_output(path, kind, csv_header);
     if (!why.empty())
       throw core::InputError(what + " " + path.string() + " is " + why +
@@ -99,11 +105,12 @@ void check_destination(const fs::path& path, bool force, const std::string& what
     // Missing parents are created, as `mkdir -p` would; a file in the way or no permission is an error.
     fs::create_directories(parent, ec);
     if (ec || !fs::is_directory(parent))
-      throw core::InputError(what + " " + path.string() + ": cannot create directory " + parent.string() + ": " +
-                             (ec ? ec.message() : std::string("a file is in the way")));
+      throw core::InputError(what + " " + path.string() + ": cannot create directory " + parent.string() +
+                             ": " + (ec ? ec.message() : std::string("a file is in the way")));
   }
   if (::access(parent.c_str(), W_OK) != 0)
-    throw core::InputError(what + " " + path.string() + ": directory " + parent.string() + " is not writable");
+    throw core::InputError(what + " " + path.string() + ": directory " + parent.string() +
+                           " is not writable");
 }
 
 OutputLock::OutputLock(const fs::path& final_path) {
@@ -115,15 +122,16 @@ OutputLock::OutputLock(const fs::path& final_path) {
   for (int attempt = 0; attempt < 100; ++attempt) {
     fd_ = ::open(lock_path_.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
     if (fd_ < 0)
-      throw core::InputError("output " + final_path.string() + ": cannot create the lock file " + lock_path_.string() +
-                             ": " + std::strerror(errno));
+      throw core::InputError("output " + final_path.string() + ": cannot create the lock file " +
+                             lock_path_.string() + ": " + std::strerror(errno));
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       ::close(fd_);
       fd_ = -1;
       throw core::OutputBusy("another siloscope process is writing " + final_path.string() +
                              " right now; wait for it to finish or choose another --out");
     }
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (::fstat(fd_, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
         held.st_dev == named.st_dev)
       return;
@@ -185,7 +193,8 @@ void OutputDir::commit() {
   std::error_code ec;
   fs::path old;
   if (fs::exists(final_, ec)) {
-    if (!force_) throw core::RuntimeFault(final_.string() + " appeared while the run was going; not replacing it");
+    if (!force_)
+      throw core::RuntimeFault(final_.string() + " appeared while the run was going; not replacing it");
     const std::string why = foreign_output(final_, OutputKind::Directory);
     if (!why.empty())
       throw core::RuntimeFault(final_.string() + " appeared while the run was going and is " + why +
@@ -196,14 +205,17 @@ void OutputDir::commit() {
     if (ec) throw core::RuntimeFault("cannot move " + final_.string() + " aside: " + ec.message());
   }
   fs::rename(tmp_, final_, ec);
-  if (ec) throw core::RuntimeFault("cannot rename " + tmp_.string() + " to " + final_.string() + ": " + ec.message());
+  if (ec)
+    throw core::RuntimeFault("cannot rename " + tmp_.string() + " to " + final_.string() + ": " +
+                             ec.message());
   committed_ = true;
   if (!old.empty()) fs::remove_all(old, ec);
 }
 
 void rename_into_place(const fs::path& from, const fs::path& to) {
   if (std::rename(from.c_str(), to.c_str()) != 0)
-    throw core::RuntimeFault("cannot rename " + from.string() + " to " + to.string() + ": " + std::strerror(errno));
+    throw core::RuntimeFault("cannot rename " + from.string() + " to " + to.string() + ": " +
+                             std::strerror(errno));
 }
 
 void write_file_atomic(const fs::path& path, const std::string& text, bool sync) {

@@ -31,8 +31,8 @@ void check_destination(const fs::path& path, bool force, const std::string& what
                        OutputKind kind = OutputKind::Directory, const std::string& csv_header = "");
 
 // One writer per output: an exclusive lock on PARENT/.NAME.lock, held for the object's life. A second process
-// aiming at the same output gets core::OutputBusy at once, before any work. The lock goes with the process, so a
-// killed writer never leaves it held.
+// aiming at the same output gets core::OutputBusy at once, before any work. The lock goes with the process,
+// so a killed writer never leaves it held.
 class OutputLock {
  public:
   explicit OutputLock(const fs::path& final_path);
@@ -46,7 +46,8 @@ class OutputLock {
 };
 
 // Remove what a dead siloscope process left next to `final_path` (NAME.partial-PID, NAME.old-PID whose PID is
-// gone, and the `extra` names, e.g. NAME.mp4.partial), saying so on stderr. Call while holding its OutputLock.
+// gone, and the `extra` names, e.g. NAME.mp4.partial), saying so on stderr. Call while holding its
+// OutputLock.
 void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::string>& extra = {});
 
 class OutputDir {

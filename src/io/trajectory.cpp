@@ -13,7 +13,9 @@ namespace {
 constexpr char kMagic[8] = {'S', 'I', 'L', 'O', 'T', 'R', 'A', 'J'};
 constexpr size_t kFixedHeader = 64;
 
-size_t pad8(size_t n) { return (n + 7) & ~size_t(7); }
+size_t pad8(size_t n) {
+  return (n + 7) & ~size_t(7);
+}
 
 template <class T>
 void put(std::vector<unsigned char>& b, size_t at, const T& v) {
@@ -27,7 +29,9 @@ T get(const unsigned char* b, size_t at) {
 }
 }  // namespace
 
-size_t TrajectoryWriter::frame_bytes(std::uint32_t n) { return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + 24 * size_t(n); }
+size_t TrajectoryWriter::frame_bytes(std::uint32_t n) {
+  return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + 24 * size_t(n);
+}
 
 TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const TrajectoryInfo& info)
     : path_(path.string()), n_(info.n_particles) {
@@ -52,7 +56,8 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Traj
   }
   put<std::uint32_t>(h, after_arrays, static_cast<std::uint32_t>(info.metadata.size()));
   std::memcpy(&h[after_arrays + 4], info.metadata.data(), info.metadata.size());
-  if (std::fwrite(h.data(), 1, h.size(), f_) != h.size()) throw core::RuntimeFault("cannot write trajectory " + path_);
+  if (std::fwrite(h.data(), 1, h.size(), f_) != h.size())
+    throw core::RuntimeFault("cannot write trajectory " + path_);
   buf_.resize(frame_bytes(n_));
 }
 
@@ -70,7 +75,8 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches) {
   put<std::int32_t>(buf_, 32, long_arches);
   const int count = static_cast<int>(std::min<size_t>(f.arch.size(), kTrajectoryMaxArch));
   put<std::int32_t>(buf_, 36, count);
-  for (int k = 0; k < kTrajectoryMaxArch; ++k) put<std::int32_t>(buf_, 40 + 4 * k, k < count ? f.arch[k] : -1);
+  for (int k = 0; k < kTrajectoryMaxArch; ++k)
+    put<std::int32_t>(buf_, 40 + 4 * k, k < count ? f.arch[k] : -1);
   const size_t base = 40 + 4 * kTrajectoryMaxArch, n = n_;
   for (size_t i = 0; i < n; ++i) {
     const auto& p = f.particles[i];
@@ -92,30 +98,35 @@ void TrajectoryWriter::close() {
   const bool ok = std::fflush(f_) == 0;
   const bool closed = std::fclose(f_) == 0;
   f_ = nullptr;
-  if (!ok || !closed) throw core::RuntimeFault("cannot finish trajectory " + path_ + ": " + std::strerror(errno));
+  if (!ok || !closed)
+    throw core::RuntimeFault("cannot finish trajectory " + path_ + ": " + std::strerror(errno));
 }
 
 Trajectory::Trajectory(const std::filesystem::path& path) {
   const std::string p = path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
-    throw core::InputError(p + " is a directory; did you mean " + (path / "trajectory.sstraj").string() + "?");
+    throw core::InputError(p + " is a directory; did you mean " + (path / "trajectory.sstraj").string() +
+                           "?");
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw core::InputError(p + ": a trajectory must be a regular file (this is a device, pipe or socket)");
   std::ifstream in(p, std::ios::binary);
   if (!in) throw core::InputError(p + ": cannot open trajectory file");
-  parse(std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), p);
+  parse(std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
+        p);
 }
 
-Trajectory::Trajectory(const std::vector<unsigned char>& data, const std::string& name) { parse(data, name); }
+Trajectory::Trajectory(const std::vector<unsigned char>& data, const std::string& name) {
+  parse(data, name);
+}
 
 void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   if (data.size() < kFixedHeader || std::memcmp(data.data(), kMagic, 8) != 0)
     throw core::InputError(p + ": not a siloscope trajectory (no SILOTRAJ header)");
   const auto version = get<std::uint32_t>(data.data(), 8);
   if (version != kTrajectoryVersion)
-    throw core::InputError(p + ": trajectory version " + std::to_string(version) + "; this siloscope reads version " +
-                           std::to_string(kTrajectoryVersion));
+    throw core::InputError(p + ": trajectory version " + std::to_string(version) +
+                           "; this siloscope reads version " + std::to_string(kTrajectoryVersion));
   const auto header = get<std::uint32_t>(data.data(), 12);
   info_.n_particles = get<std::uint32_t>(data.data(), 16);
   const auto max_arch = get<std::uint32_t>(data.data(), 20);
@@ -130,7 +141,8 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   info_.radius_original = get<double>(data.data(), 56);
   // The inspector divides by these: they must be positive and finite.
   for (double v : {info_.frame_interval, info_.clog_timeout, info_.radius_original})
-    if (!(v > 0 && v < 1e6)) throw core::InputError(p + ": corrupted trajectory header (a time or length out of range)");
+    if (!(v > 0 && v < 1e6))
+      throw core::InputError(p + ": corrupted trajectory header (a time or length out of range)");
   if (!(info_.clog_min_gap >= 0 && info_.clog_min_gap < 1e6))
     throw core::InputError(p + ": corrupted trajectory header (clog_min_gap)");
   const size_t n = info_.n_particles;
@@ -139,7 +151,8 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
     info_.species.push_back(static_cast<core::Species>(data[kFixedHeader + 4 * n + i] ? 1 : 0));
   }
   const auto meta = get<std::uint32_t>(data.data(), after_arrays);
-  if (after_arrays + 4 + size_t(meta) > header) throw core::InputError(p + ": corrupted trajectory header (metadata)");
+  if (after_arrays + 4 + size_t(meta) > header)
+    throw core::InputError(p + ": corrupted trajectory header (metadata)");
   info_.metadata.assign(reinterpret_cast<const char*>(&data[after_arrays + 4]), meta);
   const size_t body = data.size() - header;
   truncated_ = body % fbytes != 0;
@@ -150,7 +163,8 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
   for (size_t i = 0; i < n; ++i)
     if (!(info_.radius[i] > 0 && info_.radius[i] < 1e6))
-      throw core::InputError(p + ": corrupted trajectory header (radius of particle " + std::to_string(i) + ")");
+      throw core::InputError(p + ": corrupted trajectory header (radius of particle " + std::to_string(i) +
+                             ")");
   // Every number a frame holds must be finite: a corrupted frame is named, never drawn as an empty silo.
   static const char* kFields[] = {"x", "y", "angle", "vx", "vy", "force"};
   const size_t base = 40 + 4 * kTrajectoryMaxArch;
@@ -168,13 +182,17 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   }
 }
 
-double Trajectory::time(long k) const { return get<double>(record(k), 0); }
-double Trajectory::since_last_exit(long k) const { return get<double>(record(k), 8); }
+double Trajectory::time(long k) const {
+  return get<double>(record(k), 0);
+}
+double Trajectory::since_last_exit(long k) const {
+  return get<double>(record(k), 8);
+}
 
 core::Frame Trajectory::frame(long k) const {
   if (k < 0 || k >= size())
-    throw core::InputError("frame " + std::to_string(k) + " is out of range; the trajectory has frames 0 to " +
-                           std::to_string(size() - 1));
+    throw core::InputError("frame " + std::to_string(k) +
+                           " is out of range; the trajectory has frames 0 to " + std::to_string(size() - 1));
   const unsigned char* b = record(k);
   core::Frame f;
   f.t = get<double>(b, 0);

@@ -78,7 +78,9 @@ class Trajectory {
   size_t header_ = 0, frame_bytes_ = 0;
   long count_ = 0;
   std::vector<int> long_arches_;
-  const unsigned char* record(long k) const { return data_.data() + header_ + static_cast<size_t>(k) * frame_bytes_; }
+  const unsigned char* record(long k) const {
+    return data_.data() + header_ + static_cast<size_t>(k) * frame_bytes_;
+  }
   bool truncated_ = false;
   void parse(std::vector<unsigned char> data, const std::string& p);
 };

@@ -10,8 +10,8 @@ extern "C" {
 #include <cstdio>
 
 #include "core/error.h"
-#include "record/yuv.h"
 #include "io/output.h"
+#include "record/yuv.h"
 
 namespace record {
 
@@ -23,7 +23,8 @@ std::string av_error(int code) {
 }
 // Every libav call goes through here: a negative code becomes a RuntimeFault naming the call.
 int check(int code, const char* what) {
-  if (code < 0) throw core::RuntimeFault(std::string("video encoder: ") + what + " failed: " + av_error(code));
+  if (code < 0)
+    throw core::RuntimeFault(std::string("video encoder: ") + what + " failed: " + av_error(code));
   return code;
 }
 using Clock = std::chrono::steady_clock;
@@ -34,15 +35,18 @@ void validate(const VideoSettings& v) {
   if (!even_in_range(v.width) || !even_in_range(v.height))
     throw core::InputError("--size " + std::to_string(v.width) + "x" + std::to_string(v.height) +
                            ": a movie needs even width and height from 16 to 8192 pixels (yuv420p)");
-  if (v.fps < 1 || v.fps > 240) throw core::InputError("--fps " + std::to_string(v.fps) + ": allowed range is 1 to 240");
-  if (v.crf < 0 || v.crf > 51) throw core::InputError("--crf " + std::to_string(v.crf) + ": allowed range is 0 to 51");
-  static const char* presets[] = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+  if (v.fps < 1 || v.fps > 240)
+    throw core::InputError("--fps " + std::to_string(v.fps) + ": allowed range is 1 to 240");
+  if (v.crf < 0 || v.crf > 51)
+    throw core::InputError("--crf " + std::to_string(v.crf) + ": allowed range is 0 to 51");
+  static const char* presets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
                                   "medium",    "slow",      "slower",   "veryslow"};
   bool ok = false;
   for (const char* p : presets) ok = ok || v.preset == p;
   if (!ok)
-    throw core::InputError("--preset " + v.preset +
-                           ": expected ultrafast, superfast, veryfast, faster, fast, medium, slow, slower or veryslow");
+    throw core::InputError(
+        "--preset " + v.preset +
+        ": expected ultrafast, superfast, veryfast, faster, fast, medium, slow, slower or veryslow");
 }
 
 struct Mp4Writer::Impl {
@@ -82,7 +86,8 @@ struct Mp4Writer::Impl {
   }
 };
 
-Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& settings) : impl_(std::make_unique<Impl>()) {
+Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
   validate(settings);
   Impl& m = *impl_;
   m.s = settings;
@@ -91,7 +96,8 @@ Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& sett
   m.partial_path += ".partial";
   av_log_set_level(AV_LOG_ERROR);  // x264's statistics are noise on the user's terminal
   try {
-    check(avformat_alloc_output_context2(&m.oc, nullptr, "mp4", m.partial_path.c_str()), "avformat_alloc_output_context2");
+    check(avformat_alloc_output_context2(&m.oc, nullptr, "mp4", m.partial_path.c_str()),
+          "avformat_alloc_output_context2");
     const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
     if (!codec) throw core::RuntimeFault("video encoder: libx264 is not available in this FFmpeg build");
     m.stream = avformat_new_stream(m.oc, nullptr);
@@ -107,7 +113,8 @@ Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& sett
     m.c->time_base = AVRational{rate.den, rate.num};
     m.c->framerate = rate;
     m.c->pix_fmt = AV_PIX_FMT_YUV420P;
-    m.c->gop_size = 2 * m.s.fps;  // keyframe interval in frames  // a keyframe every 2 s: quick seeking in players and the inspector
+    m.c->gop_size = 2 * m.s.fps;  // keyframe interval in frames  // a keyframe every 2 s: quick seeking in
+                                  // players and the inspector
     m.c->color_primaries = AVCOL_PRI_BT709;
     m.c->color_trc = AVCOL_TRC_BT709;
     m.c->colorspace = AVCOL_SPC_BT709;
@@ -120,7 +127,8 @@ Mp4Writer::Mp4Writer(std::filesystem::path final_path, const VideoSettings& sett
     m.stream->time_base = m.c->time_base;
     if (!m.s.comment.empty()) av_dict_set(&m.oc->metadata, "comment", m.s.comment.c_str(), 0);
     av_dict_set(&m.oc->metadata, "encoder", "siloscope", 0);
-    check(avio_open(&m.oc->pb, m.partial_path.c_str(), AVIO_FLAG_WRITE), ("opening " + m.partial_path.string()).c_str());
+    check(avio_open(&m.oc->pb, m.partial_path.c_str(), AVIO_FLAG_WRITE),
+          ("opening " + m.partial_path.string()).c_str());
     AVDictionary* opts = nullptr;
     av_dict_set(&opts, "movflags", "+faststart", 0);
     int r = avformat_write_header(m.oc, &opts);
@@ -147,12 +155,13 @@ Mp4Writer::~Mp4Writer() {
 void Mp4Writer::add(const core::Image& img) {
   Impl& m = *impl_;
   if (img.width != m.s.width || img.height != m.s.height)
-    throw core::RuntimeFault("video encoder: frame of " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                             " in a " + std::to_string(m.s.width) + "x" + std::to_string(m.s.height) + " movie");
+    throw core::RuntimeFault("video encoder: frame of " + std::to_string(img.width) + "x" +
+                             std::to_string(img.height) + " in a " + std::to_string(m.s.width) + "x" +
+                             std::to_string(m.s.height) + " movie");
   auto t0 = Clock::now();
   check(av_frame_make_writable(m.frame), "av_frame_make_writable");
-  rgba_to_yuv420p(img.rgba.data(), img.width, img.height, m.frame->data[0], m.frame->linesize[0], m.frame->data[1],
-                  m.frame->linesize[1], m.frame->data[2], m.frame->linesize[2]);
+  rgba_to_yuv420p(img.rgba.data(), img.width, img.height, m.frame->data[0], m.frame->linesize[0],
+                  m.frame->data[1], m.frame->linesize[1], m.frame->data[2], m.frame->linesize[2]);
   m.frame->pts = m.frames++;
   auto t1 = Clock::now();
   check(avcodec_send_frame(m.c, m.frame), "avcodec_send_frame");
@@ -176,8 +185,14 @@ void Mp4Writer::finish() {
   m.finished = true;
 }
 
-long Mp4Writer::frames() const { return impl_->frames; }
-double Mp4Writer::convert_seconds() const { return impl_->convert_s; }
-double Mp4Writer::encode_seconds() const { return impl_->encode_s; }
+long Mp4Writer::frames() const {
+  return impl_->frames;
+}
+double Mp4Writer::convert_seconds() const {
+  return impl_->convert_s;
+}
+double Mp4Writer::encode_seconds() const {
+  return impl_->encode_s;
+}
 
 }  // namespace record

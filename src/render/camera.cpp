@@ -23,15 +23,16 @@ core::Vec2 View::pixel_to_world(core::Vec2 px) const {
 std::array<float, 9> View::world_to_clip() const {
   const double sy = 2.0 / cam.height, sx = sy * rect.h / rect.w;
   // clip = (x - cx) * sx, (y - cy) * sy
-  return {static_cast<float>(sx), 0, 0, 0, static_cast<float>(sy), 0, static_cast<float>(-cam.cx * sx),
-          static_cast<float>(-cam.cy * sy), 1};
+  return {
+      static_cast<float>(sx),           0, 0, 0, static_cast<float>(sy), 0, static_cast<float>(-cam.cx * sx),
+      static_cast<float>(-cam.cy * sy), 1};
 }
 
 void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w, int min_h) {
   char x = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < min_w || h < min_h)
-    throw core::InputError(option + " " + text + ": expected WIDTHxHEIGHT in pixels, at least " + std::to_string(min_w) +
-                           "x" + std::to_string(min_h) + ", e.g. 1920x1080");
+    throw core::InputError(option + " " + text + ": expected WIDTHxHEIGHT in pixels, at least " +
+                           std::to_string(min_w) + "x" + std::to_string(min_h) + ", e.g. 1920x1080");
 }
 
 Camera fit(double x0, double y0, double x1, double y1, int w, int h) {
@@ -62,7 +63,8 @@ CameraSpec parse_camera(const std::string& spec) {
     std::stringstream ss(spec.substr(7));
     double v[4];
     char comma;
-    bool ok = static_cast<bool>(ss >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3]) && ss.peek() == EOF;
+    bool ok =
+        static_cast<bool>(ss >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3]) && ss.peek() == EOF;
     if (ok && std::isfinite(v[0]) && std::isfinite(v[3]) && v[2] > v[0] && v[3] > v[1]) {
       c.kind = CameraSpec::Kind::Window;
       c.x0 = v[0], c.y0 = v[1], c.x1 = v[2], c.y1 = v[3];
@@ -76,8 +78,9 @@ CameraSpec parse_camera(const std::string& spec) {
 std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h) {
   const double margin = 0.04 * geo.total_height;
   auto hopper = [&](Rect r) {
-    return View{fit(-geo.half_width - margin, -margin, geo.half_width + margin, geo.total_height + margin, r.w, r.h), r,
-                "hopper"};
+    return View{
+        fit(-geo.half_width - margin, -margin, geo.half_width + margin, geo.total_height + margin, r.w, r.h),
+        r, "hopper"};
   };
   auto outlet = [&](Rect r) {
     // Ten original diameters tall: arches form up to ~5 diameters above the aperture; the grains falling out
@@ -92,11 +95,14 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
     case CameraSpec::Kind::Outlet:
       return {outlet({0, 0, w, h})};
     case CameraSpec::Kind::Split: {
-      // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the panel).
+      // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the
+      // panel).
       const double aspect = (2 * geo.half_width + 2 * margin) / (geo.total_height + 2 * margin);
-      const int left = std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
+      const int left =
+          std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
       View out = outlet({left, 0, w - left, h});
-      out.cam.cx += 0.08 * out.cam.height * (w - left) / h;  // hopper a little left of centre: room for the panel
+      out.cam.cx +=
+          0.08 * out.cam.height * (w - left) / h;  // hopper a little left of centre: room for the panel
       return {hopper({0, 0, left, h}), out};
     }
     case CameraSpec::Kind::Window:

@@ -1,5 +1,5 @@
-// Cameras and views: which window of the world (metres) appears where in the image (pixels). Pure math, no GL.
-// Pixel coordinates have their origin at the top-left corner, x to the right, y down; world y points up.
+// Cameras and views: which window of the world (metres) appears where in the image (pixels). Pure math, no
+// GL. Pixel coordinates have their origin at the top-left corner, x to the right, y down; world y points up.
 #pragma once
 
 #include <array>
@@ -33,14 +33,16 @@ struct View {
 
 // Parse "WIDTHxHEIGHT" for `option` (named in the error), each side at least min_w x min_h pixels.
 // Throws core::InputError.
-void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w = 1, int min_h = 1);
+void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w = 1,
+                int min_h = 1);
 
 // A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels.
 Camera fit(double x0, double y0, double x1, double y1, int w, int h);
 
 // What a camera shows, parsed once from its text:
 //   hopper          the whole container
-//   outlet          the outlet region, ten original diameters tall (from 1.9 diameters below the aperture), at
+//   outlet          the outlet region, ten original diameters tall (from 1.9 diameters below the aperture),
+//   at
 //                   most 9.2 diameters wide: 1.3 m x 1.2 m for the paper's 0.13 m disks
 //   split           the whole container in a strip on the left, the outlet in the rest
 //   window:X0,Y0,X1,Y1   any window in metres

@@ -15,13 +15,24 @@ struct OffscreenContext::Impl {
 };
 
 namespace {
-void* osmesa_proc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+void* osmesa_proc(const char* name) {
+  return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+}
 }  // namespace
 
 OffscreenContext::OffscreenContext() : impl_(std::make_unique<Impl>()) {
-  const int attribs[] = {OSMESA_FORMAT,         OSMESA_RGBA,         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_STENCIL_BITS,   0,                   OSMESA_PROFILE,    OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 3,            OSMESA_CONTEXT_MINOR_VERSION, 3,
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         3,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         3,
                          0};
   impl_->ctx = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!impl_->ctx) throw core::RuntimeFault("OSMesa: cannot create an OpenGL 3.3 core context");

@@ -23,7 +23,9 @@ namespace render {
 
 namespace {
 const char* kFont = SILOSCOPE_FONT;  // found at build time
-ImU32 to_u32(Rgba c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a)); }
+ImU32 to_u32(Rgba c) {
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a));
+}
 }  // namespace
 
 OverlayOptions parse_overlay(const std::string& spec) {
@@ -32,23 +34,37 @@ OverlayOptions parse_overlay(const std::string& spec) {
   if (spec == "none") return o;
   std::stringstream ss(spec);
   for (std::string item; std::getline(ss, item, ',');) {
-    if (item == "all") o = OverlayOptions{};
-    else if (item == "all+plot") o = OverlayOptions{}, o.plot = true;
-    else if (item == "events") o.events = true;
-    else if (item == "zoombox") o.zoombox = true;
-    else if (item == "plot") o.plot = true;
-    else if (item == "colorbar") o.colorbar = true;
-    else if (item == "time") o.time = true;
-    else if (item == "counts") o.counts = true;
-    else if (item == "rate") o.rate = true;
-    else if (item == "timer") o.timer = true;
-    else if (item == "arch") o.arch = true;
-    else if (item == "legend") o.legend = true;
-    else if (item == "scale") o.scale = true;
+    if (item == "all")
+      o = OverlayOptions{};
+    else if (item == "all+plot")
+      o = OverlayOptions{}, o.plot = true;
+    else if (item == "events")
+      o.events = true;
+    else if (item == "zoombox")
+      o.zoombox = true;
+    else if (item == "plot")
+      o.plot = true;
+    else if (item == "colorbar")
+      o.colorbar = true;
+    else if (item == "time")
+      o.time = true;
+    else if (item == "counts")
+      o.counts = true;
+    else if (item == "rate")
+      o.rate = true;
+    else if (item == "timer")
+      o.timer = true;
+    else if (item == "arch")
+      o.arch = true;
+    else if (item == "legend")
+      o.legend = true;
+    else if (item == "scale")
+      o.scale = true;
     else
-      throw core::InputError("--overlay " + spec + ": '" + item +
-                             "' is not one of all, all+plot, none, time, counts, rate, timer, arch, legend, scale, "
-                             "events, zoombox, plot, colorbar");
+      throw core::InputError(
+          "--overlay " + spec + ": '" + item +
+          "' is not one of all, all+plot, none, time, counts, rate, timer, arch, legend, scale, "
+          "events, zoombox, plot, colorbar");
   }
   return o;
 }
@@ -59,8 +75,8 @@ OverlayData overlay_data_for(const core::Scene& scene) {
   d.clog_min_gap = scene.clog_min_gap;
   d.diameter = 2 * scene.radius_original;
   char title[160];
-  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio, scene.chi,
-                scene.mu, static_cast<unsigned long long>(scene.seed));
+  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio,
+                scene.chi, scene.mu, static_cast<unsigned long long>(scene.seed));
   d.title = title;
   return d;
 }
@@ -72,7 +88,8 @@ Overlay::Overlay() {
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
   ImGui::StyleColorsLight();
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) throw core::RuntimeFault("ImGui: the OpenGL3 backend failed");
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+    throw core::RuntimeFault("ImGui: the OpenGL3 backend failed");
   ImGui::SetCurrentContext(previous ? previous : static_cast<ImGuiContext*>(ctx_));
 }
 
@@ -95,13 +112,14 @@ void Overlay::ensure_font(int h) {
     io.Fonts->AddFontDefault(&cfg);
   }
   ImGui_ImplOpenGL3_DestroyFontsTexture();
-  if (!ImGui_ImplOpenGL3_CreateFontsTexture()) throw core::RuntimeFault("ImGui: cannot create the font texture");
+  if (!ImGui_ImplOpenGL3_CreateFontsTexture())
+    throw core::RuntimeFault("ImGui: cannot create the font texture");
   font_px_ = px;
   laid_out_ = false;  // the panel's size changes with the font
 }
 
-void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
-                   const Style& style, int w, int h) {
+void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                   const std::vector<View>& views, const Style& style, int w, int h) {
   if (!o.any()) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
@@ -155,13 +173,15 @@ const View& most_zoomed(const std::vector<View>& views) {
 // A text in a light box, centred at (cx, y) on the draw list.
 void boxed_text(ImDrawList* dl, float cx, float y, const char* text, ImU32 ink, ImU32 box, float em) {
   const ImVec2 size = ImGui::CalcTextSize(text);
-  const ImVec2 a(cx - 0.5f * size.x - 0.4f * em, y), b(cx + 0.5f * size.x + 0.4f * em, y + size.y + 0.3f * em);
+  const ImVec2 a(cx - 0.5f * size.x - 0.4f * em, y),
+      b(cx + 0.5f * size.x + 0.4f * em, y + size.y + 0.3f * em);
   dl->AddRectFilled(a, b, box, 0.3f * em);
   dl->AddText(ImVec2(a.x + 0.4f * em, a.y + 0.15f * em), ink, text);
 }
 }  // namespace
 
-void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style) {
+void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views,
+                   const Style& style) {
   // The discharge staircase: cumulative exits of each species against time, clogs shaded. Bottom-right of the
   // most zoomed view, below the outlet where there are no disks.
   if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
@@ -183,14 +203,19 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   // Clogs: spans where the clog timer ran past clog_min_gap.
   for (size_t k = 1; k < history_.size(); ++k)
     if (history_[k].clogged)
-      dl->AddRectFilled(ImVec2(X(history_[k - 1].t), y0), ImVec2(X(history_[k].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
+      dl->AddRectFilled(ImVec2(X(history_[k - 1].t), y0), ImVec2(X(history_[k].t) + 0.5f, y1),
+                        IM_COL32(200, 200, 200, 255));
   for (int sp = 0; sp < 2; ++sp) {
-    const ImU32 ink = to_u32(species_color(style.palette, sp == 0 ? core::Species::Original : core::Species::Added));
+    const ImU32 ink =
+        to_u32(species_color(style.palette, sp == 0 ? core::Species::Original : core::Species::Added));
     for (size_t k = 1; k < history_.size(); ++k) {
       const long a = sp == 0 ? history_[k - 1].original : history_[k - 1].added;
       const long b = sp == 0 ? history_[k].original : history_[k].added;
-      dl->AddLine(ImVec2(X(history_[k - 1].t), Y(static_cast<double>(a))), ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ink, 2.0f);
-      if (b != a) dl->AddLine(ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ImVec2(X(history_[k].t), Y(static_cast<double>(b))), ink, 2.0f);
+      dl->AddLine(ImVec2(X(history_[k - 1].t), Y(static_cast<double>(a))),
+                  ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ink, 2.0f);
+      if (b != a)
+        dl->AddLine(ImVec2(X(history_[k].t), Y(static_cast<double>(a))),
+                    ImVec2(X(history_[k].t), Y(static_cast<double>(b))), ink, 2.0f);
     }
   }
   const ImU32 axis = IM_COL32(40, 40, 40, 255);
@@ -203,8 +228,8 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
 }
 
-void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
-                    const Style& style, int w, int h) {
+void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                    const std::vector<View>& views, const Style& style, int w, int h) {
   const float em = static_cast<float>(font_px_);
   ImDrawList* dl = ImGui::GetForegroundDrawList();
 
@@ -216,10 +241,12 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       const double half_w = 0.5 * zoom.rect.w / zoom.px_per_m(), half_h = 0.5 * zoom.cam.height;
       const core::Vec2 a = v.world_to_pixel({zoom.cam.cx - half_w, zoom.cam.cy + half_h});
       const core::Vec2 b = v.world_to_pixel({zoom.cam.cx + half_w, zoom.cam.cy - half_h});
-      dl->PushClipRect(ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
-                       ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
-      dl->AddRect(ImVec2(static_cast<float>(a.x), static_cast<float>(a.y)), ImVec2(static_cast<float>(b.x), static_cast<float>(b.y)),
-                  IM_COL32(30, 30, 30, 230), 0, 0, std::max(1.5f, h / 500.0f));
+      dl->PushClipRect(
+          ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
+          ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
+      dl->AddRect(ImVec2(static_cast<float>(a.x), static_cast<float>(a.y)),
+                  ImVec2(static_cast<float>(b.x), static_cast<float>(b.y)), IM_COL32(30, 30, 30, 230), 0, 0,
+                  std::max(1.5f, h / 500.0f));
       dl->PopClipRect();
     }
   }
@@ -227,12 +254,14 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     // Disks the rule removed, ringed where they stood, in every view; the caption over the most zoomed view.
     const ImU32 ring = IM_COL32(200, 0, 160, 255);
     for (const auto& v : views) {
-      dl->PushClipRect(ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
-                       ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
+      dl->PushClipRect(
+          ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
+          ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
       for (const auto& g : f.marks.removed) {
         const core::Vec2 c = v.world_to_pixel({g.x, g.y});
         const float r = static_cast<float>(g.radius * v.px_per_m());
-        dl->AddCircle(ImVec2(static_cast<float>(c.x), static_cast<float>(c.y)), r, ring, 0, std::max(2.0f, 0.12f * r));
+        dl->AddCircle(ImVec2(static_cast<float>(c.x), static_cast<float>(c.y)), r, ring, 0,
+                      std::max(2.0f, 0.12f * r));
       }
       dl->PopClipRect();
     }
@@ -245,18 +274,21 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       std::snprintf(badge, sizeof badge, "slow motion %.3gx", f.marks.slowdown);
       const ImVec2 size = ImGui::CalcTextSize(badge);
       const float x = zoom.rect.x + 0.8f * em, y = zoom.rect.y + 0.8f * em;
-      dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 0.8f * em, y + size.y + 0.3f * em), IM_COL32(20, 20, 20, 220), 0.3f * em);
+      dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 0.8f * em, y + size.y + 0.3f * em),
+                        IM_COL32(20, 20, 20, 220), 0.3f * em);
       dl->AddText(ImVec2(x + 0.4f * em, y + 0.15f * em), IM_COL32(255, 220, 0, 255), badge);
     }
   }
   if (o.plot) plot(f, d, views, style);
   if (o.colorbar && !o.legend && style.color != ColorMode::Species) {
     const View& zoom = most_zoomed(views);
-    ImGui::SetNextWindowPos(ImVec2(zoom.rect.x + zoom.rect.w - 0.6f * em, zoom.rect.y + 0.6f * em), 0, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowPos(ImVec2(zoom.rect.x + zoom.rect.w - 0.6f * em, zoom.rect.y + 0.6f * em), 0,
+                            ImVec2(1.0f, 0.0f));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("colorbar", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
-                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
     colour_bar(style, em);
     ImGui::End();
   }
@@ -264,15 +296,18 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   // The information panel, top-left of the first view.
   const bool panel = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   if (panel) {
-    // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays visible.
+    // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays
+    // visible.
     const float right = d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w);
     const float left = static_cast<float>(d.panel_x), pad = 0.6f * em;
-    // Corner k: its anchor and pivot. In a window, move to the corner covering the fewest disk centres (within a
-    // radius); stay where the box is unless another corner is strictly better, so it does not jump.
+    // Corner k: its anchor and pivot. In a window, move to the corner covering the fewest disk centres
+    // (within a radius); stay where the box is unless another corner is strictly better, so it does not jump.
     float bottom = 0;  // of the lowest view: a window's timeline may lie below
     for (const auto& v : views) bottom = std::max(bottom, static_cast<float>(v.rect.y + v.rect.h));
     if (bottom <= 0) bottom = static_cast<float>(h);
-    auto anchor = [&](int k) { return ImVec2(k % 2 == 0 ? right - pad : left + pad, k < 2 ? pad : bottom - pad); };
+    auto anchor = [&](int k) {
+      return ImVec2(k % 2 == 0 ? right - pad : left + pad, k < 2 ? pad : bottom - pad);
+    };
     auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
     if (o.place_clear && info_w_ > 0) {
       auto covered = [&](int k) {
@@ -286,9 +321,11 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
             const auto& p = f.particles[i];
             const core::Vec2 c = v.world_to_pixel({p.x, p.y});
             const double r = 1.3 * p.radius * v.px_per_m();  // with the arch's ring
-            if (c.x < v.rect.x || c.x > v.rect.x + v.rect.w || c.y < v.rect.y || c.y > v.rect.y + v.rect.h) continue;
+            if (c.x < v.rect.x || c.x > v.rect.x + v.rect.w || c.y < v.rect.y || c.y > v.rect.y + v.rect.h)
+              continue;
             // Covering an arch member is worst: it is what the inspector is for.
-            if (c.x + r > x0 && c.x - r < x0 + info_w_ && c.y + r > y0 && c.y - r < y0 + info_h_) n += in_arch[i] ? 100 : 1;
+            if (c.x + r > x0 && c.x - r < x0 + info_w_ && c.y + r > y0 && c.y - r < y0 + info_h_)
+              n += in_arch[i] ? 100 : 1;
           }
         }
         return n;
@@ -304,8 +341,9 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     ImGui::SetNextWindowPos(anchor(info_corner_), 0, pivot(info_corner_));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("info", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
-                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
     if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
     if (o.time) ImGui::Text("t = %.2f s", f.t);
     if (o.counts) {
@@ -325,9 +363,11 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     if (o.timer) {
       const double frac = std::min(1.0, f.since_last_exit / d.clog_timeout);
       const bool clogged = f.since_last_exit >= d.clog_min_gap;
-      ImGui::PushStyleColor(ImGuiCol_PlotHistogram, clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
+      ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
+                            clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
       char label[64];
-      std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit, d.clog_timeout);
+      std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit,
+                    d.clog_timeout);
       ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
       ImGui::PopStyleColor();
     }
@@ -378,11 +418,13 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   }
   // A bold line between panels of a comparison, thin separators between views.
   if (d.panel_x > 0)
-    dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0), ImVec2(static_cast<float>(d.panel_x), static_cast<float>(h)),
-                IM_COL32(20, 20, 20, 255), std::max(3.0f, h / 300.0f));
+    dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0),
+                ImVec2(static_cast<float>(d.panel_x), static_cast<float>(h)), IM_COL32(20, 20, 20, 255),
+                std::max(3.0f, h / 300.0f));
   // Thin separators between views.
   for (size_t k = 1; k < views.size(); ++k)
-    dl->AddLine(ImVec2(static_cast<float>(views[k].rect.x), 0), ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(h)),
+    dl->AddLine(ImVec2(static_cast<float>(views[k].rect.x), 0),
+                ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(h)),
                 IM_COL32(120, 120, 120, 255), std::max(1.0f, h / 720.0f));
 }
 

@@ -1,6 +1,6 @@
 // The information drawn over a frame with Dear ImGui: simulated time, exits of each species, running Q~, the
-// clog timer, the current arch, a legend (or a colour bar) and a scale bar in particle diameters. Every element
-// can be switched off; a clean frame has none.
+// clog timer, the current arch, a legend (or a colour bar) and a scale bar in particle diameters. Every
+// element can be switched off; a clean frame has none.
 #pragma once
 
 #include <string>
@@ -19,8 +19,9 @@ struct OverlayOptions {
   bool zoombox = true;    // the outlet panel's region outlined on the whole-hopper panel (split camera)
   bool plot = false;      // cumulative exits of each species against time, clogs shaded (not in "all")
   bool colorbar = false;  // only the colour bar (speed/force colouring), e.g. with nothing else
-  // Not an element: put the information box in the corner where it covers the fewest disks (the windows, whose
-  // views are zoomed and panned at will); off, it stays top-right (movies: the outlet view leaves room there).
+  // Not an element: put the information box in the corner where it covers the fewest disks (the windows,
+  // whose views are zoomed and panned at will); off, it stays top-right (movies: the outlet view leaves room
+  // there).
   bool place_clear = false;
   static OverlayOptions none() {
     OverlayOptions o;
@@ -28,22 +29,25 @@ struct OverlayOptions {
     return o;
   }
   bool any() const {
-    return time || counts || rate || timer || arch || legend || scale || events || zoombox || plot || colorbar;
+    return time || counts || rate || timer || arch || legend || scale || events || zoombox || plot ||
+           colorbar;
   }
 };
-// Parse "all", "none" or a comma list of time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar
+// Parse "all", "none" or a comma list of
+// time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar
 // ("all+plot" is all of the default elements and the plot). Throws core::InputError.
 OverlayOptions parse_overlay(const std::string& spec);
 
 struct OverlayData {
-  double clog_timeout = 5;    // s
-  double clog_min_gap = 0.5;  // s
-  double diameter = 0.13;     // m, of an original disk (the scale bar's unit)
-  std::string title;          // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
+  double clog_timeout = 5;       // s
+  double clog_min_gap = 0.5;     // s
+  double diameter = 0.13;        // m, of an original disk (the scale bar's unit)
+  std::string title;             // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
   int panel_x = 0, panel_w = 0;  // the panel this overlay belongs to, pixels (panel_w = 0: the whole image)
 };
 
-// The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu, seed.
+// The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu,
+// seed.
 OverlayData overlay_data_for(const core::Scene& scene);
 
 class Overlay {
@@ -53,13 +57,13 @@ class Overlay {
   Overlay(const Overlay&) = delete;
   Overlay& operator=(const Overlay&) = delete;
   // Draw into the bound framebuffer of w x h pixels.
-  void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
-            const Style& style, int w, int h);
+  void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+            const std::vector<View>& views, const Style& style, int w, int h);
 
  private:
   void ensure_font(int h);
-  void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
-             const Style& style, int w, int h);
+  void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+             const std::vector<View>& views, const Style& style, int w, int h);
   void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).

@@ -16,8 +16,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 Painter::Painter() : renderer_(std::make_unique<Renderer>()) {}
 Painter::~Painter() = default;
 
-void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay, int w,
-                   int h, int overlay_w) {
+void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
+                   int w, int h, int overlay_w) {
   for (size_t k = 0; k < panels.size(); ++k) {
     const PanelInput& p = panels[k];
     Style panel_style = style;
@@ -29,8 +29,8 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
   }
 }
 
-core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
-                           int w, int h) {
+core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& style,
+                           const OverlayOptions& overlay, int w, int h) {
   if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<Target>(w, h);
   const auto t0 = std::chrono::steady_clock::now();
   target_->bind();

@@ -1,6 +1,7 @@
 // Frame -> pixels, written once for every caller (record, the inspector and its window, the live window, the
-// gallery): the renderer draws the disks of each panel, one overlay per panel draws its HUD (an overlay remembers
-// what it drew before: the plot's history, the marks of removed arches), and an off-screen target gives the Image.
+// gallery): the renderer draws the disks of each panel, one overlay per panel draws its HUD (an overlay
+// remembers what it drew before: the plot's history, the marks of removed arches), and an off-screen target
+// gives the Image.
 #pragma once
 
 #include <memory>
@@ -37,17 +38,19 @@ class Painter {
   Painter(const Painter&) = delete;
   Painter& operator=(const Painter&) = delete;
 
-  // Draw the panels into the framebuffer bound now, w x h pixels (the first panel clears it). The overlays draw
-  // over the left overlay_w pixels (a window keeps its right-hand side for its own panels); < 0: all of w.
-  void draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay, int w, int h,
-            int overlay_w = -1);
+  // Draw the panels into the framebuffer bound now, w x h pixels (the first panel clears it). The overlays
+  // draw over the left overlay_w pixels (a window keeps its right-hand side for its own panels); < 0: all of
+  // w.
+  void draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay, int w,
+            int h, int overlay_w = -1);
   // Draw into an off-screen target of w x h (kept while the size stays) and read it back; img.t is the first
   // panel's time.
-  core::Image paint(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay, int w,
-                    int h);
+  core::Image paint(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
+                    int w, int h);
   // One panel.
   core::Image paint(const core::Frame& f, const core::Geometry& geo, const std::vector<View>& views,
-                    const Style& style, const OverlayOptions& overlay, const OverlayData& data, int w, int h) {
+                    const Style& style, const OverlayOptions& overlay, const OverlayData& data, int w,
+                    int h) {
     return paint({{&f, &geo, &views, &data}}, style, overlay, w, h);
   }
   const PaintTiming& timing() const { return timing_; }

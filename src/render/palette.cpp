@@ -22,7 +22,8 @@ ColorMode parse_color_mode(const std::string& s) {
 
 Rgba species_color(Palette p, core::Species s) {
   const bool original = s == core::Species::Original;
-  if (p == Palette::ColorBlind) return original ? Rgba{0.835f, 0.369f, 0.0f, 1} : Rgba{0.0f, 0.447f, 0.698f, 1};
+  if (p == Palette::ColorBlind)
+    return original ? Rgba{0.835f, 0.369f, 0.0f, 1} : Rgba{0.0f, 0.447f, 0.698f, 1};
   return original ? Rgba{0.85f, 0.16f, 0.14f, 1} : Rgba{0.16f, 0.38f, 0.85f, 1};
 }
 
@@ -31,7 +32,9 @@ Rgba background_color(const Style& s) {
   return {1, 1, 1, 1};
 }
 
-Rgba wall_color(Palette) { return {0.18f, 0.18f, 0.2f, 1}; }
+Rgba wall_color(Palette) {
+  return {0.18f, 0.18f, 0.2f, 1};
+}
 
 Rgba arch_color(Palette p) {
   if (p == Palette::ColorBlind) return {0.0f, 0.0f, 0.0f, 1};
@@ -50,16 +53,19 @@ Rgba colormap(double t) {
   const double c6[3] = {-5.435455855934631, 4.645852612178535, 26.3124352495832};
   float out[3];
   for (int k = 0; k < 3; ++k)
-    out[k] = static_cast<float>(
-        std::clamp(c0[k] + t * (c1[k] + t * (c2[k] + t * (c3[k] + t * (c4[k] + t * (c5[k] + t * c6[k]))))), 0.0, 1.0));
+    out[k] = static_cast<float>(std::clamp(
+        c0[k] + t * (c1[k] + t * (c2[k] + t * (c3[k] + t * (c4[k] + t * (c5[k] + t * c6[k]))))), 0.0, 1.0));
   return {out[0], out[1], out[2], 1};
 }
 
 Rgba particle_color(const Style& s, const core::Particle& p) {
   switch (s.color) {
-    case ColorMode::Speed: return colormap(std::hypot(p.vx, p.vy) / s.speed_max);
-    case ColorMode::Force: return colormap(p.force / s.force_max);
-    case ColorMode::Species: break;
+    case ColorMode::Speed:
+      return colormap(std::hypot(p.vx, p.vy) / s.speed_max);
+    case ColorMode::Force:
+      return colormap(p.force / s.force_max);
+    case ColorMode::Species:
+      break;
   }
   return species_color(s.palette, p.species);
 }

@@ -17,8 +17,8 @@ enum class ColorMode { Species, Speed, Force };
 struct Style {
   Palette palette = Palette::Paper;
   ColorMode color = ColorMode::Species;
-  double speed_max = 0.5;  // m/s at the top of the colour scale
-  double force_max = 20.0;  // N at the top of the colour scale (~99th percentile of the default scene)
+  double speed_max = 0.5;    // m/s at the top of the colour scale
+  double force_max = 20.0;   // N at the top of the colour scale (~99th percentile of the default scene)
   bool transparent = false;  // transparent background (PNG)
   bool show_arch = true;
   bool clear = true;  // clear the image first (false: draw another panel into the same image)

@@ -44,12 +44,15 @@ GLuint link(const char* vs, const char* fs, const char* name) {
   return p;
 }
 
-void copy(float* dst, Rgba c) { dst[0] = c.r, dst[1] = c.g, dst[2] = c.b, dst[3] = c.a; }
+void copy(float* dst, Rgba c) {
+  dst[0] = c.r, dst[1] = c.g, dst[2] = c.b, dst[3] = c.a;
+}
 
 // Attribute `loc` of `count` floats at `offset` in instances of `stride` bytes, advancing once per instance.
 void instance_attrib(GLuint loc, int count, size_t stride, size_t offset) {
   glEnableVertexAttribArray(loc);
-  glVertexAttribPointer(loc, count, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride), reinterpret_cast<void*>(offset));
+  glVertexAttribPointer(loc, count, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
+                        reinterpret_cast<void*>(offset));
   glVertexAttribDivisor(loc, 1);
 }
 }  // namespace
@@ -117,11 +120,15 @@ void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const s
   }
   walls_.clear();
   const Rgba wc = wall_color(style.palette);
-  for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight,
-                core::Wall::Top}) {
+  for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft,
+                       core::Wall::SiloRight, core::Wall::Top}) {
     const auto& s = geo.walls[static_cast<int>(k)];
-    SegmentInstance seg{static_cast<float>(s.a.x), static_cast<float>(s.a.y), static_cast<float>(s.b.x),
-                        static_cast<float>(s.b.y), {}, 0};
+    SegmentInstance seg{static_cast<float>(s.a.x),
+                        static_cast<float>(s.a.y),
+                        static_cast<float>(s.b.x),
+                        static_cast<float>(s.b.y),
+                        {},
+                        0};
     copy(seg.color, wc);
     walls_.push_back(seg);
   }

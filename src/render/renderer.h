@@ -25,8 +25,8 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Clears the w x h framebuffer and draws every view.
-  void draw(const core::Frame& frame, const core::Geometry& geo, const std::vector<View>& views, const Style& style,
-            int w, int h, const ArchStyle& arch = {});
+  void draw(const core::Frame& frame, const core::Geometry& geo, const std::vector<View>& views,
+            const Style& style, int w, int h, const ArchStyle& arch = {});
 
  private:
   struct DiskInstance {

@@ -14,7 +14,8 @@ Target::Target(int width, int height) : w_(width), h_(height) {
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (w_ <= 0 || h_ <= 0 || w_ > max_size || h_ > max_size)
     throw core::InputError("image size " + std::to_string(w_) + "x" + std::to_string(h_) +
-                           " is not allowed; each side must be from 1 to " + std::to_string(max_size) + " pixels");
+                           " is not allowed; each side must be from 1 to " + std::to_string(max_size) +
+                           " pixels");
   glGenFramebuffers(1, &fbo_);
   glGenRenderbuffers(1, &color_);
   glBindRenderbuffer(GL_RENDERBUFFER, color_);
@@ -33,7 +34,9 @@ Target::~Target() {
   glDeleteRenderbuffers(1, &color_);
 }
 
-void Target::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_); }
+void Target::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+}
 
 void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch) {
   const size_t row = static_cast<size_t>(w) * 4;
@@ -55,7 +58,8 @@ void Target::read(core::Image& out, bool straight_alpha) const {
   for (size_t i = 0; i < out.rgba.size(); i += 4) {
     const unsigned a = out.rgba[i + 3];
     if (a == 0 || a == 255) continue;
-    for (int k = 0; k < 3; ++k) out.rgba[i + k] = static_cast<std::uint8_t>(std::min(255u, (out.rgba[i + k] * 255u + a / 2) / a));
+    for (int k = 0; k < 3; ++k)
+      out.rgba[i + k] = static_cast<std::uint8_t>(std::min(255u, (out.rgba[i + k] * 255u + a / 2) / a));
   }
 }
 

@@ -22,8 +22,8 @@ class Target {
   void bind() const;
   int width() const { return w_; }
   int height() const { return h_; }
-  // Read the pixels into `out` (resized), flipping GL's bottom-up rows. The renderer blends with premultiplied
-  // alpha; straight_alpha converts back (needed only for transparent backgrounds).
+  // Read the pixels into `out` (resized), flipping GL's bottom-up rows. The renderer blends with
+  // premultiplied alpha; straight_alpha converts back (needed only for transparent backgrounds).
   void read(core::Image& out, bool straight_alpha = false) const;
 
  private:

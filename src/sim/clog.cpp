@@ -14,11 +14,14 @@ void ClogTracker::on_exit(double t) {
 }
 
 void ClogTracker::on_rest_check(double t, bool outlet_at_rest) {
-  // Only a gap that has lasted long enough to be a clog can be arrested; during flow the outlet is never at rest.
+  // Only a gap that has lasted long enough to be a clog can be arrested; during flow the outlet is never at
+  // rest.
   if (outlet_at_rest && t - last_ > 0) arrested_ = true;
 }
 
-void ClogTracker::on_rule(double t) { close(t, core::ClogEnd::Rule); }
+void ClogTracker::on_rule(double t) {
+  close(t, core::ClogEnd::Rule);
+}
 
 void ClogTracker::finish(double t) {
   if (t - last_ >= min_gap_) clogs_.push_back({last_, t, core::ClogEnd::RunEnd, arrested_});

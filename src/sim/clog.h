@@ -14,10 +14,11 @@ class ClogTracker {
 
   // A particle left through the aperture at time t.
   void on_exit(double t);
-  // Called just before each kick: whether the outlet is arrested (a blocking arch stands and every disk near the
-  // outlet moved less than arrest_shift radii over the arrest_hold seconds before the kick). Judging the arrest by
-  // displacement over a window that ends before the kick, not by speed, keeps it independent of the kick's own
-  // velocity change: a clog that was arrested and then flows again was broken by a kick, at any kick strength.
+  // Called just before each kick: whether the outlet is arrested (a blocking arch stands and every disk near
+  // the outlet moved less than arrest_shift radii over the arrest_hold seconds before the kick). Judging the
+  // arrest by displacement over a window that ends before the kick, not by speed, keeps it independent of the
+  // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
+  // kick strength.
   void on_rest_check(double t, bool outlet_at_rest);
   // The rule is due when nothing has exited (and the rule has not fired) for `timeout`.
   bool rule_due(double t) const { return t - last_ >= timeout_ - 1e-9; }

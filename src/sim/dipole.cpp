@@ -4,7 +4,8 @@
 
 namespace sim {
 
-long dipole_forces(const std::vector<core::Vec2>& pos, double mu, double cutoff, std::vector<core::Vec2>& out) {
+long dipole_forces(const std::vector<core::Vec2>& pos, double mu, double cutoff,
+                   std::vector<core::Vec2>& out) {
   const size_t n = pos.size();
   out.assign(n, core::Vec2{});
   if (mu == 0.0) return 0;

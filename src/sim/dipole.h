@@ -21,9 +21,12 @@ inline core::Vec2 dipole_force(core::Vec2 r, double mu) {
 
 // Forces on every disk of `pos` from all others (pairs farther than cutoff skipped; cutoff <= 0: all pairs).
 // `out` is resized and overwritten. Returns the number of pairs evaluated.
-long dipole_forces(const std::vector<core::Vec2>& pos, double mu, double cutoff, std::vector<core::Vec2>& out);
+long dipole_forces(const std::vector<core::Vec2>& pos, double mu, double cutoff,
+                   std::vector<core::Vec2>& out);
 
 // Potential energy of the pair, J: U = mu0 mu^2 / (4 pi r^3) = 1e-7 mu^2 / r^3.
-inline double dipole_energy(double r, double mu) { return kDipolePrefactor / 3.0 * mu * mu / (r * r * r); }
+inline double dipole_energy(double r, double mu) {
+  return kDipolePrefactor / 3.0 * mu * mu / (r * r * r);
+}
 
 }  // namespace sim

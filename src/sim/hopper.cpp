@@ -13,14 +13,17 @@
 #include "sim/dipole.h"
 #include "sim/kicks.h"
 
-// The metadata states the contact slop as 0.005 Box2D units (io/metadata.cpp); fail the build if this Box2D differs.
+// The metadata states the contact slop as 0.005 Box2D units (io/metadata.cpp); fail the build if this Box2D
+// differs.
 static_assert(b2_linearSlop == 0.005f && b2_lengthUnitsPerMeter == 1.0f,
               "Box2D's linear slop changed: update box2d_linear_slop_m in io/metadata.cpp");
 
 namespace sim {
 
 namespace {
-std::string fmt4(double v) { return core::format_g(v, 4); }
+std::string fmt4(double v) {
+  return core::format_g(v, 4);
+}
 // Fixture user data: particle id + 1, or kWallTag + wall index.
 constexpr std::uintptr_t kWallTag = 1u << 30;
 // Overlap (fraction of the smaller radius of a pair) past which the integration is considered broken.
@@ -54,11 +57,13 @@ Hopper::Hopper(const core::Scene& scene)
   const double dipole_dt = core::dipole_safe_dt(scene_), kinematic_dt = core::kinematic_safe_dt(scene_);
   std::string refusal;
   if (scene_.dt > dipole_dt)
-    refusal = "dt = " + fmt4(scene_.dt) + " s is too large for the dipole repulsion at mu = " + fmt4(scene_.mu) +
+    refusal = "dt = " + fmt4(scene_.dt) +
+              " s is too large for the dipole repulsion at mu = " + fmt4(scene_.mu) +
               " A*m^2 and r = " + fmt4(scene_.size_ratio) + "; the largest safe time step is " +
               fmt4(std::min(dipole_dt, kinematic_dt)) + " s";
   else if (scene_.dt > kinematic_dt)
-    refusal = "dt = " + fmt4(scene_.dt) + " s lets a falling disk move more than the smallest diameter per step " +
+    refusal = "dt = " + fmt4(scene_.dt) +
+              " s lets a falling disk move more than the smallest diameter per step " +
               "(free fall from the top); the largest safe time step is " + fmt4(kinematic_dt) + " s";
   if (!refusal.empty()) {
     if (!scene_.unsafe) throw core::InputError("scene: " + refusal + " (or pass --unsafe)");
@@ -128,7 +133,8 @@ double Hopper::deposit_height() const {
     area += core::kPi * r * r;
   }
   const double hopper_area = (geo_.half_width + geo_.half_aperture) * geo_.hopper_height;
-  return std::max(geo_.total_height, geo_.hopper_height + (area / 0.3 - hopper_area) / (2.0 * geo_.half_width));
+  return std::max(geo_.total_height,
+                  geo_.hopper_height + (area / 0.3 - hopper_area) / (2.0 * geo_.half_width));
 }
 
 void Hopper::deposit() {
@@ -192,14 +198,14 @@ void Hopper::settle() {
 void Hopper::open_aperture() {
   for (int i = 0; i < particle_count(); ++i)
     if (pos(i).y + radius_[i] > geo_.total_height)
-      throw core::InputError("scene: after settle_time = " + fmt4(scene_.settle_time) + " s particle " +
-                             std::to_string(i) + " (" + core::species_name(species_[i]) +
-                             ") is still above the top of the container at y = " + fmt4(pos(i).y) +
-                             " m; " +
-                             (scene_.settle_kicks && scene_.kick_impulse_max > 0
-                                  ? std::string("the kicks during settling throw disks out: set settle_kicks = false")
-                                  : std::string("raise settle_time or silo_height")) +
-                             (scene_.mu > 0 ? ", or lower mu (repelling disks float on the column)" : ""));
+      throw core::InputError(
+          "scene: after settle_time = " + fmt4(scene_.settle_time) + " s particle " + std::to_string(i) +
+          " (" + core::species_name(species_[i]) +
+          ") is still above the top of the container at y = " + fmt4(pos(i).y) + " m; " +
+          (scene_.settle_kicks && scene_.kick_impulse_max > 0
+               ? std::string("the kicks during settling throw disks out: set settle_kicks = false")
+               : std::string("raise settle_time or silo_height")) +
+          (scene_.mu > 0 ? ", or lower mu (repelling disks float on the column)" : ""));
   walls_->DestroyFixture(ceiling_);
   ceiling_ = nullptr;
   add_wall(static_cast<int>(core::Wall::Top));
@@ -242,7 +248,8 @@ void Hopper::apply_kicks() {
   draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
     const core::Vec2& j = scratch_kick_[i];
-    bodies_[i]->ApplyLinearImpulseToCenter(b2Vec2(static_cast<float>(j.x * L_), static_cast<float>(j.y * L_)), true);
+    bodies_[i]->ApplyLinearImpulseToCenter(b2Vec2(static_cast<float>(j.x * L_), static_cast<float>(j.y * L_)),
+                                           true);
   }
 }
 
@@ -253,8 +260,8 @@ void Hopper::apply_dipoles() {
   // Box2D clears forces after every step, so they are applied before each one.
   for (size_t k = 0; k < added_ids_.size(); ++k) {
     const core::Vec2& f = scratch_force_[k];
-    bodies_[added_ids_[k]]->ApplyForceToCenter(b2Vec2(static_cast<float>(f.x * L_), static_cast<float>(f.y * L_)),
-                                               true);
+    bodies_[added_ids_[k]]->ApplyForceToCenter(
+        b2Vec2(static_cast<float>(f.x * L_), static_cast<float>(f.y * L_)), true);
   }
 }
 
@@ -309,9 +316,10 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
     cause = "a disk faster than 10x (the free-fall speed from the top + 1 m/s)";
   if (!cause) return;
   std::ostringstream o;
-  o << "unstable integration at t = " << fmt4(t_) << " s: " << cause << " (particle " << id << " at x = " << fmt4(p.x)
-    << " m, y = " << fmt4(p.y) << " m, speed " << fmt4(core::length(v)) << " m/s); try dt <= " << fmt4(0.5 * scene_.dt)
-    << " s (now " << fmt4(scene_.dt) << " s), more iterations, or continuous = true";
+  o << "unstable integration at t = " << fmt4(t_) << " s: " << cause << " (particle " << id
+    << " at x = " << fmt4(p.x) << " m, y = " << fmt4(p.y) << " m, speed " << fmt4(core::length(v))
+    << " m/s); try dt <= " << fmt4(0.5 * scene_.dt) << " s (now " << fmt4(scene_.dt)
+    << " s), more iterations, or continuous = true";
   if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
     warn_unsafe(o.str());
     return;
@@ -327,7 +335,8 @@ void Hopper::check_overlaps() {
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
     if (a < 0 || b < 0) continue;
     core::Vec2 d = pos(a) - pos(b);
-    double overlap = std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
+    double overlap =
+        std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
     overlaps_.sum += overlap;
     ++overlaps_.samples;
     if (overlap > worst) worst = overlap, wa = a, wb = b;
@@ -376,12 +385,15 @@ void Hopper::apply_clog_rule() {
   ev.t = t_;
   ev.clog_duration = clogs_.since_last(t_);
   ev.method = arch_method_;
-  ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range) : current_arch();
+  ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range)
+                                                  : current_arch();
   if (ev.ids.empty()) {
     // Named fallback: the other method, counted and recorded with the event.
     ++arch_fallbacks_;
-    ev.method = arch_method_ == core::ArchMethod::Visible ? core::ArchMethod::ContactPath : core::ArchMethod::Visible;
-    ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range) : current_arch();
+    ev.method =
+        arch_method_ == core::ArchMethod::Visible ? core::ArchMethod::ContactPath : core::ArchMethod::Visible;
+    ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range)
+                                                    : current_arch();
   }
   for (int id : ev.ids) {
     ev.species.push_back(species_[id]);
@@ -400,7 +412,8 @@ void Hopper::reinject(int id) {
   const double top = column_top(id);
   const double ceiling = geo_.total_height - r - 1e-4;
   const double y0 = std::min(top + scene_.reinject_gap + r, ceiling);
-  // Bands one diameter apart: from just above the column up to the lid, then (rarely: disks flying high) below.
+  // Bands one diameter apart: from just above the column up to the lid, then (rarely: disks flying high)
+  // below.
   std::vector<double> bands;
   for (double y = y0; y <= ceiling; y += 2 * r) bands.push_back(y);
   for (double y = y0 - 2 * r; y >= r; y -= 2 * r) bands.push_back(y);
@@ -421,7 +434,8 @@ void Hopper::reinject(int id) {
       return;
     }
   }
-  throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) + " at t = " + fmt4(t_) + " s");
+  throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) +
+                           " at t = " + fmt4(t_) + " s");
 }
 
 core::ContactGraph Hopper::contact_graph() const {

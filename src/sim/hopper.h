@@ -85,17 +85,18 @@ class Hopper {
   static constexpr double kBallisticFraction = 0.01;
   const Airborne& airborne() const { return airborne_; }
   bool ballistic() const { return airborne_.mean() > kBallisticFraction; }
-  // The top of the packed column, m: the top edge of the highest horizontal slab (one original diameter thick)
-  // that disks cover by at least 35%; disks in flight above it do not count.
+  // The top of the packed column, m: the top edge of the highest horizontal slab (one original diameter
+  // thick) that disks cover by at least 35%; disks in flight above it do not count.
   double column_top(int except = -1) const;
-  // With scene.unsafe, health problems are warned about (the first few printed) and counted instead of stopping.
+  // With scene.unsafe, health problems are warned about (the first few printed) and counted instead of
+  // stopping.
   long health_warnings() const { return health_warnings_; }
 
   void set_profiling(bool on) { profiling_ = on; }
   const StageTimes& stage_times() const { return times_; }
 
-  // The benchmark's baseline: n steps of the Box2D world alone (no kicks, dipoles or bookkeeping; time does not
-  // advance). Box2D stays inside sim: nothing above it needs its types.
+  // The benchmark's baseline: n steps of the Box2D world alone (no kicks, dipoles or bookkeeping; time does
+  // not advance). Box2D stays inside sim: nothing above it needs its types.
   void step_box2d_only(int n);
   // Move disk `id` to p (m) at rest; tests use it to build arches by hand.
   void place(int id, core::Vec2 p);
@@ -126,7 +127,7 @@ class Hopper {
 
   core::Scene scene_;
   core::Geometry geo_;
-  double L_;  // Box2D length units per metre
+  double L_;                   // Box2D length units per metre
   double deposit_height_ = 0;  // m, top of the deposition column
   std::unique_ptr<b2World> world_;
   b2Body* walls_ = nullptr;

@@ -1,5 +1,5 @@
-// The hopper's view of its own state for clog endings and health: whether the outlet is arrested, where the packed
-// column ends, how many disks are in flight.
+// The hopper's view of its own state for clog endings and health: whether the outlet is arrested, where the
+// packed column ends, how many disks are in flight.
 #include <algorithm>
 #include <cmath>
 
@@ -10,9 +10,9 @@ namespace sim {
 
 bool Hopper::outlet_arrested() const {
   if (hold_pos_.size() != bodies_.size()) return false;
-  // Held up by an arch, and the arch and everything beneath it (the disks no farther from the outlet centre than
-  // its farthest member) held still: disks higher in the column may rattle under strong kicks without that
-  // changing whether the outlet is blocked.
+  // Held up by an arch, and the arch and everything beneath it (the disks no farther from the outlet centre
+  // than its farthest member) held still: disks higher in the column may rattle under strong kicks without
+  // that changing whether the outlet is blocked.
   const std::vector<int> arch = current_arch();
   if (arch.empty()) return false;
   double reach = 0;

@@ -23,7 +23,8 @@ long to_long(const std::string& s, const char* what) {
 double to_double(const std::string& s, const char* what) {
   char* end = nullptr;
   double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end || !std::isfinite(v)) throw core::InputError(std::string(what) + " '" + s + "' is not a number");
+  if (s.empty() || *end || !std::isfinite(v))
+    throw core::InputError(std::string(what) + " '" + s + "' is not a number");
   return v;
 }
 const char* kCommands =
@@ -53,7 +54,9 @@ Inspector::Inspector(const io::Trajectory& traj, const core::Scene& scene)
   }
 }
 
-void Inspector::set_frame(long k) { frame_ = std::clamp(k, 0L, traj_.size() - 1); }
+void Inspector::set_frame(long k) {
+  frame_ = std::clamp(k, 0L, traj_.size() - 1);
+}
 
 std::vector<render::View> Inspector::views(int w, int h) const {
   auto vs = render::layout_views(camera, geo_, w, h);
@@ -79,7 +82,8 @@ std::string Inspector::output_name(const std::string& pattern, const std::string
   std::snprintf(buf, sizeof buf, "%.3f", traj_.time(frame_));
   put("{t}", buf);
   if (std::filesystem::exists(out))
-    throw core::InputError("'" + line + "': " + out + " exists; the inspector never writes over a file (choose another "
+    throw core::InputError("'" + line + "': " + out +
+                           " exists; the inspector never writes over a file (choose another "
                            "name, or use {frame} or {t} in it)");
   return out;
 }
@@ -118,7 +122,8 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       const double t = to_double(a[2], "time");
       if (t < traj_.time(0) - 1e-9 || t > traj_.time(traj_.size() - 1) + 1e-9)
         throw core::InputError("'" + line + "': time " + a[2] + " s is outside the trajectory (" +
-                               std::to_string(traj_.time(0)) + " to " + std::to_string(traj_.time(traj_.size() - 1)) + " s)");
+                               std::to_string(traj_.time(0)) + " to " +
+                               std::to_string(traj_.time(traj_.size() - 1)) + " s)");
       long best = 0;
       for (long k = 0; k < traj_.size(); ++k)
         if (std::abs(traj_.time(k) - t) < std::abs(traj_.time(best) - t)) best = k;
@@ -135,7 +140,8 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       for (long f = 1; f < traj_.size() && found < 0; ++f)
         if (traj_.long_arches(f) >= k && traj_.long_arches(f - 1) < k) found = f - 1;
       if (k < 1 || found < 0)
-        throw core::InputError("'" + line + "': long-lasting arch " + a[2] + " is not in the trajectory (it has " +
+        throw core::InputError("'" + line + "': long-lasting arch " + a[2] +
+                               " is not in the trajectory (it has " +
                                std::to_string(traj_.long_arches(traj_.size() - 1)) + ")");
       frame_ = found;
     } else {
@@ -161,7 +167,9 @@ void Inspector::execute(const std::string& line, Painter* painter) {
           break;
         }
     }
-    if (!hit) throw core::InputError("'" + line + "': there is no " + (cmd == "next" ? "later" : "earlier") + " clog");
+    if (!hit)
+      throw core::InputError("'" + line + "': there is no " + (cmd == "next" ? "later" : "earlier") +
+                             " clog");
     frame_ = hit->last;
   } else if (cmd == "zoom") {
     if (a.size() == 3 && a[1] == "by") {
@@ -200,7 +208,8 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     last_output = o.str();
     std::printf("%s\n", last_output.c_str());
   } else if (cmd == "snapshot") {
-    if (a.size() < 2 || a.size() > 3) throw core::InputError("'" + line + "': usage: snapshot FILE.png [WxH]");
+    if (a.size() < 2 || a.size() > 3)
+      throw core::InputError("'" + line + "': usage: snapshot FILE.png [WxH]");
     int w = 1920, h = 1080;
     if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
     if (!painter) throw core::InputError("'" + line + "': snapshot needs a renderer");
@@ -221,7 +230,9 @@ void Inspector::execute(const std::string& line, Painter* painter) {
           hit = &c;
           break;
         }
-      if (!hit) throw core::InputError("'" + line + "': there is no clog at or after frame " + std::to_string(frame_));
+      if (!hit)
+        throw core::InputError("'" + line + "': there is no clog at or after frame " +
+                               std::to_string(frame_));
       const double dt = traj_.info().frame_interval;
       from = std::max(0L, hit->first - std::lround(1.0 / dt));
       to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
@@ -229,7 +240,8 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       opt = 3;
     } else {
       if (a.size() < 4 || a.size() > 6)
-        throw core::InputError("'" + line + "': usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
+        throw core::InputError(
+            "'" + line + "': usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
       from = in_range(to_long(a[2], "FROM"));
       to = in_range(to_long(a[3], "TO"));
       if (to < from) throw core::InputError("'" + line + "': TO must not be before FROM");
@@ -239,8 +251,9 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     v.width = 1280;
     v.height = 720;
     if (a.size() > opt) render::parse_size(a[opt], "export size", v.width, v.height);
-    v.fps = a.size() > opt + 1 ? static_cast<int>(to_long(a[opt + 1], "FPS"))
-                               : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
+    v.fps = a.size() > opt + 1
+                ? static_cast<int>(to_long(a[opt + 1], "FPS"))
+                : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
     record::validate(v);
     if (!painter) throw core::InputError("'" + line + "': export needs a renderer");
     const std::string path = output_name(file, line);

@@ -58,8 +58,8 @@ class Inspector {
   core::Image render_current(Painter& p, int w, int h) const;
 
   render::CameraSpec camera;  // split
-  double zoom = 1.0;         // magnification on top of the preset
-  core::Vec2 pan{0, 0};      // m
+  double zoom = 1.0;          // magnification on top of the preset
+  core::Vec2 pan{0, 0};       // m
   render::Style style;
   render::OverlayOptions overlay;
   render::OverlayData overlay_data;

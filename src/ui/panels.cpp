@@ -30,12 +30,13 @@ void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::s
   }
 }
 
-void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h, float timeline_y,
-                 float timeline_w, float timeline_h) {
+void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h,
+                 float timeline_y, float timeline_w, float timeline_h) {
   const long n = insp.trajectory().size();
   ImGui::SetNextWindowPos(ImVec2(x, 0));
   ImGui::SetNextWindowSize(ImVec2(w, h));
-  ImGui::Begin("siloscope inspect", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin("siloscope inspect", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   const core::Frame f = insp.current();
 
   // Transport.
@@ -69,13 +70,15 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::Separator();
   const char* cams[] = {"split", "outlet", "hopper"};
   for (const char* c : cams) {
-    if (ImGui::RadioButton(c, insp.camera.text == c)) run_command(insp, ps, painter, std::string("zoom ") + c);
+    if (ImGui::RadioButton(c, insp.camera.text == c))
+      run_command(insp, ps, painter, std::string("zoom ") + c);
     ImGui::SameLine();
   }
   ImGui::NewLine();
   float zoom = static_cast<float>(insp.zoom);
   ImGui::SetNextItemWidth(-1);
-  if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic)) insp.zoom = zoom;
+  if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic))
+    insp.zoom = zoom;
   remember(ps, "zoom");
   int color = static_cast<int>(insp.style.color);
   ImGui::RadioButton("species", &color, 0);
@@ -85,7 +88,8 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::RadioButton("force", &color, 2);
   insp.style.color = static_cast<render::ColorMode>(color);
   bool cb = insp.style.palette == render::Palette::ColorBlind;
-  if (ImGui::Checkbox("colour-blind palette", &cb)) insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
+  if (ImGui::Checkbox("colour-blind palette", &cb))
+    insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
   ImGui::SameLine();
   ImGui::Checkbox("arch", &insp.style.show_arch);
   auto& o = insp.overlay;
@@ -117,7 +121,8 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
                 f.since_last_exit >= insp.overlay_data.clog_min_gap ? ", clogging" : ", forming");
     ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
     std::string members;
-    for (int id : f.arch) members += std::to_string(id) + (f.particles[id].species == core::Species::Added ? "a " : "o ");
+    for (int id : f.arch)
+      members += std::to_string(id) + (f.particles[id].species == core::Species::Added ? "a " : "o ");
     ImGui::TextWrapped("members (left to right, o/a = original/added): %s", members.c_str());
   }
   ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
@@ -130,7 +135,8 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::SetNextItemWidth(-1);
   ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
   if (ImGui::Button("snapshot this frame"))
-    run_command(insp, ps, painter, std::string("snapshot ") + ps.snapshot_path + " " + kSizes[ps.snapshot_size]);
+    run_command(insp, ps, painter,
+                std::string("snapshot ") + ps.snapshot_path + " " + kSizes[ps.snapshot_size]);
   remember(ps, "snapshot");
   ImGui::SetNextItemWidth(0.3f * w);
   ImGui::InputInt("from", &ps.export_from, 0);
@@ -140,21 +146,25 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##clip", ps.export_path, sizeof ps.export_path);
   if (ImGui::Button("export from..to"))
-    run_command(insp, ps, painter, std::string("export ") + ps.export_path + " " + std::to_string(ps.export_from) + " " +
-                                       std::to_string(ps.export_to));
+    run_command(insp, ps, painter,
+                std::string("export ") + ps.export_path + " " + std::to_string(ps.export_from) + " " +
+                    std::to_string(ps.export_to));
   ImGui::SameLine();
-  if (ImGui::Button("export this clog")) run_command(insp, ps, painter, std::string("export clog ") + ps.export_path);
+  if (ImGui::Button("export this clog"))
+    run_command(insp, ps, painter, std::string("export clog ") + ps.export_path);
   remember(ps, "export clog");
   ImGui::Separator();
   ImGui::TextWrapped("%s", ps.message.c_str());
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
-  ImGui::TextWrapped("keys: left/right step, space play, n/p next/previous clog, Home/End, q close; "
-                     "wheel zooms, drag pans");
+  ImGui::TextWrapped(
+      "keys: left/right step, space play, n/p next/previous clog, Home/End, q close; "
+      "wheel zooms, drag pans");
   ImGui::PopStyleColor();
   if (ps.last_redraw_ms > 0) ImGui::TextDisabled("last redraw %.1f ms", ps.last_redraw_ms);
   ImGui::End();
 
-  // Timeline: clogs in orange (red when the rule removed the arch), the current frame as a line; click to seek.
+  // Timeline: clogs in orange (red when the rule removed the arch), the current frame as a line; click to
+  // seek.
   ImGui::SetNextWindowPos(ImVec2(0, timeline_y));
   ImGui::SetNextWindowSize(ImVec2(timeline_w, timeline_h));
   ImGui::Begin("timeline", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
@@ -169,9 +179,11 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   dl->AddRectFilled(p0, ImVec2(p0.x + bw, p0.y + bar_h), IM_COL32(235, 235, 235, 255));
   auto xof = [&](long k) { return p0.x + bw * static_cast<float>(k) / std::max(1L, n - 1); };
   for (const auto& c : insp.clogs())
-    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bar_h), ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bar_h),
+    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bar_h),
+                      ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bar_h),
                       c.removed ? IM_COL32(200, 40, 30, 255) : IM_COL32(240, 150, 30, 255));
-  dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bar_h), IM_COL32(0, 0, 0, 255), 2);
+  dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bar_h),
+              IM_COL32(0, 0, 0, 255), 2);
   const double t0 = insp.trajectory().time(0), t1 = insp.trajectory().time(n - 1);
   if (t1 > t0 && bw > 0) {
     // A tick every 1, 2 or 5 x 10^k s, at least 70 px apart.

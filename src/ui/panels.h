@@ -12,10 +12,10 @@ namespace ui {
 
 struct PanelState {
   bool playing = false;
-  float speed = 1.0f;               // video frames per display frame, scaled by the trajectory's frame rate
-  std::string message;              // the last result or error, shown in the panel
+  float speed = 1.0f;   // video frames per display frame, scaled by the trajectory's frame rate
+  std::string message;  // the last result or error, shown in the panel
   char snapshot_path[256] = "snapshot-{frame}.png";
-  int snapshot_size = 0;            // index into the size presets
+  int snapshot_size = 0;  // index into the size presets
   int export_from = 0, export_to = 0;
   char export_path[256] = "clip-{frame}.mp4";
   double last_redraw_ms = 0;
@@ -25,8 +25,8 @@ struct PanelState {
 
 // Draw the control panel at (x, 0) of width w, and the timeline at (0, y) of size timeline_w x timeline_h.
 // Must be called between ImGui::NewFrame() and ImGui::Render().
-void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h, float timeline_y,
-                 float timeline_w, float timeline_h);
+void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h,
+                 float timeline_y, float timeline_w, float timeline_h);
 
 // Run a command and put its outcome (or error) in ps.message instead of throwing.
 void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command);

@@ -34,7 +34,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr float kPanelWidth = 400, kTimelineHeight = 60;
 
-void* glfw_proc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+void* glfw_proc(const char* name) {
+  return reinterpret_cast<void*>(glfwGetProcAddress(name));
+}
 
 // Key presses as GLFW delivers them, queued, so that quick taps between two redraws are never lost (ImGui's
 // per-frame key state saw 2 of 5 quick taps). ImGui's own callback is chained after this one.
@@ -43,7 +45,8 @@ struct KeyQueue {
 };
 void on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) q->keys.push_back(action == GLFW_REPEAT ? -key : key);
+  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w)))
+    q->keys.push_back(action == GLFW_REPEAT ? -key : key);
 }
 
 // A GLFW window with a GL 3.3 core context and an ImGui context of its own.
@@ -51,9 +54,11 @@ class Window {
  public:
   Window(int w, int h, const char* title) {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-      throw core::InputError("no display (DISPLAY is not set): the window needs one; use --script FILE for the "
-                             "scripted, off-screen inspector, or run under xvfb-run");
-    if (!glfwInit()) throw core::InputError("cannot open a window on this display; use --script FILE instead");
+      throw core::InputError(
+          "no display (DISPLAY is not set): the window needs one; use --script FILE for the "
+          "scripted, off-screen inspector, or run under xvfb-run");
+    if (!glfwInit())
+      throw core::InputError("cannot open a window on this display; use --script FILE instead");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -120,23 +125,32 @@ void mouse_view(Inspector& insp, float scene_w, float scene_h) {
   }
 }
 
-// Every queued key press, in order: arrows step (held: repeat), space plays, N/P next/previous clog, Home/End,
-// Q or Escape closes. Ignored while a text field has the keyboard.
+// Every queued key press, in order: arrows step (held: repeat), space plays, N/P next/previous clog,
+// Home/End, Q or Escape closes. Ignored while a text field has the keyboard.
 void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
   const std::vector<int> pressed = win.take_keys();
   if (ImGui::GetIO().WantTextInput) return;
   for (int k : pressed) {
     const bool repeat = k < 0;
     const int key = repeat ? -k : k;
-    if (key == GLFW_KEY_RIGHT) insp.set_frame(insp.frame_index() + 1);
-    else if (key == GLFW_KEY_LEFT) insp.set_frame(insp.frame_index() - 1);
-    else if (repeat) continue;
-    else if (key == GLFW_KEY_SPACE) ps.playing = !ps.playing;
-    else if (key == GLFW_KEY_N) run_command(insp, ps, painter, "next clog");
-    else if (key == GLFW_KEY_P) run_command(insp, ps, painter, "prev clog");
-    else if (key == GLFW_KEY_HOME) run_command(insp, ps, painter, "goto start");
-    else if (key == GLFW_KEY_END) run_command(insp, ps, painter, "goto end");
-    else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
+    if (key == GLFW_KEY_RIGHT)
+      insp.set_frame(insp.frame_index() + 1);
+    else if (key == GLFW_KEY_LEFT)
+      insp.set_frame(insp.frame_index() - 1);
+    else if (repeat)
+      continue;
+    else if (key == GLFW_KEY_SPACE)
+      ps.playing = !ps.playing;
+    else if (key == GLFW_KEY_N)
+      run_command(insp, ps, painter, "next clog");
+    else if (key == GLFW_KEY_P)
+      run_command(insp, ps, painter, "prev clog");
+    else if (key == GLFW_KEY_HOME)
+      run_command(insp, ps, painter, "goto start");
+    else if (key == GLFW_KEY_END)
+      run_command(insp, ps, painter, "goto end");
+    else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
+      glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
   }
 }
 
@@ -148,7 +162,9 @@ core::Image window_pixels(int w, int h) {
   return img;
 }
 
-void save_screenshot(const std::string& path, int w, int h) { record::write_png(path, window_pixels(w, h), true); }
+void save_screenshot(const std::string& path, int w, int h) {
+  record::write_png(path, window_pixels(w, h), true);
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -185,7 +201,8 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   overlay.place_clear = true;  // views are zoomed and panned at will: keep the information box off the disks
   painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, overlay, fw, fh, scene_w);
   imgui_frame(win, fw, fh, [&] {
-    panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh), static_cast<float>(scene_h));
+    panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh),
+           static_cast<float>(scene_h));
   });
 }
 }  // namespace
@@ -277,11 +294,16 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     for (int k : win.take_keys()) {
       if (ImGui::GetIO().WantTextInput) break;
       const int key = k < 0 ? -k : k;
-      if (key == GLFW_KEY_RIGHT && paused) step_pending += kStep;
-      else if (k < 0) continue;
-      else if (key == GLFW_KEY_SPACE) paused = !paused;
-      else if (key == GLFW_KEY_S) snapshot = true;
-      else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
+      if (key == GLFW_KEY_RIGHT && paused)
+        step_pending += kStep;
+      else if (k < 0)
+        continue;
+      else if (key == GLFW_KEY_SPACE)
+        paused = !paused;
+      else if (key == GLFW_KEY_S)
+        snapshot = true;
+      else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
+        glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
     }
     try {
       const double advance = paused ? std::exchange(step_pending, 0.0) : speed * wall;
@@ -306,7 +328,8 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       try {
         const auto views = views_for(1920, 1080);
         const std::string name = free_snapshot_name(f.t);
-        record::write_png(name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, overlay, 1920, 1080), true);
+        record::write_png(
+            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, overlay, 1920, 1080), true);
         message = "snapshot " + name;
       } catch (const std::exception& e) {
         message = std::string("snapshot failed: ") + e.what();
@@ -318,9 +341,10 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     imgui_frame(win, fw, fh, [&] {
       ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
       ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
-      ImGui::Begin("siloscope live", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-      ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t, static_cast<long long>(f.exits_original),
-                  static_cast<long long>(f.exits_added));
+      ImGui::Begin("siloscope live", nullptr,
+                   ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+      ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t,
+                  static_cast<long long>(f.exits_original), static_cast<long long>(f.exits_added));
       if (ImGui::Button(paused ? "resume (space)" : "pause (space)")) paused = !paused;
       ImGui::SameLine();
       ImGui::BeginDisabled(!paused);
@@ -352,8 +376,9 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       }
       ImGui::NewLine();
       ImGui::SliderFloat("zoom", &zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-      const std::pair<const char*, render::ColorMode> colors[] = {
-          {"species", render::ColorMode::Species}, {"speed", render::ColorMode::Speed}, {"force", render::ColorMode::Force}};
+      const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
+                                                                  {"speed", render::ColorMode::Speed},
+                                                                  {"force", render::ColorMode::Force}};
       for (const auto& [label, mode] : colors) {
         if (ImGui::RadioButton(label, style.color == mode)) style.color = mode;
         ImGui::SameLine();

@@ -38,7 +38,7 @@ class LiveSource {
   virtual render::OverlayData overlay_data() const = 0;
   virtual LiveParams params() const = 0;
   virtual double mu_for(const LiveParams& p) const = 0;  // A m^2: the dipole moment that gives p.force_ratio
-  virtual void restart(const LiveParams& p) = 0;         // validates; throws core::InputError naming the value
+  virtual void restart(const LiveParams& p) = 0;  // validates; throws core::InputError naming the value
 };
 
 // Space pauses and resumes, the right arrow steps one frame (1/30 s) while paused, S saves a snapshot

@@ -45,7 +45,8 @@ TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
   // Gaps: 0.1 0.1 | 0.6 | 0.2 | 1.0 | 0.1 0.1 0.1 -> avalanches 3, 2, 4 (cut short by the end: left out).
   std::vector<core::ExitEvent> exits;
   int id = 0;
-  for (double t : {1.0, 1.1, 1.2, 1.8, 2.0, 3.0, 3.1, 3.2, 3.3}) exits.push_back({t, id++, Species::Original});
+  for (double t : {1.0, 1.1, 1.2, 1.8, 2.0, 3.0, 3.1, 3.2, 3.3})
+    exits.push_back({t, id++, Species::Original});
   exits[4].species = Species::Added;  // both species count
   CHECK(analysis::avalanche_sizes(exits, 0.5) == std::vector<double>{3, 2});
   CHECK(analysis::avalanche_sizes(exits, 0.15) == std::vector<double>{3, 1, 1});
@@ -55,11 +56,24 @@ TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
 
 TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   core::Events ev;
-  for (int i = 0; i < 30; ++i) ev.exits.push_back({0.5 + i, i, i % 3 == 0 ? Species::Added : Species::Original});
-  ev.arches.push_back({10, 5, {1, 2, 3}, {Species::Original, Species::Added, Species::Original}, {}, core::ArchMethod::ContactPath});
-  ev.arches.push_back({20, 5, {4, 5, 6, 7}, {Species::Added, Species::Added, Species::Original, Species::Original}, {}, core::ArchMethod::ContactPath});
-  ev.clogs = {{5, 10, core::ClogEnd::Rule, true}, {12, 13, core::ClogEnd::Vibration, true},
-              {14, 15, core::ClogEnd::Spontaneous, false}, {15, 20, core::ClogEnd::Rule, true}};
+  for (int i = 0; i < 30; ++i)
+    ev.exits.push_back({0.5 + i, i, i % 3 == 0 ? Species::Added : Species::Original});
+  ev.arches.push_back({10,
+                       5,
+                       {1, 2, 3},
+                       {Species::Original, Species::Added, Species::Original},
+                       {},
+                       core::ArchMethod::ContactPath});
+  ev.arches.push_back({20,
+                       5,
+                       {4, 5, 6, 7},
+                       {Species::Added, Species::Added, Species::Original, Species::Original},
+                       {},
+                       core::ArchMethod::ContactPath});
+  ev.clogs = {{5, 10, core::ClogEnd::Rule, true},
+              {12, 13, core::ClogEnd::Vibration, true},
+              {14, 15, core::ClogEnd::Spontaneous, false},
+              {15, 20, core::ClogEnd::Rule, true}};
   auto m = analysis::measure(ev, 30.0);
   CHECK(m.exits == 30);
   CHECK(m.exits_added == 10);
@@ -73,7 +87,8 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   CHECK(m.fraction_broken_by_vibration == Approx(1.0 / 3.0));
 }
 
-TEST_CASE("event files round-trip, truncated or corrupted ones are refused with file and line", "[analysis][io]") {
+TEST_CASE("event files round-trip, truncated or corrupted ones are refused with file and line",
+          "[analysis][io]") {
   namespace fs = std::filesystem;
   fs::path dir = fs::temp_directory_path() / "siloscope_test_events";
   fs::remove_all(dir);
@@ -81,7 +96,12 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
   core::Events ev;
   ev.exits = {{0.25, 3, Species::Original}, {0.5, 7, Species::Added}};
   ev.clogs = {{0.5, 5.5, core::ClogEnd::Rule, true}};
-  ev.arches.push_back({5.5, 5.0, {4, 9}, {Species::Original, Species::Added}, {0.3, 0.15, 170.0}, core::ArchMethod::ContactPath});
+  ev.arches.push_back({5.5,
+                       5.0,
+                       {4, 9},
+                       {Species::Original, Species::Added},
+                       {0.3, 0.15, 170.0},
+                       core::ArchMethod::ContactPath});
   io::write_events(dir, ev);
   core::Events back = io::read_events(dir);
   REQUIRE(back.exits.size() == 2);
@@ -103,7 +123,8 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
   expect_error("exits.csv", "t_s,id,species\n0.25,3,original\n0.5,7,add", "exits.csv:3: truncated");
   expect_error("exits.csv", "t_s,id,species\n0.25,3,original\n0.5,x,added\n", "exits.csv:3: id = 'x'");
   expect_error("exits.csv", "time,id\n", "exits.csv:1: header");
-  expect_error("clogs.csv", "start_s,end_s,duration_s,ended_by,arrested\n1,2,1,magic,0\n", "ended_by = 'magic'");
+  expect_error("clogs.csv", "start_s,end_s,duration_s,ended_by,arrested\n1,2,1,magic,0\n",
+               "ended_by = 'magic'");
   fs::remove(dir / "arches.csv");
   CHECK_THROWS_AS(io::read_events(dir), core::InputError);
 }
@@ -118,15 +139,17 @@ analysis::Run synthetic_run(double chi, std::uint64_t seed, double q_tilde) {
   r.scene.seed = seed;
   r.scene.duration = 10;
   // q_tilde originals per second, plus (for chi > 0) one added exit per second.
-  for (int i = 0; i < static_cast<int>(q_tilde * 10); ++i) r.events.exits.push_back({i * 0.1, i, Species::Original});
+  for (int i = 0; i < static_cast<int>(q_tilde * 10); ++i)
+    r.events.exits.push_back({i * 0.1, i, Species::Original});
   r.m = analysis::measure(r.events, r.scene.duration);
   return r;
 }
 }  // namespace
 
-TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes and duplicate seeds", "[analysis]") {
-  std::vector<analysis::Run> runs = {synthetic_run(0.0, 1, 2.0), synthetic_run(0.0, 2, 4.0), synthetic_run(0.4, 1, 3.0),
-                                     synthetic_run(0.4, 2, 3.0)};
+TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes and duplicate seeds",
+          "[analysis]") {
+  std::vector<analysis::Run> runs = {synthetic_run(0.0, 1, 2.0), synthetic_run(0.0, 2, 4.0),
+                                     synthetic_run(0.4, 1, 3.0), synthetic_run(0.4, 2, 3.0)};
   auto points = analysis::aggregate(runs);
   REQUIRE(points.size() == 2);
   CHECK(points[0].q_tilde.mean == Approx(3.0));
@@ -166,5 +189,6 @@ TEST_CASE("with several kick strengths, Q~/Q_p compares each point with the pure
     if (p.scene.chi > 0) CHECK(p.q_tilde_over_qp.mean == Approx(3.0 * scale / (2.0 * scale + 0.75)));
   }
   const std::string csv = analysis::points_csv(points);
-  CHECK_THAT(csv, Catch::Matchers::Contains("kick_dv_over_sqrt_g_ro") && Catch::Matchers::Contains("q_p_per_s"));
+  CHECK_THAT(csv,
+             Catch::Matchers::Contains("kick_dv_over_sqrt_g_ro") && Catch::Matchers::Contains("q_p_per_s"));
 }

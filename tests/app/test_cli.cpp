@@ -1,4 +1,5 @@
-// The command line as a user meets it: exit codes, error messages, nothing half-written, reproducible outputs.
+// The command line as a user meets it: exit codes, error messages, nothing half-written, reproducible
+// outputs.
 #include <catch2/catch.hpp>
 
 #include <signal.h>
@@ -22,7 +23,9 @@ using test::cli;
 using test::kBin;
 using test::kScene;
 using test::slurp;
-fs::path temp_dir(const std::string& name) { return test::temp_dir("cli_" + name); }
+fs::path temp_dir(const std::string& name) {
+  return test::temp_dir("cli_" + name);
+}
 
 // Nothing at all under `dir` except the entries listed.
 bool only(const fs::path& dir, std::vector<std::string> names) {
@@ -88,12 +91,14 @@ TEST_CASE("bad scenes and outputs: one clear line, exit 2, nothing written", "[a
   CHECK(only(d, {"typo.toml", "file"}));  // no output, no partial directory
 }
 
-TEST_CASE("a run writes its files whole, refuses to overwrite, and its metadata repeats it exactly", "[app]") {
+TEST_CASE("a run writes its files whole, refuses to overwrite, and its metadata repeats it exactly",
+          "[app]") {
   fs::path d = temp_dir("run");
   const std::string args = " --duration 3 --set settle_time=2 --quiet --out ";
   auto r = cli("run " + kScene + args + (d / "a").string());
   REQUIRE(r.code == 0);
-  CHECK(only(d / "a", {"arches.csv", "clogs.csv", "exits.csv", "metadata.toml", "summary.csv", "survival.csv"}));
+  CHECK(only(d / "a",
+             {"arches.csv", "clogs.csv", "exits.csv", "metadata.toml", "summary.csv", "survival.csv"}));
   CHECK(slurp(d / "a" / "exits.csv").rfind("t_s,id,species\n", 0) == 0);
   // Again into the same directory: refused without --force, the first run intact.
   const std::string before = slurp(d / "a" / "exits.csv");
@@ -110,14 +115,16 @@ TEST_CASE("a run writes its files whole, refuses to overwrite, and its metadata 
 
 TEST_CASE("record makes NAME.mp4 and NAME/ with frames, events and metadata", "[app][record]") {
   fs::path d = temp_dir("record");
-  auto r = cli("record " + kScene + " --duration 1 --set settle_time=2 --size 320x240 --fps 10 --png-every 5 --quiet --out " +
+  auto r = cli("record " + kScene +
+               " --duration 1 --set settle_time=2 --size 320x240 --fps 10 --png-every 5 --quiet --out " +
                (d / "demo").string());
   REQUIRE(r.code == 0);
   CHECK(only(d, {"demo", "demo.mp4"}));
   CHECK(fs::file_size(d / "demo.mp4") > 1000);
   CHECK(only(d / "demo" / "frames", {"frame_000000.png", "frame_000005.png"}));
   const std::string meta = slurp(d / "demo" / "metadata.toml");
-  CHECK_THAT(meta, Catch::Matchers::Contains("frames = 10") && Catch::Matchers::Contains("movie = \"demo.mp4\"") &&
+  CHECK_THAT(meta, Catch::Matchers::Contains("frames = 10") &&
+                       Catch::Matchers::Contains("movie = \"demo.mp4\"") &&
                        Catch::Matchers::Contains("[scene]") && Catch::Matchers::Contains("seed = 1"));
 }
 
@@ -133,8 +140,8 @@ TEST_CASE("Ctrl-C during record leaves a playable movie of what was recorded", "
   CHECK(fs::exists(out + ".mp4"));
   CHECK_FALSE(fs::exists(out + ".mp4.partial"));
   CHECK_THAT(slurp(d / "cut" / "metadata.toml"), Catch::Matchers::Contains("interrupted = true"));
-  // Playable: ffprobe-free check through our own decoder is in test_record; here the container must be complete
-  // (the moov index is written at the front by +faststart).
+  // Playable: ffprobe-free check through our own decoder is in test_record; here the container must be
+  // complete (the moov index is written at the front by +faststart).
   std::ifstream movie(out + ".mp4", std::ios::binary);
   std::string head(64, '\0');
   movie.read(head.data(), 64);
@@ -152,7 +159,8 @@ TEST_CASE("kill -9 during record leaves nothing under the final names", "[app][r
   CHECK_FALSE(fs::exists(d / "cut"));
 }
 
-TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal and nowhere else", "[app][record]") {
+TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal and nowhere else",
+          "[app][record]") {
   fs::path d = temp_dir("slowmo");
   // Seed 1: the first clog is removed by the rule at t = 6.521 s; the slow window is 6.021 to 7.521 s.
   const std::string common = "record " + kScene + " --duration 8 --size 160x120 --fps 10 --quiet --out ";
@@ -162,6 +170,7 @@ TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal 
   const std::string slow = slurp(d / "slow" / "metadata.toml");
   // Frames at 0, 0.1, ..., 6.0 (61); slow from 6.1 (the first frame past 6.021) every 0.025 s up to 7.5 (57);
   // then 7.525, 7.625, ..., 7.925 (5): 123 frames, 57 of them slow.
-  CHECK_THAT(slow, Catch::Matchers::Contains("frames = 123\n") && Catch::Matchers::Contains("slowmo_frames = 57\n"));
+  CHECK_THAT(
+      slow, Catch::Matchers::Contains("frames = 123\n") && Catch::Matchers::Contains("slowmo_frames = 57\n"));
   CHECK(cli(common + (d / "bad").string() + " --slowmo 0.5").code == 2);
 }

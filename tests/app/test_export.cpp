@@ -19,7 +19,8 @@ using test::temp_dir;
 namespace {
 fs::path recorded(const std::string& name) {
   fs::path d = temp_dir(name);
-  REQUIRE(cli("record " + kScene + " --duration 2 --size 64x48 --quiet --out " + (d / "r").string()).code == 0);
+  REQUIRE(cli("record " + kScene + " --duration 2 --size 64x48 --quiet --out " + (d / "r").string()).code ==
+          0);
   return d / "r";
 }
 }  // namespace
@@ -48,13 +49,16 @@ TEST_CASE("export --format xyz loads in ASE with the right atoms, radii and arch
      << "assert abs(a.cell[1][1] - 6.36) < 1e-9\n"
      << "print('ase ok')\n";
   std::ofstream(r / "check.py") << py.str();
-  REQUIRE(test::sh("/usr/bin/python3 " + (r / "check.py").string() + " > " + (r / "check.log").string() + " 2>&1") == 0);
+  REQUIRE(test::sh("/usr/bin/python3 " + (r / "check.py").string() + " > " + (r / "check.log").string() +
+                   " 2>&1") == 0);
   CHECK_THAT(slurp(r / "check.log"), Catch::Matchers::Contains("ase ok"));
 }
 
-TEST_CASE("export --format csv writes one frame or a range, values equal to the trajectory frame", "[export][app]") {
+TEST_CASE("export --format csv writes one frame or a range, values equal to the trajectory frame",
+          "[export][app]") {
   const fs::path r = recorded("export_csv");
-  REQUIRE(cli("export " + r.string() + " --format csv --frames 10 --out " + (r / "f10.csv").string()).code == 0);
+  REQUIRE(cli("export " + r.string() + " --format csv --frames 10 --out " + (r / "f10.csv").string()).code ==
+          0);
   io::Trajectory t(r / "trajectory.sstraj");
   const core::Frame f = t.frame(10);
   std::istringstream in(slurp(r / "f10.csv"));
@@ -77,7 +81,9 @@ TEST_CASE("export --format csv writes one frame or a range, values equal to the 
     ++rows;
   }
   CHECK(rows == 250);
-  REQUIRE(cli("export " + r.string() + " --format csv --frames 2:4 --out " + (r / "range.csv").string()).code == 0);
+  REQUIRE(
+      cli("export " + r.string() + " --format csv --frames 2:4 --out " + (r / "range.csv").string()).code ==
+      0);
   const std::string range = slurp(r / "range.csv");
   CHECK(std::count(range.begin(), range.end(), '\n') == 1 + 3 * 250);
   // Bad input: a range past the end, a format, an output that is a user's file.
@@ -104,7 +110,8 @@ TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and v
   CHECK_THAT(r.output, Catch::Matchers::Contains("kick_impulse_max       N*s      5e-05"));
   r = cli("scene " + kScene + " --set mu=0.5");
   REQUIRE(r.code == 0);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("\nmu = 0.5 ") && Catch::Matchers::Contains("dipole_safe_dt_s"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("\nmu = 0.5 ") && Catch::Matchers::Contains("dipole_safe_dt_s"));
   r = cli("scene " + kScene + " --set chi=2");
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("chi = 2.0 is not allowed"));
@@ -127,12 +134,19 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   long images = 0;
   for (size_t at = svg.find("<image"); at != std::string::npos; at = svg.find("<image", at + 1)) ++images;
   CHECK(images == n);
-  CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.pdf").string() + " --tile 160").code == 0);
-  CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.png").string() + " --tile 160").code == 0);
+  CHECK(
+      cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.pdf").string() + " --tile 160").code ==
+      0);
+  CHECK(
+      cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.png").string() + " --tile 160").code ==
+      0);
   // Its own sheet is replaced with --force; a user's file is not.
-  CHECK(cli("gallery " + (d / "run").string() + " --force --out " + (d / "sheet.png").string() + " --tile 160").code == 0);
+  CHECK(
+      cli("gallery " + (d / "run").string() + " --force --out " + (d / "sheet.png").string() + " --tile 160")
+          .code == 0);
   std::ofstream(d / "poster.pdf") << "%PDF-1.4 my poster";
-  r = cli("gallery " + (d / "run").string() + " --force --out " + (d / "poster.pdf").string() + " --tile 160");
+  r = cli("gallery " + (d / "run").string() + " --force --out " + (d / "poster.pdf").string() +
+          " --tile 160");
   CHECK(r.code == 2);
   CHECK(slurp(d / "poster.pdf") == "%PDF-1.4 my poster");
   CHECK(cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.jpg").string()).code == 2);
@@ -171,20 +185,24 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   // chi_eff 0.45 -> 0.30 with +- 0.02: C4 reproduced in both.
   CHECK_THAT(r.output, Catch::Matchers::Contains("C4 reproduced"));
   const std::string md = slurp(d / "claims.md");
-  CHECK_THAT(md, Catch::Matchers::Contains("| C1 non-magnetic") && Catch::Matchers::Contains("n = 10 realizations"));
+  CHECK_THAT(
+      md, Catch::Matchers::Contains("| C1 non-magnetic") && Catch::Matchers::Contains("n = 10 realizations"));
   // One realization per point: no interval, nothing resolved.
   fs::path one = d / "one" / "analysis";
   synthetic_points(one, 1.5, 0.6);
   std::string text = slurp(one / "points.csv");
-  for (size_t at = text.find(",10,"); at != std::string::npos; at = text.find(",10,", at + 1)) text.replace(at, 4, ",1,");
+  for (size_t at = text.find(",10,"); at != std::string::npos; at = text.find(",10,", at + 1))
+    text.replace(at, 4, ",1,");
   std::ofstream(one / "points.csv") << text;
   r = cli("claims one=" + (d / "one").string() + " --out " + (d / "one.md").string());
   REQUIRE(r.code == 0);
   CHECK_THAT(r.output, Catch::Matchers::Contains("one: C1 not resolved"));
   // Its own table is replaced with --force, a user's file is not; a missing analysis is named.
-  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "claims.md").string()).code == 0);
+  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "claims.md").string()).code ==
+        0);
   std::ofstream(d / "notes.md") << "# my notes\n";
-  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "notes.md").string()).code == 2);
+  CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "notes.md").string()).code ==
+        2);
   CHECK(slurp(d / "notes.md") == "# my notes\n");
   r = cli("claims x=" + (d / "nothing").string() + " --out " + (d / "x.md").string());
   CHECK(r.code == 2);

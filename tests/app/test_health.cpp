@@ -29,7 +29,8 @@ std::string fault_of(F f) {
 }
 }  // namespace
 
-TEST_CASE("health: non-finite, escaped, too fast and overlapping disks stop the run with the cause", "[sim][health]") {
+TEST_CASE("health: non-finite, escaped, too fast and overlapping disks stop the run with the cause",
+          "[sim][health]") {
   {
     sim::Hopper h(small_scene());
     h.place(3, {NAN, NAN});
@@ -55,7 +56,8 @@ TEST_CASE("health: non-finite, escaped, too fast and overlapping disks stop the 
   }
 }
 
-TEST_CASE("health: time steps the integration cannot survive are refused with the largest safe one", "[sim][health]") {
+TEST_CASE("health: time steps the integration cannot survive are refused with the largest safe one",
+          "[sim][health]") {
   core::Scene s = small_scene();
   s.dt = 0.005;  // a falling disk would move 5.6 cm per step, more than an added disk's diameter
   try {

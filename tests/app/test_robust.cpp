@@ -28,7 +28,8 @@ using test::slurp;
 struct SmallDisk {
   fs::path dir;
   bool mounted = false;
-  SmallDisk(const std::string& name, const char* options) : dir(fs::temp_directory_path() / ("siloscope_disk_" + name)) {
+  SmallDisk(const std::string& name, const char* options)
+      : dir(fs::temp_directory_path() / ("siloscope_disk_" + name)) {
     ::umount(dir.c_str());
     fs::remove_all(dir);
     fs::create_directories(dir);
@@ -40,7 +41,8 @@ struct SmallDisk {
 };
 }  // namespace
 
-TEST_CASE("a full disk during record: a clear error, no partial files, earlier outputs intact", "[robust][app]") {
+TEST_CASE("a full disk during record: a clear error, no partial files, earlier outputs intact",
+          "[robust][app]") {
   SmallDisk disk("full", "size=3m");
   if (!disk.mounted && ::geteuid() != 0) {
     WARN("not root: cannot mount a small tmpfs, the full-disk test does not run here");
@@ -48,7 +50,9 @@ TEST_CASE("a full disk during record: a clear error, no partial files, earlier o
   }
   REQUIRE(disk.mounted);
   // An earlier run on the same disk.
-  REQUIRE(cli("run " + kScene + " --duration 1 --set settle_time=2 --quiet --out " + (disk.dir / "earlier").string()).code == 0);
+  REQUIRE(cli("run " + kScene + " --duration 1 --set settle_time=2 --quiet --out " +
+              (disk.dir / "earlier").string())
+              .code == 0);
   const std::string earlier = slurp(disk.dir / "earlier" / "exits.csv");
   // A recording far larger than what is left (the trajectory alone grows by 185 kB per simulated second).
   auto r = cli("record " + kScene + " --duration 60 --set settle_time=2 --size 640x360 --quiet --out " +
@@ -75,7 +79,8 @@ TEST_CASE("a read-only place: exit 2 before any work, naming the directory", "[r
   REQUIRE(disk.mounted);
   REQUIRE(::mount("tmpfs", disk.dir.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=1m") == 0);
   for (const char* cmd : {"run", "record"}) {
-    auto r = cli(std::string(cmd) + " " + kScene + " --duration 1 --quiet --out " + (disk.dir / "x").string());
+    auto r =
+        cli(std::string(cmd) + " " + kScene + " --duration 1 --quiet --out " + (disk.dir / "x").string());
     CAPTURE(cmd);
     CHECK(r.code == 2);
     CHECK_THAT(r.output, Contains(disk.dir.string()) && Contains("not writable"));
@@ -98,9 +103,10 @@ TEST_CASE("SIGTERM during record also leaves a playable movie", "[robust][app]")
   CHECK(slurp(out + ".mp4").find("moov") < 200);
 }
 
-TEST_CASE("every subcommand answers --help and --version, wrong arguments give usage and exit 2", "[robust][app]") {
-  for (const char* sub : {"run", "record", "inspect", "live", "sweep", "analyze", "figures", "bench sim", "bench arch",
-                          "bench accuracy", "bench stability", "bench sweep"}) {
+TEST_CASE("every subcommand answers --help and --version, wrong arguments give usage and exit 2",
+          "[robust][app]") {
+  for (const char* sub : {"run", "record", "inspect", "live", "sweep", "analyze", "figures", "bench sim",
+                          "bench arch", "bench accuracy", "bench stability", "bench sweep"}) {
     CAPTURE(sub);
     auto h = cli(std::string(sub) + " --help");
     CHECK(h.code == 0);

@@ -13,9 +13,9 @@
 #include <thread>
 
 #include "app/campaign.h"
-#include "helpers.h"
 #include "core/error.h"
 #include "core/physics.h"
+#include "helpers.h"
 
 namespace fs = std::filesystem;
 
@@ -24,14 +24,17 @@ using test::kBin;
 using test::sh;
 using test::slurp;
 const std::string kScenes = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/";
-fs::path temp_dir(const std::string& name) { return test::temp_dir("sweep_" + name); }
+fs::path temp_dir(const std::string& name) {
+  return test::temp_dir("sweep_" + name);
+}
 
 // A tiny campaign: 3 points x `n` realizations of 1 s (after 2 s of settling).
 fs::path tiny_campaign(const fs::path& dir, int n, const std::string& extra = "") {
   std::ofstream(dir / "short.toml") << "settle_time = 2.0\n";
-  std::ofstream(dir / "c.toml") << "name = \"tiny\"\nscene = \"short.toml\"\nseed = 7\nrealizations = " << n
-                                << "\nduration = 1.0\n[grid]\nsize_ratio = [0.4, 1.0]\n[[points]]\nchi = 0.0\n"
-                                << extra;
+  std::ofstream(dir / "c.toml")
+      << "name = \"tiny\"\nscene = \"short.toml\"\nseed = 7\nrealizations = " << n
+      << "\nduration = 1.0\n[grid]\nsize_ratio = [0.4, 1.0]\n[[points]]\nchi = 0.0\n"
+      << extra;
   return dir / "c.toml";
 }
 
@@ -46,8 +49,9 @@ long count_runs(const fs::path& results) {
 
 TEST_CASE("a campaign grid expands to the product of its lists plus its extra points", "[campaign]") {
   fs::path d = temp_dir("grid");
-  std::ofstream(d / "c.toml") << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
-                              << "[grid]\nsize_ratio = [0.4, 0.6]\nmu = [0.0, 0.5, 1.0]\n[[points]]\nchi = 0.0\n";
+  std::ofstream(d / "c.toml")
+      << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
+      << "[grid]\nsize_ratio = [0.4, 0.6]\nmu = [0.0, 0.5, 1.0]\n[[points]]\nchi = 0.0\n";
   app::Campaign c = app::load_campaign((d / "c.toml").string());
   REQUIRE(c.points.size() == 7);
   CHECK(c.name == "c");
@@ -61,8 +65,9 @@ TEST_CASE("a campaign grid expands to the product of its lists plus its extra po
   for (size_t p = 0; p < c.points.size(); ++p)
     for (int k = 0; k < 3; ++k) seeds.insert(c.realization_seed(p, k));
   CHECK(seeds.size() == 21);
-  std::ofstream(d / "swapped.toml") << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
-                                    << "[[points]]\nchi = 0.0\n[grid]\nsize_ratio = [0.6, 0.4]\nmu = [1.0, 0.5, 0.0]\n";
+  std::ofstream(d / "swapped.toml")
+      << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 3\nduration = 10\n"
+      << "[[points]]\nchi = 0.0\n[grid]\nsize_ratio = [0.6, 0.4]\nmu = [1.0, 0.5, 0.0]\n";
   app::Campaign s = app::load_campaign((d / "swapped.toml").string());
   CHECK(s.points.back().label == "chi=0");
   CHECK(s.realization_seed(s.points.size() - 1, 2) == c.realization_seed(6, 2));
@@ -81,7 +86,9 @@ TEST_CASE("the dipole force ratio sets mu per size ratio", "[campaign]") {
 TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {
   fs::path d = temp_dir("bad");
   auto error_of = [&](const std::string& text) {
-    std::ofstream(d / "c.toml", std::ios::trunc) << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 2\n" << text;
+    std::ofstream(d / "c.toml", std::ios::trunc)
+        << "scene = \"" << kScenes << "paper.toml\"\nrealizations = 2\n"
+        << text;
     try {
       app::load_campaign((d / "c.toml").string());
     } catch (const core::InputError& e) {
@@ -90,11 +97,13 @@ TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {
     return std::string("(no error)");
   };
   CHECK_THAT(error_of(""), Catch::Matchers::Contains("grid is empty"));
-  CHECK_THAT(error_of("[grid]\nsize_ratio = []\n"), Catch::Matchers::Contains("grid.size_ratio must be a non-empty list"));
+  CHECK_THAT(error_of("[grid]\nsize_ratio = []\n"),
+             Catch::Matchers::Contains("grid.size_ratio must be a non-empty list"));
   CHECK_THAT(error_of("[grid]\nmagnetism = [1.0]\n"), Catch::Matchers::Contains("unknown key 'magnetism'"));
   CHECK_THAT(error_of("[grid]\nsize_ratio = [0.1]\n"), Catch::Matchers::Contains("size_ratio = 0.1"));
   CHECK_THAT(error_of("[grid]\nmu = [0.5, 0.5]\n"), Catch::Matchers::Contains("duplicates an earlier point"));
-  CHECK_THAT(error_of("[[points]]\nmu = 0.0\n[[points]]\nchi=0.4\n"), Catch::Matchers::Contains("duplicates"));
+  CHECK_THAT(error_of("[[points]]\nmu = 0.0\n[[points]]\nchi=0.4\n"),
+             Catch::Matchers::Contains("duplicates"));
 }
 
 TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel", "[campaign][app]") {
@@ -106,17 +115,20 @@ TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU paral
   const std::string points = slurp(d / "one" / "analysis" / "points.csv");
   CHECK(points.find("q_tilde_over_qp") != std::string::npos);
   CHECK(slurp(d / "two" / "analysis" / "points.csv") == points);
-  CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") == slurp(d / "two" / "runs" / "p001" / "r001" / "exits.csv"));
+  CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") ==
+        slurp(d / "two" / "runs" / "p001" / "r001" / "exits.csv"));
   // The job list, run by GNU parallel from the results directory, gives the same aggregate.
-  REQUIRE(sh(kBin + " sweep " + c.string() + " --emit-jobs --results " + (d / "gnu").string() + " > /dev/null") == 0);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --emit-jobs --results " + (d / "gnu").string() +
+             " > /dev/null") == 0);
   CHECK(fs::exists(d / "gnu" / "jobs.slurm"));
   REQUIRE(sh("cd " + (d / "gnu").string() + " && parallel --will-cite -j 2 < jobs.txt") == 0);
-  REQUIRE(sh(kBin + " analyze " + (d / "gnu" / "runs").string() + " --out " + (d / "gnu" / "analysis").string() +
-             " > /dev/null") == 0);
+  REQUIRE(sh(kBin + " analyze " + (d / "gnu" / "runs").string() + " --out " +
+             (d / "gnu" / "analysis").string() + " > /dev/null") == 0);
   CHECK(slurp(d / "gnu" / "analysis" / "points.csv") == points);
   // A results directory of another campaign is refused and left alone.
   fs::path other = tiny_campaign(d, 2, "[[points]]\nchi = 0.2\n");
-  CHECK(sh(kBin + " sweep " + other.string() + " --quiet --results " + (d / "one").string() + " 2> /dev/null") == 2);
+  CHECK(sh(kBin + " sweep " + other.string() + " --quiet --results " + (d / "one").string() +
+           " 2> /dev/null") == 2);
   CHECK(count_runs(d / "one") == 6);
   // The same campaign with more realizations extends it: the first ones are kept, not rerun.
   const auto first_exits = slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv");
@@ -134,11 +146,12 @@ TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realiz
     pid_t pid = fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
-      execl(kBin.c_str(), kBin.c_str(), "sweep", c.c_str(), "--workers", "2", "--quiet", "--results", r.c_str(),
-            static_cast<char*>(nullptr));
+      execl(kBin.c_str(), kBin.c_str(), "sweep", c.c_str(), "--workers", "2", "--quiet", "--results",
+            r.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
-    for (int i = 0; i < 400 && count_runs(r) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    for (int i = 0; i < 400 && count_runs(r) < 3; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
     kill(pid, sig);
     int status = 0;
     waitpid(pid, &status, 0);
@@ -152,7 +165,8 @@ TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realiz
     CHECK(partial == 0);
   }
   // Both resumed campaigns equal an uninterrupted one.
-  REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 2 --quiet --results " + (d / "whole").string()) == 0);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 2 --quiet --results " + (d / "whole").string()) ==
+          0);
   const std::string whole = slurp(d / "whole" / "analysis" / "points.csv");
   CHECK(slurp(d / "int" / "analysis" / "points.csv") == whole);
   CHECK(slurp(d / "kill" / "analysis" / "points.csv") == whole);

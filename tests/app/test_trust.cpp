@@ -86,19 +86,21 @@ TEST_CASE("force replaces only what siloscope wrote, a user's files and director
   CHECK_THAT(slurp(d / "runs" / "a" / "metadata.toml"), Catch::Matchers::Contains("\nseed = 5 "));
 }
 
-TEST_CASE("one writer per output: a second process aiming at the same --out is refused at once", "[trust][app]") {
+TEST_CASE("one writer per output: a second process aiming at the same --out is refused at once",
+          "[trust][app]") {
   fs::path d = temp_dir("busy");
   const std::string out = (d / "r").string();
   pid_t pid = fork();
   if (pid == 0) {
     if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
-    execl(kBin.c_str(), kBin.c_str(), "run", kScene.c_str(), "--duration", "300", "--out", out.c_str(), "--quiet",
-          static_cast<char*>(nullptr));
+    execl(kBin.c_str(), kBin.c_str(), "run", kScene.c_str(), "--duration", "300", "--out", out.c_str(),
+          "--quiet", static_cast<char*>(nullptr));
     _exit(127);
   }
   // The partial directory appears only after the lock is taken.
   const std::string partial = out + ".partial-" + std::to_string(pid);
-  for (int i = 0; i < 400 && !fs::exists(partial); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  for (int i = 0; i < 400 && !fs::exists(partial); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
   REQUIRE(fs::exists(partial));
   const auto t0 = std::chrono::steady_clock::now();
   auto r = cli("run " + kScene + kShort + " --out " + out);
@@ -134,7 +136,8 @@ TEST_CASE("leftovers of a dead process are removed by the next run to the same o
   CHECK(fs::exists(d / "r.mp4"));
 }
 
-TEST_CASE("analyze counts a run for the time it covered and names what it leaves out", "[trust][app][analysis]") {
+TEST_CASE("analyze counts a run for the time it covered and names what it leaves out",
+          "[trust][app][analysis]") {
   fs::path d = temp_dir("analyze_cover");
   for (int seed : {1, 2, 3})
     REQUIRE(cli("run " + kScene + " --duration 6 --set settle_time=2 --quiet --seed " + std::to_string(seed) +
@@ -145,8 +148,10 @@ TEST_CASE("analyze counts a run for the time it covered and names what it leaves
   edit(d / "runs" / "s3" / "metadata.toml", "warnings = 0", "warnings = 3");
   auto r = cli("analyze " + (d / "runs").string() + " --out " + (d / "a").string());
   REQUIRE(r.code == 0);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("leaves out " + (d / "runs" / "s2").string() + ": interrupted"));
-  CHECK_THAT(r.output, Catch::Matchers::Contains("leaves out " + (d / "runs" / "s3").string() + ": unhealthy"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("leaves out " + (d / "runs" / "s2").string() + ": interrupted"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("leaves out " + (d / "runs" / "s3").string() + ": unhealthy"));
   CHECK_THAT(slurp(d / "a" / "metadata.toml"), Catch::Matchers::Contains("runs = 1\n"));
 
   r = cli("analyze " + (d / "runs").string() + " --include-interrupted --include-unhealthy --out " +
@@ -179,8 +184,9 @@ TEST_CASE("scene and campaign readers accept only regular files of bounded size"
   REQUIRE(cli("run " + kScene + kShort + " --seed 7 --out " + (d / "s7").string()).code == 0);
   auto r = cli("run " + (d / "s7").string() + kShort + " --out " + (d / "again").string());
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("is a directory") &&
-                           Catch::Matchers::Contains("did you mean " + (d / "s7" / "metadata.toml").string()));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("is a directory") &&
+                 Catch::Matchers::Contains("did you mean " + (d / "s7" / "metadata.toml").string()));
   CHECK_FALSE(fs::exists(d / "again"));
   r = cli("run /dev/zero" + kShort + " --out " + (d / "z").string());
   CHECK(r.code == 2);
@@ -203,7 +209,8 @@ TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame numb
   io::Trajectory good(data, "good");
   REQUIRE(good.size() >= 5);
   // The y coordinate of particle 3 in frame 4 (frames follow the header; see docs/trajectory.md).
-  const size_t n = good.info().n_particles, fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
+  const size_t n = good.info().n_particles,
+               fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
   const size_t header = data.size() - fb * static_cast<size_t>(good.size());
   const size_t at = header + 4 * fb + 40 + 4 * io::kTrajectoryMaxArch + 4 * (n + 3);
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
@@ -213,7 +220,8 @@ TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame numb
       io::Trajectory t(broken, "broken.sstraj");
       FAIL("a non-finite coordinate was accepted");
     } catch (const std::exception& e) {
-      CHECK_THAT(e.what(), Catch::Matchers::Contains("frame 4") && Catch::Matchers::Contains("y of particle 3"));
+      CHECK_THAT(e.what(),
+                 Catch::Matchers::Contains("frame 4") && Catch::Matchers::Contains("y of particle 3"));
     }
   }
 }
@@ -231,13 +239,15 @@ TEST_CASE("integer options refuse negative and out-of-range values with the allo
   fs::path d = temp_dir("ints");
   auto r = cli("run " + kScene + kShort + " --seed -1 --out " + (d / "r").string());
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("--seed") && Catch::Matchers::Contains("whole number from 0"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("--seed") && Catch::Matchers::Contains("whole number from 0"));
   r = cli("run " + kScene + kShort + " --seed 18446744073709551616 --out " + (d / "r").string());
   CHECK(r.code == 2);
   r = cli("record " + kScene + kShort + " --fps -30 --out " + (d / "m").string());
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("1 to 240"));
-  r = cli("sweep " + std::string(SILOSCOPE_SOURCE_DIR) + "/assets/campaigns/quick.toml --workers 0 --dry-run");
+  r = cli("sweep " + std::string(SILOSCOPE_SOURCE_DIR) +
+          "/assets/campaigns/quick.toml --workers 0 --dry-run");
   CHECK(r.code == 2);
   CHECK_FALSE(fs::exists(d / "r"));
   CHECK_FALSE(fs::exists(d / "m"));

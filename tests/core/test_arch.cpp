@@ -63,7 +63,8 @@ TEST_CASE("fewest particles first, ties go to the lowest path", "[arch]") {
 
 TEST_CASE("mixed species: small added disks are arch members like any other", "[arch]") {
   Graph t;
-  int l = t.node(-0.12, 0.1, true), small = t.node(-0.03, 0.14), mid = t.node(0.04, 0.15), r = t.node(0.12, 0.1, false, true);
+  int l = t.node(-0.12, 0.1, true), small = t.node(-0.03, 0.14), mid = t.node(0.04, 0.15),
+      r = t.node(0.12, 0.1, false, true);
   t.chain({l, small, mid, r});
   std::vector<double> radius = {0.065, 0.026, 0.065, 0.065};
   auto arch = t.arch();
@@ -75,7 +76,8 @@ TEST_CASE("mixed species: small added disks are arch members like any other", "[
 
 TEST_CASE("no spanning path, or wall contacts only above the reach: no arch", "[arch]") {
   Graph t;
-  int l = t.node(-0.12, 0.1, true), a = t.node(-0.02, 0.12), b = t.node(0.05, 0.12), r = t.node(0.12, 0.1, false, true);
+  int l = t.node(-0.12, 0.1, true), a = t.node(-0.02, 0.12), b = t.node(0.05, 0.12),
+      r = t.node(0.12, 0.1, false, true);
   t.chain({l, a});
   t.chain({b, r});
   CHECK(t.arch().empty());
@@ -87,8 +89,8 @@ TEST_CASE("no spanning path, or wall contacts only above the reach: no arch", "[
 TEST_CASE("trimming keeps members while x keeps moving outwards from the centre", "[arch]") {
   Graph t;
   // The path climbs back inwards at its left end (lw is left of centre but right of p1): lw is cut off.
-  int lw = t.node(-0.12, 0.30, true), p1 = t.node(-0.14, 0.12), p2 = t.node(-0.02, 0.08), p3 = t.node(0.1, 0.12),
-      r = t.node(0.16, 0.2, false, true);
+  int lw = t.node(-0.12, 0.30, true), p1 = t.node(-0.14, 0.12), p2 = t.node(-0.02, 0.08),
+      p3 = t.node(0.1, 0.12), r = t.node(0.16, 0.2, false, true);
   t.chain({lw, p1, p2, p3, r});
   auto path = core::shortest_wall_path(t.g, t.pos, 1.36);
   CHECK(path == std::vector<int>{lw, p1, p2, p3, r});

@@ -10,7 +10,9 @@
 using Catch::Matchers::Contains;
 
 namespace {
-std::string scene_dir() { return std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/"; }
+std::string scene_dir() {
+  return std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/";
+}
 std::string write_temp(const std::string& name, const std::string& text) {
   auto p = std::filesystem::temp_directory_path() / ("siloscope_test_" + name);
   std::ofstream(p) << text;
@@ -48,7 +50,8 @@ TEST_CASE("pure.toml is the chi = 0 system", "[sim][scene]") {
 TEST_CASE("validation names the key, the value and the allowed range", "[sim][scene]") {
   core::Scene s;
   s.size_ratio = 0.1;
-  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("size_ratio") && Contains("0.1") && Contains("[0.2, 1"));
+  CHECK_THAT(error_of([&] { core::validate(s); }),
+             Contains("size_ratio") && Contains("0.1") && Contains("[0.2, 1"));
   s = {};
   s.size_ratio = 1.5;
   CHECK_THAT(error_of([&] { core::validate(s); }), Contains("size_ratio"));
@@ -69,13 +72,15 @@ TEST_CASE("validation names the key, the value and the allowed range", "[sim][sc
   CHECK_THAT(error_of([&] { core::validate(s); }), Contains("kick_period"));
   s = {};
   s.arch_method = "magic";
-  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("arch_method") && Contains("contact_path|visible"));
+  CHECK_THAT(error_of([&] { core::validate(s); }),
+             Contains("arch_method") && Contains("contact_path|visible"));
   s = {};
   s.n_total = 2000;  // cannot fit
   CHECK_THAT(error_of([&] { core::validate(s); }), Contains("n_total"));
 }
 
-TEST_CASE("scene files: unknown keys, wrong types and malformed TOML are errors with a line", "[sim][scene]") {
+TEST_CASE("scene files: unknown keys, wrong types and malformed TOML are errors with a line",
+          "[sim][scene]") {
   auto p = write_temp("unknown.toml", "chi = 0.4\nmagnetism = 3\n");
   CHECK_THAT(error_of([&] { core::load_scene(p); }), Contains("unknown key 'magnetism'") && Contains(":2"));
   p = write_temp("type.toml", "chi = \"lots\"\n");
@@ -87,7 +92,8 @@ TEST_CASE("scene files: unknown keys, wrong types and malformed TOML are errors 
 
 TEST_CASE("command-line overrides edit the same fields", "[sim][scene]") {
   core::Scene s;
-  core::apply_overrides(s, {"mu=1.5", "size_ratio=0.6", "global_kick=false", "arch_method=visible", "seed=42"});
+  core::apply_overrides(s,
+                        {"mu=1.5", "size_ratio=0.6", "global_kick=false", "arch_method=visible", "seed=42"});
   CHECK(s.mu == 1.5);
   CHECK(s.size_ratio == 0.6);
   CHECK_FALSE(s.global_kick);

@@ -11,7 +11,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     app::Campaign c = app::parse_campaign(text, SILOSCOPE_SOURCE_DIR "/assets/campaigns/fuzz.toml");
-    for (size_t p = 0; p < c.points.size() && p < 4; ++p) (void)c.realization_seed(p, 0), (void)c.run_dir(p, 0);
+    for (size_t p = 0; p < c.points.size() && p < 4; ++p)
+      (void)c.realization_seed(p, 0), (void)c.run_dir(p, 0);
   } catch (const core::InputError&) {
   }
   return 0;

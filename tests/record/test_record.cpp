@@ -10,10 +10,10 @@ extern "C" {
 #define STB_IMAGE_STATIC
 #include <stb_image.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <unistd.h>
 #include <fstream>
 
 #include "core/error.h"
@@ -78,7 +78,8 @@ Probe probe(const fs::path& path) {
         p.first.resize(static_cast<size_t>(frame->width) * frame->height * 3);
         for (int y = 0; y < frame->height; ++y)
           for (int x = 0; x < frame->width; ++x)
-            yuv_to_rgb(frame->data[0][y * frame->linesize[0] + x], frame->data[1][(y / 2) * frame->linesize[1] + x / 2],
+            yuv_to_rgb(frame->data[0][y * frame->linesize[0] + x],
+                       frame->data[1][(y / 2) * frame->linesize[1] + x / 2],
                        frame->data[2][(y / 2) * frame->linesize[2] + x / 2],
                        &p.first[(static_cast<size_t>(y) * frame->width + x) * 3]);
       }
@@ -157,7 +158,8 @@ TEST_CASE("an MP4 that is never finished leaves nothing under any name", "[recor
 TEST_CASE("movie settings are validated with the option's name", "[record]") {
   record::VideoSettings v;
   v.width = 1921;
-  CHECK_THROWS_WITH(record::validate(v), Catch::Matchers::Contains("--size 1921x1080") && Catch::Matchers::Contains("even"));
+  CHECK_THROWS_WITH(record::validate(v),
+                    Catch::Matchers::Contains("--size 1921x1080") && Catch::Matchers::Contains("even"));
   v = {};
   v.crf = 60;
   CHECK_THROWS_WITH(record::validate(v), Catch::Matchers::Contains("--crf"));
@@ -179,7 +181,8 @@ TEST_CASE("a PNG read back equals the frame, alpha included", "[record]") {
   CHECK(std::equal(img.rgba.begin(), img.rgba.end(), back));
   stbi_image_free(back);
   CHECK(fs::directory_iterator(dir) != fs::directory_iterator());
-  for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename() == "f.png");  // no temporary left
+  for (const auto& e : fs::directory_iterator(dir))
+    CHECK(e.path().filename() == "f.png");  // no temporary left
 }
 
 #include "helpers.h"
@@ -188,7 +191,8 @@ TEST_CASE("a PNG read back equals the frame, alpha included", "[record]") {
 TEST_CASE("frames at exact times: whole steps per frame, the trajectory and the MP4 carry the same times",
           "[record][app]") {
   fs::path d = temp_dir("exact_times");
-  // 30 fps at dt = 1 ms: 33 steps per frame, 0.033 s of simulation per frame, 1000/33 frames per video second.
+  // 30 fps at dt = 1 ms: 33 steps per frame, 0.033 s of simulation per frame, 1000/33 frames per video
+  // second.
   auto r = test::cli("record " + test::kScene + " --duration 2 --size 64x48 --png-every 1 --quiet --out " +
                      (d / "m").string());
   REQUIRE(r.code == 0);
@@ -210,7 +214,8 @@ TEST_CASE("frames at exact times: whole steps per frame, the trajectory and the 
   REQUIRE(p.first.size() == static_cast<size_t>(w) * h * 3);
   double sum = 0;
   for (int i = 0; i < w * h; ++i)
-    for (int c = 0; c < 3; ++c) sum += std::abs(int(png[i * 4 + c]) - int(p.first[static_cast<size_t>(i) * 3 + c]));
+    for (int c = 0; c < 3; ++c)
+      sum += std::abs(int(png[i * 4 + c]) - int(p.first[static_cast<size_t>(i) * 3 + c]));
   stbi_image_free(png);
   const double mean_error = sum / (3.0 * w * h);
   INFO("mean absolute error " << mean_error << " of 255");
@@ -220,7 +225,8 @@ TEST_CASE("frames at exact times: whole steps per frame, the trajectory and the 
   r = test::cli("record " + test::kScene + " --duration 1 --size 64x48 --speed 0.05 --quiet --out " +
                 (d / "bad").string());
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("whole number") && Catch::Matchers::Contains("--speed 0.06"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("whole number") && Catch::Matchers::Contains("--speed 0.06"));
   CHECK_FALSE(fs::exists(d / "bad"));
 }
 
@@ -231,12 +237,15 @@ TEST_CASE("the RGBA to yuv420p converter gives BT.709 limited-range values for k
     std::uint8_t r, g, b;
     int y, u, v;
   };
-  // Y = 16 + 219 (0.2126 R + 0.7152 G + 0.0722 B) / 255; Cb, Cr = 128 + 224 (B - Y', R - Y') / (255 * 1.8556, 1.5748).
-  const Known known[] = {{255, 255, 255, 235, 128, 128}, {0, 0, 0, 16, 128, 128},  {255, 0, 0, 63, 102, 240},
-                         {0, 255, 0, 173, 42, 26},       {0, 0, 255, 32, 240, 118}, {128, 128, 128, 126, 128, 128}};
+  // Y = 16 + 219 (0.2126 R + 0.7152 G + 0.0722 B) / 255; Cb, Cr = 128 + 224 (B - Y', R - Y') / (255
+  // * 1.8556, 1.5748).
+  const Known known[] = {{255, 255, 255, 235, 128, 128}, {0, 0, 0, 16, 128, 128},
+                         {255, 0, 0, 63, 102, 240},      {0, 255, 0, 173, 42, 26},
+                         {0, 0, 255, 32, 240, 118},      {128, 128, 128, 126, 128, 128}};
   for (const auto& k : known) {
     std::vector<std::uint8_t> rgba(4 * 4 * 2);
-    for (size_t i = 0; i < rgba.size(); i += 4) rgba[i] = k.r, rgba[i + 1] = k.g, rgba[i + 2] = k.b, rgba[i + 3] = 255;
+    for (size_t i = 0; i < rgba.size(); i += 4)
+      rgba[i] = k.r, rgba[i + 1] = k.g, rgba[i + 2] = k.b, rgba[i + 3] = 255;
     std::uint8_t y[8], u[2], v[2];
     record::rgba_to_yuv420p(rgba.data(), 4, 2, y, 4, u, 2, v, 2);
     INFO("colour " << int(k.r) << "," << int(k.g) << "," << int(k.b));
@@ -269,7 +278,8 @@ TEST_CASE("events on screen: a rule removal stays marked >= 10 frames, the badge
     long ring = 0, badge = 0;
     for (int i = 0; i < w * h; ++i) {
       const unsigned char* p = px + 4 * i;
-      ring += std::abs(p[0] - 200) < 25 && p[1] < 40 && std::abs(p[2] - 160) < 25;   // the magenta rings/caption
+      ring +=
+          std::abs(p[0] - 200) < 25 && p[1] < 40 && std::abs(p[2] - 160) < 25;  // the magenta rings/caption
       // The badge's yellow text, in the top band where no arch (gold halo) can be.
       badge += i / w < h / 8 && p[0] > 230 && std::abs(p[1] - 220) < 25 && p[2] < 40;
     }
@@ -281,7 +291,8 @@ TEST_CASE("events on screen: a rule removal stays marked >= 10 frames, the badge
     }
     badged += badge > 3;
   }
-  INFO("marked " << marked << " first at frame " << first_marked << ", badged " << badged << " of " << slow_frames);
+  INFO("marked " << marked << " first at frame " << first_marked << ", badged " << badged << " of "
+                 << slow_frames);
   CHECK(marked >= 10);
   CHECK(marked_before_rule == 0);
   CHECK(badged == slow_frames);
@@ -300,7 +311,9 @@ TEST_CASE("a comparison movie: panels side by side on one clock, each labelled, 
   CHECK_THAT(test::slurp(d / "c" / "panel1" / "metadata.toml"),
              Catch::Matchers::Contains("\nmu = 2.2 ") && Catch::Matchers::Contains("\nfriction = 0.4 "));
   // Each panel is exactly the run of its own scene: stepping in parallel changes nothing.
-  REQUIRE(test::cli("run " + common + "--set mu=2.2 --set friction=0.4 --out " + (d / "alone").string()).code == 0);
+  REQUIRE(
+      test::cli("run " + common + "--set mu=2.2 --set friction=0.4 --out " + (d / "alone").string()).code ==
+      0);
   CHECK(test::slurp(d / "c" / "panel1" / "exits.csv") == test::slurp(d / "alone" / "exits.csv"));
   // Layout: a dark separator down the middle, disks (red originals) in both halves, the info box in both.
   int w = 0, h = 0, ch = 0;
@@ -324,7 +337,8 @@ TEST_CASE("a comparison movie: panels side by side on one clock, each labelled, 
   CHECK(red[0] > 200);
   CHECK(red[1] > 200);
   // Bad comparisons: five panels, a panel with another time step.
-  r = test::cli("record " + common + "--compare mu=0 --compare mu=1 --compare mu=2 --compare mu=3 --compare mu=4 " +
+  r = test::cli("record " + common +
+                "--compare mu=0 --compare mu=1 --compare mu=2 --compare mu=3 --compare mu=4 " +
                 "--size 64x48 --out " + (d / "five").string());
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("2 to 4"));

@@ -10,7 +10,9 @@
 #include "render/target.h"
 
 namespace {
-core::Particle disk(float x, float y, float r, core::Species s) { return {x, y, 0, 0, 0, r, 0, s}; }
+core::Particle disk(float x, float y, float r, core::Species s) {
+  return {x, y, 0, 0, 0, r, 0, s};
+}
 
 // Distance between a pixel and a colour, 0..255 per channel (max over channels).
 int distance(const std::uint8_t* px, render::Rgba c) {
@@ -52,17 +54,19 @@ TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
   }
   auto w = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), geo, 400, 400);
   CHECK(w[0].px_per_m() == Approx(400));
-  CHECK_THROWS_AS(render::layout_views(render::parse_camera("window:1,0,0,1"), geo, 400, 400), core::InputError);
+  CHECK_THROWS_AS(render::layout_views(render::parse_camera("window:1,0,0,1"), geo, 400, 400),
+                  core::InputError);
   CHECK_THROWS_AS(render::layout_views(render::parse_camera("sideways"), geo, 400, 400), core::InputError);
 }
 
 TEST_CASE("the outlet camera is sized by the grain: ten diameters tall at any grain size", "[render]") {
   core::Scene paper;
-  const auto at_paper = render::layout_views(render::parse_camera("outlet"), core::make_geometry(paper), 600, 600);
+  const auto at_paper =
+      render::layout_views(render::parse_camera("outlet"), core::make_geometry(paper), 600, 600);
   CHECK(at_paper[0].cam.height == Approx(1.3));  // the paper's 0.13 m disks: 1.3 m, as before
   core::Scene small = paper;
-  core::apply_overrides(small, {"radius_original=0.0065", "silo_width=0.2", "aperture=0.0249", "hopper_height=0.0877",
-                                "silo_height=0.4"});
+  core::apply_overrides(small, {"radius_original=0.0065", "silo_width=0.2", "aperture=0.0249",
+                                "hopper_height=0.0877", "silo_height=0.4"});
   const auto geo = core::make_geometry(small);
   const auto v = render::layout_views(render::parse_camera("outlet"), geo, 600, 600);
   CHECK(v[0].cam.height == Approx(10 * geo.grain_diameter));
@@ -76,8 +80,10 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   auto& fx = fixture();
   const int w = 400, h = 400;
   core::Frame f;
-  f.particles = {disk(-0.25f, 0.75f, 0.065f, core::Species::Original), disk(0.25f, 0.75f, 0.026f, core::Species::Added),
-                 disk(-0.15f, 0.25f, 0.065f, core::Species::Original), disk(0.15f, 0.25f, 0.065f, core::Species::Original)};
+  f.particles = {disk(-0.25f, 0.75f, 0.065f, core::Species::Original),
+                 disk(0.25f, 0.75f, 0.026f, core::Species::Added),
+                 disk(-0.15f, 0.25f, 0.065f, core::Species::Original),
+                 disk(0.15f, 0.25f, 0.065f, core::Species::Original)};
   f.arch = {2, 3};
   f.since_last_exit = 3.0;  // clogged: the arch is drawn at full strength
   auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
@@ -96,7 +102,8 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   CHECK(distance(at(-0.25, 0.75), render::species_color(style.palette, core::Species::Original)) < 8);
   CHECK(distance(at(0.25, 0.75), render::species_color(style.palette, core::Species::Added)) < 8);
   CHECK(distance(at(0.0, 0.6), render::background_color(style)) == 0);  // empty space
-  CHECK(distance(at(0.25, 0.75 + 0.04), render::background_color(style)) == 0);  // just outside the small disk
+  CHECK(distance(at(0.25, 0.75 + 0.04), render::background_color(style)) ==
+        0);  // just outside the small disk
   // The halo: a gold ring just outside each arch member (here 4.8 px wide, sampled 2.4 px out).
   const double ring = 0.065 + 2.4 / v.px_per_m();
   CHECK(distance(at(-0.15, 0.25 - ring), render::arch_color(style.palette)) < 40);

@@ -1,5 +1,5 @@
-// How clogs end, at weak and strong kicks: the arrest is judged by displacement over arrest_hold before each kick,
-// so a clog a kick breaks is "vibration" at any kick strength, and one nothing breaks ends by the rule.
+// How clogs end, at weak and strong kicks: the arrest is judged by displacement over arrest_hold before each
+// kick, so a clog a kick breaks is "vibration" at any kick strength, and one nothing breaks ends by the rule.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,8 +11,8 @@
 #include "sim/hopper.h"
 
 namespace {
-// Three original disks in an arch over the aperture, loaded by two more (as in tests/test_arch.cpp), kicks off
-// until the clog has been arrested; then kicks of the given strength.
+// Three original disks in an arch over the aperture, loaded by two more (as in tests/test_arch.cpp), kicks
+// off until the clog has been arrested; then kicks of the given strength.
 struct KickedArch {
   core::Scene scene;
   std::unique_ptr<sim::Hopper> hopper;
@@ -39,7 +39,8 @@ struct KickedArch {
   const core::ClogEvent& run(double impulse) {
     hopper->advance_to(1.0);
     hopper->set_kick_impulse_max(impulse);
-    while (hopper->events().exits.empty() && hopper->events().arches.empty() && hopper->time() < 6.0) hopper->step();
+    while (hopper->events().exits.empty() && hopper->events().arches.empty() && hopper->time() < 6.0)
+      hopper->step();
     hopper->finish();
     REQUIRE(!hopper->events().clogs.empty());
     return hopper->events().clogs.front();
@@ -47,8 +48,9 @@ struct KickedArch {
 };
 }  // namespace
 
-TEST_CASE("the clock: a gap that an arrested outlet ends is vibration, one that never arrested is spontaneous",
-          "[clog]") {
+TEST_CASE(
+    "the clock: a gap that an arrested outlet ends is vibration, one that never arrested is spontaneous",
+    "[clog]") {
   sim::ClogTracker t(0.5, 5.0);
   t.on_rest_check(0.6, false);
   t.on_exit(1.0);  // flowing jam: never arrested
@@ -73,9 +75,10 @@ TEST_CASE("a staged clog without kicks is arrested and ends by the rule", "[clog
   CHECK(s.hopper->events().exits.empty());
 }
 
-TEST_CASE("a staged clog broken by strong kicks (5e-3 N s) is labelled vibration, not spontaneous", "[clog][sim]") {
-  // At 5e-3 N s a kick gives an original disk up to 0.38 m/s, far above the old speed threshold (0.01 m/s) that
-  // mislabelled such clogs as spontaneous. Several seeds: every one that breaks must say vibration.
+TEST_CASE("a staged clog broken by strong kicks (5e-3 N s) is labelled vibration, not spontaneous",
+          "[clog][sim]") {
+  // At 5e-3 N s a kick gives an original disk up to 0.38 m/s, far above the old speed threshold (0.01 m/s)
+  // that mislabelled such clogs as spontaneous. Several seeds: every one that breaks must say vibration.
   int broken = 0;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     KickedArch s(seed);
@@ -91,8 +94,9 @@ TEST_CASE("a staged clog broken by strong kicks (5e-3 N s) is labelled vibration
   CHECK(broken >= 2);
 }
 
-TEST_CASE("real runs: the literal kick breaks almost no clog, a 100x kick breaks many, and none is mislabelled",
-          "[clog][sim]") {
+TEST_CASE(
+    "real runs: the literal kick breaks almost no clog, a 100x kick breaks many, and none is mislabelled",
+    "[clog][sim]") {
   auto run = [](double impulse) {
     core::Scene s;
     s.duration = 25;
@@ -103,9 +107,9 @@ TEST_CASE("real runs: the literal kick breaks almost no clog, a 100x kick breaks
     return analysis::measure(h.events(), s.duration);
   };
   const analysis::Measurements weak = run(5e-5), strong = run(5e-3);
-  INFO("literal: " << weak.clogs_vibration << " vibration, " << weak.clogs_rule << " rule; 100x: "
-                   << strong.clogs_vibration << " vibration, " << strong.clogs_rule << " rule, "
-                   << strong.clogs_spontaneous << " spontaneous");
+  INFO("literal: " << weak.clogs_vibration << " vibration, " << weak.clogs_rule
+                   << " rule; 100x: " << strong.clogs_vibration << " vibration, " << strong.clogs_rule
+                   << " rule, " << strong.clogs_spontaneous << " spontaneous");
   CHECK(weak.clogs_rule >= 1);
   CHECK(weak.clogs_vibration <= weak.clogs_rule);
   CHECK(strong.clogs_vibration >= 1);

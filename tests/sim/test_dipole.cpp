@@ -23,7 +23,8 @@ TEST_CASE("dipole force: magnitude 3e-7 mu^2 / r^4, repulsive, along the line of
   CHECK(expected == Approx(3 * mu0 * mu * mu / (4 * M_PI * std::pow(0.05, 4))));
 }
 
-TEST_CASE("dipole forces: none at mu = 0, pairs beyond the cutoff skipped, total force zero", "[sim][dipole]") {
+TEST_CASE("dipole forces: none at mu = 0, pairs beyond the cutoff skipped, total force zero",
+          "[sim][dipole]") {
   std::vector<core::Vec2> pos = {{0, 0}, {0.05, 0}, {0.5, 0.1}, {0.2, 0.3}};
   std::vector<core::Vec2> f;
   CHECK(sim::dipole_forces(pos, 0.0, 0.0, f) == 0);
@@ -38,8 +39,8 @@ TEST_CASE("dipole forces: none at mu = 0, pairs beyond the cutoff skipped, total
 
 TEST_CASE("in the hopper, only added disks feel the dipoles", "[sim][dipole]") {
   core::Scene s;
-  core::apply_overrides(s, {"n_total=3", "chi=0.67", "mu=0.5", "gravity=0", "kick_impulse_max=0", "settle_time=0",
-                            "size_ratio=0.4"});
+  core::apply_overrides(s, {"n_total=3", "chi=0.67", "mu=0.5", "gravity=0", "kick_impulse_max=0",
+                            "settle_time=0", "size_ratio=0.4"});
   sim::Hopper h(s);
   REQUIRE(h.species()[0] == core::Species::Original);
   REQUIRE(h.species()[1] == core::Species::Added);
@@ -58,7 +59,8 @@ TEST_CASE("in the hopper, only added disks feel the dipoles", "[sim][dipole]") {
   CHECK(f.particles[0].vy == 0.0f);
 }
 
-TEST_CASE("the dipole's safe time step refuses a stiff scene and names the largest safe dt", "[sim][dipole][health]") {
+TEST_CASE("the dipole's safe time step refuses a stiff scene and names the largest safe dt",
+          "[sim][dipole][health]") {
   core::Scene s;
   core::apply_overrides(s, {"size_ratio=0.2", "mu=2.0", "dt=0.002", "kick_period=0.1", "settle_time=0"});
   const double safe = core::dipole_safe_dt(s);

@@ -23,7 +23,8 @@ std::uint64_t fingerprint(const sim::Hopper& h) {
 core::Scene flowing_scene(std::uint64_t seed) {
   core::Scene s;
   // Strong kicks keep the outlet flowing, so exits and re-injections happen often.
-  core::apply_overrides(s, {"settle_time=2.5", "kick_impulse_max=0.005", "clog_timeout=2", "seed=" + std::to_string(seed)});
+  core::apply_overrides(
+      s, {"settle_time=2.5", "kick_impulse_max=0.005", "clog_timeout=2", "seed=" + std::to_string(seed)});
   return s;
 }
 }  // namespace
@@ -41,13 +42,15 @@ TEST_CASE("every disk that falls through the aperture gives exactly one exit eve
     h.step();
     std::vector<core::Vec2> after = h.positions();
     REQUIRE(static_cast<int>(after.size()) == n);  // the count never changes
-    // A re-injection moves a disk up to the top of the column in one step (no disk rises 1 m in 1 ms otherwise).
+    // A re-injection moves a disk up to the top of the column in one step (no disk rises 1 m in 1 ms
+    // otherwise).
     long step_jumps = 0;
     for (int i = 0; i < n; ++i)
       if (after[i].y > before[i].y + 1.0) ++step_jumps;
     size_t new_exits = h.events().exits.size() - exits_seen;
     size_t new_rule = 0;
-    for (; arches_seen < h.events().arches.size(); ++arches_seen) new_rule += h.events().arches[arches_seen].ids.size();
+    for (; arches_seen < h.events().arches.size(); ++arches_seen)
+      new_rule += h.events().arches[arches_seen].ids.size();
     CHECK(step_jumps == static_cast<long>(new_exits + new_rule));
     // Every exit of this step was a disk below the aperture line before it jumped.
     for (size_t k = exits_seen; k < h.events().exits.size(); ++k) {
@@ -78,10 +81,12 @@ TEST_CASE("the same seed gives an identical run, another seed differs", "[sim][h
   CHECK(a.first != c.first);
 }
 
-TEST_CASE("golden hash: the default scene's state after 1000 steps is the committed one", "[sim][hopper][determinism]") {
-  // Any change to the physics, its order or its numbers changes this hash and must be acknowledged: if the change
-  // is intended, write the new value into tests/golden/default_scene.txt and say why in the commit. (The hash is
-  // of this machine's build: another CPU's libm may differ in the last bit of a sine and so in the hash.)
+TEST_CASE("golden hash: the default scene's state after 1000 steps is the committed one",
+          "[sim][hopper][determinism]") {
+  // Any change to the physics, its order or its numbers changes this hash and must be acknowledged: if the
+  // change is intended, write the new value into tests/golden/default_scene.txt and say why in the commit.
+  // (The hash is of this machine's build: another CPU's libm may differ in the last bit of a sine and so in
+  // the hash.)
   core::Scene s;  // the built-in defaults (= assets/scenes/paper.toml)
   sim::Hopper h(s);
   for (int k = 0; k < 1000; ++k) h.step();

@@ -30,7 +30,9 @@ using Catch::Matchers::Contains;
 namespace {
 using test::kBin;
 using test::sh;
-fs::path temp_dir(const std::string& name) { return test::temp_dir("ui_" + name); }
+fs::path temp_dir(const std::string& name) {
+  return test::temp_dir("ui_" + name);
+}
 
 core::Scene two_disk_scene() {
   core::Scene s;
@@ -78,7 +80,8 @@ Png read_png(const fs::path& p) {
   return img;
 }
 bool near(const unsigned char* px, render::Rgba c, int tol = 10) {
-  return std::abs(px[0] - c.r * 255) <= tol && std::abs(px[1] - c.g * 255) <= tol && std::abs(px[2] - c.b * 255) <= tol;
+  return std::abs(px[0] - c.r * 255) <= tol && std::abs(px[1] - c.g * 255) <= tol &&
+         std::abs(px[2] - c.b * 255) <= tol;
 }
 
 render::OffscreenContext& gl() {
@@ -87,7 +90,9 @@ render::OffscreenContext& gl() {
 }
 }  // namespace
 
-TEST_CASE("trajectories round-trip, a cut-off file reads up to its last whole frame, foreign files are refused", "[ui]") {
+TEST_CASE(
+    "trajectories round-trip, a cut-off file reads up to its last whole frame, foreign files are refused",
+    "[ui]") {
   fs::path d = temp_dir("traj");
   fs::path p = synthetic_trajectory(d);
   io::Trajectory t(p);
@@ -138,8 +143,8 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   const render::Style style;
   const Png a = read_png(d / "a.png"), b = read_png(d / "b.png");
   REQUIRE(a.w == 400);
-  // Frame 3: the original disk at x = 0.1 m -> pixel 240; frame 0: at x = -0.2 m -> pixel 120. y = 0.5 m -> row 200.
-  // In frame 3 the arch bond runs through the centres: sample 3 cm to the side of it.
+  // Frame 3: the original disk at x = 0.1 m -> pixel 240; frame 0: at x = -0.2 m -> pixel 120. y = 0.5 m ->
+  // row 200. In frame 3 the arch bond runs through the centres: sample 3 cm to the side of it.
   CHECK(near(a.at(228, 200), render::species_color(style.palette, core::Species::Original)));
   CHECK(near(a.at(120, 200), render::background_color(style)));
   CHECK(near(b.at(120, 200), render::species_color(style.palette, core::Species::Original)));
@@ -168,7 +173,8 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
 }
 
-TEST_CASE("snapshots and clips are named by frame and never written over and export clog cuts the clog", "[ui]") {
+TEST_CASE("snapshots and clips are named by frame and never written over and export clog cuts the clog",
+          "[ui]") {
   gl();
   fs::path d = temp_dir("names");
   io::Trajectory t(synthetic_trajectory(d));
@@ -182,17 +188,20 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
   CHECK(fs::exists(first));
   const auto size = fs::file_size(first);
   // The same frame again: refused, the first file untouched.
-  CHECK_THROWS_WITH(insp.execute("snapshot " + pattern + " 64x64", &painter), Contains("exists") && Contains("{frame}"));
+  CHECK_THROWS_WITH(insp.execute("snapshot " + pattern + " 64x64", &painter),
+                    Contains("exists") && Contains("{frame}"));
   CHECK(fs::file_size(first) == size);
   std::ofstream(d / "mine.png") << "not siloscope's";
-  CHECK_THROWS_WITH(insp.execute("snapshot " + (d / "mine.png").string(), &painter), Contains("never writes over"));
+  CHECK_THROWS_WITH(insp.execute("snapshot " + (d / "mine.png").string(), &painter),
+                    Contains("never writes over"));
   // export clog: the one clog (frames 2-3) with 1 s before and 0.5 s after, clamped to the trajectory (0-4).
   insp.execute("goto start");
   insp.execute("export clog " + (d / "clog-{frame}.mp4").string() + " 64x64", &painter);
   CHECK_THAT(insp.last_output, Contains("clog-000000.mp4") && Contains("(frames 0 to 4)"));
   CHECK(fs::exists(d / "clog-000000.mp4"));
   insp.execute("goto end");
-  CHECK_THROWS_WITH(insp.execute("export clog " + (d / "late.mp4").string(), &painter), Contains("no clog at or after"));
+  CHECK_THROWS_WITH(insp.execute("export clog " + (d / "late.mp4").string(), &painter),
+                    Contains("no clog at or after"));
   CHECK_FALSE(fs::exists(d / "late.mp4"));
 }
 
@@ -241,11 +250,13 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   ImGui::DestroyContext(ctx);
 }
 
-TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says when there is no display", "[ui]") {
+TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says when there is no display",
+          "[ui]") {
   fs::path d = temp_dir("window");
-  REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
-             "/assets/scenes/paper.toml --duration 1 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
-             (d / "rec").string()) == 0);
+  REQUIRE(
+      sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
+         "/assets/scenes/paper.toml --duration 1 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
+         (d / "rec").string()) == 0);
   const std::string shot = (d / "window.png").string();
   REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' " + kBin + " inspect " + (d / "rec").string() +
              " --quiet --screenshot " + shot + " --frames 4") == 0);
@@ -257,8 +268,9 @@ TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says
   for (int y = 0; y < w.h; ++y)
     for (int x = 0; x < w.w; ++x) {
       const unsigned char* p = w.at(x, y);
-      if (x < 880 && near(p, original, 12)) ++red;                        // disks of the hopper in the scene area
-      if (x > 900 && p[0] > 200 && p[0] < 250 && p[0] == p[1] && p[1] == p[2]) ++panel;  // the panel's light grey
+      if (x < 880 && near(p, original, 12)) ++red;  // disks of the hopper in the scene area
+      if (x > 900 && p[0] > 200 && p[0] < 250 && p[0] == p[1] && p[1] == p[2])
+        ++panel;  // the panel's light grey
     }
   CHECK(red > 5000);
   CHECK(panel > 50000);
@@ -281,12 +293,14 @@ TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says
 
 TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvfb, xdotool)", "[ui]") {
   fs::path d = temp_dir("window_keys");
-  REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
-             "/assets/scenes/paper.toml --duration 2 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
-             (d / "rec").string()) == 0);
+  REQUIRE(
+      sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
+         "/assets/scenes/paper.toml --duration 2 --set settle_time=2 --size 320x240 --fps 10 --quiet --out " +
+         (d / "rec").string()) == 0);
   const std::string log = (d / "log.txt").string();
   REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
-             "/tests/ui/ui_keys.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log + " 2>&1") == 0);
+             "/tests/ui/ui_keys.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log +
+             " 2>&1") == 0);
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   INFO(text);
@@ -297,13 +311,14 @@ TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvf
   CHECK_THAT(text, Contains("exit 0") && Contains("inspector closed at frame 5\n"));  // 5 quick taps, 5 steps
 }
 
-TEST_CASE("the live window pauses without CPU, steps one frame and snapshots without overwriting (Xvfb, xdotool)",
-          "[ui]") {
+TEST_CASE(
+    "the live window pauses without CPU, steps one frame and snapshots without overwriting (Xvfb, xdotool)",
+    "[ui]") {
   fs::path d = temp_dir("live_keys");
   const std::string log = (d / "log.txt").string();
-  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) + "/tests/ui/ui_live.sh " +
-             kBin + " " + std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml " + d.string() + " > " + log +
-             " 2>&1") == 0);
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/tests/ui/ui_live.sh " + kBin + " " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml " + d.string() + " > " + log + " 2>&1") == 0);
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   INFO(text);
@@ -311,13 +326,15 @@ TEST_CASE("the live window pauses without CPU, steps one frame and snapshots wit
   REQUIRE(at != std::string::npos);
   CHECK(std::stod(text.substr(at + 20)) < 0.05);
   CHECK_THAT(text, Contains("exit 0"));
-  // Two snapshots while paused share a time: the second gets -2, the first is kept. Three steps later: +0.1 s.
+  // Two snapshots while paused share a time: the second gets -2, the first is kept. Three steps later: +0.1
+  // s.
   std::vector<std::string> shots;
   for (size_t p = text.find("snapshot "); p != std::string::npos; p = text.find("snapshot ", p + 1))
     shots.push_back(text.substr(p + 9, text.find('\n', p) - p - 9));
   REQUIRE(shots.size() == 3);
   auto time_of = [](const std::string& name) { return std::stod(name.substr(6)); };  // live-tSSS.SSSs...
-  auto second = std::find_if(shots.begin(), shots.end(), [](const std::string& n) { return n.find("s-2.png") != n.npos; });
+  auto second = std::find_if(shots.begin(), shots.end(),
+                             [](const std::string& n) { return n.find("s-2.png") != n.npos; });
   REQUIRE(second != shots.end());
   const std::string first = second->substr(0, second->size() - 6) + ".png";
   CHECK(std::count(shots.begin(), shots.end(), first) == 1);
