@@ -43,7 +43,7 @@ struct RecordOptions {
                    overlay = "all";
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
-  double color_max = 0;  // top of the speed (m/s) or force (N) colour scale; 0: the fixed default
+  std::string color_max;  // top of the speed (m/s) or force (N) colour scale; "": the fixed default; "auto"
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
   bool transparent = false, no_movie = false, force = false, quiet = false;
@@ -148,12 +148,26 @@ int record_movie(const RecordOptions& o) {
   style.palette = render::parse_palette(o.palette);
   style.color = render::parse_color_mode(o.color);
   style.transparent = o.transparent;
-  if (o.color_max < 0 || !std::isfinite(o.color_max))
-    throw core::InputError("--color-max " + num6(o.color_max) + ": expected a positive number (m/s or N)");
-  if (o.color_max > 0) {
+  if (!o.color_max.empty()) {
+    double top = 0;
+    if (o.color_max != "auto") {
+      char* end = nullptr;
+      top = std::strtod(o.color_max.c_str(), &end);
+      if (*end != '\0' || !(top > 0) || !std::isfinite(top))
+        throw core::InputError("--color-max " + o.color_max +
+                               ": expected a positive number (m/s or N) or auto");
+    }
     if (style.color == render::ColorMode::Species)
       throw core::InputError("--color-max applies to --color speed or force, not species");
-    (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = o.color_max;
+    if (o.color_max == "auto") {
+      // The same scale in every panel: the largest of the panels' own.
+      for (const auto& p : panels)
+        top = std::max(top, color_scale_from_data(p.scene, style.color == render::ColorMode::Force, 2.0));
+      if (!o.quiet)
+        std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
+                     num6(top).c_str(), style.color == render::ColorMode::Force ? "N" : "m/s");
+    }
+    if (top > 0) (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = top;
   }
   const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
   const render::CameraSpec camera = render::parse_camera(o.camera);
@@ -455,9 +469,10 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
-  cmd->add_option("--color-max", o->color_max,
-                  "top of the colour scale for --color speed (m/s) or force (N); default: the fixed scale "
-                  "(0.5 m/s, 20 N), the same in every movie");
+  cmd->add_option(
+      "--color-max", o->color_max,
+      "top of the colour scale for --color speed (m/s) or force (N), or auto (the 99th percentile "
+      "of the first 2 s of discharge); default: the fixed scale (0.5 m/s, 20 N), the same in every movie");
   cmd->add_option(
       "--compare", o->compare,
       "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "

@@ -84,4 +84,19 @@ void EventMarks::start(const std::string& caption, double t, bool keep_rings) {
   if (!keep_rings) rings_.clear();
 }
 
+double color_scale_from_data(const core::Scene& scene, bool forces, double seconds) {
+  sim::Hopper h(scene);
+  std::vector<double> values;
+  const double end = std::min(seconds, scene.duration);
+  for (double t = 0.1; t <= end + 1e-9; t += 0.1) {
+    h.advance_to(t);
+    const core::Frame f = h.frame(false, forces);
+    for (const auto& p : f.particles) values.push_back(forces ? p.force : std::hypot(p.vx, p.vy));
+  }
+  if (values.empty()) return 0;
+  const size_t k = static_cast<size_t>(0.99 * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
+  return values[k];
+}
+
 }  // namespace app

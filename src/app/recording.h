@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "core/scene.h"
 
 namespace sim {
 class Hopper;
@@ -21,6 +22,11 @@ struct FrameClock {
   double effective_slowmo = 1;     // steps / slow_steps
 };
 FrameClock make_frame_clock(double dt, int fps, double speed, double slowmo);
+
+// --color-max auto: the top of the speed (forces = false) or contact-force scale taken from the data, the
+// 99th percentile of every disk's value over frames every 0.1 s of the first `seconds` of discharge,
+// simulated ahead from the same scene and seed (one extra settling). 0 if everything stayed at rest.
+double color_scale_from_data(const core::Scene& scene, bool forces, double seconds);
 
 // The marks record puts on its frames (core::Marks): the members of the last rule removal, ringed where they
 // stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames

@@ -128,6 +128,35 @@ TEST_CASE("record makes NAME.mp4 and NAME/ with frames, events and metadata", "[
                        Catch::Matchers::Contains("[scene]") && Catch::Matchers::Contains("seed = 1"));
 }
 
+TEST_CASE("record --color-max sets the colour scale or takes it from the data (auto)", "[app][record]") {
+  fs::path d = temp_dir("colormax");
+  const std::string base = "record " + kScene +
+                           " --duration 0.5 --set settle_time=2 --size 160x120 --fps 10 --no-movie " +
+                           "--png-every 5 --color speed --out ";
+  auto scale_of = [](const std::string& meta) {
+    const auto at = meta.find("color_scale_max = ");
+    return at == std::string::npos ? -1.0 : std::stod(meta.substr(at + 18));
+  };
+  auto a = cli(base + (d / "a").string() + " --color-max auto");
+  REQUIRE(a.code == 0);
+  CHECK_THAT(a.output, Catch::Matchers::Contains("--color-max auto:"));
+  const double top = scale_of(slurp(d / "a" / "metadata.toml"));
+  // Disks falling out of the aperture reach ~1-3 m/s; the fixed default is 0.5 m/s.
+  CHECK(top > 0.2);
+  CHECK(top < 10.0);
+  CHECK(top != Approx(0.5));
+  auto b = cli(base + (d / "b").string() + " --color-max auto --quiet");
+  REQUIRE(b.code == 0);
+  CHECK(scale_of(slurp(d / "b" / "metadata.toml")) == top);  // the same seed: the same scale
+  REQUIRE(cli(base + (d / "c").string() + " --color-max 1.25 --quiet").code == 0);
+  CHECK(scale_of(slurp(d / "c" / "metadata.toml")) == 1.25);
+  auto bad = cli(base + (d / "e").string() + " --color-max fast");
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.output,
+             Catch::Matchers::Contains("--color-max fast") && Catch::Matchers::Contains("or auto"));
+  CHECK_FALSE(fs::exists(d / "e"));
+}
+
 TEST_CASE("Ctrl-C during record leaves a playable movie of what was recorded", "[app][record]") {
   fs::path d = temp_dir("sigint");
   const std::string out = (d / "cut").string();
