@@ -1,18 +1,17 @@
 // siloscope record SCENE --out recordings/NAME: a discharge movie (NAME.mp4) and, in NAME/, the events, the
-// measurements, the metadata and optional PNG frames. Three threads: the simulation produces Frames, the
-// renderer turns them into Images (OSMesa), the encoder writes them; bounded queues keep memory flat.
+// measurements, the metadata and optional PNG frames. The simulation produces Frames on this thread;
+// app/pipeline.h renders and encodes them on two more (bounded queues keep memory flat).
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <functional>
 #include <future>
 #include <sstream>
-#include <thread>
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
-#include "app/queue.h"
+#include "app/pipeline.h"
 #include "app/recording.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -21,11 +20,8 @@
 #include "io/output.h"
 #include "io/trajectory.h"
 #include "record/mp4.h"
-#include "record/png.h"
 #include "render/camera.h"
-#include "render/context.h"
 #include "render/overlay.h"
-#include "render/painter.h"
 #include "sim/hopper.h"
 
 namespace app {
@@ -205,62 +201,20 @@ int record_movie(const RecordOptions& o) {
   info.command = command_line();
   install_interrupt_handler();
 
-  // --- the three stages ---
-  BoundedQueue<std::vector<core::Frame>> frames(8);
-  BoundedQueue<core::Image> images(4);
-  std::exception_ptr render_error, encode_error;
+  // --- the back half: render and encode stages on threads of their own (app/pipeline.h) ---
   Stages st;
-  std::string gl_renderer;
-  long encoded = 0;
   std::unique_ptr<record::Mp4Writer> mp4;
   if (!o.no_movie) {
     video.comment = io::metadata_toml(scene, info);
     mp4 = std::make_unique<record::Mp4Writer>(movie_path, video);
   }
-
-  std::thread render_thread([&] {
-    try {
-      render::OffscreenContext ctx;
-      gl_renderer = ctx.description();
-      if (!o.quiet) std::fprintf(stderr, "siloscope: OpenGL %s\n", gl_renderer.c_str());
-      render::Painter painter;
-      std::vector<core::Frame> fs;
-      while (frames.pop(fs)) {
-        std::vector<render::PanelInput> in;
-        for (size_t k = 0; k < n_panels; ++k)
-          in.push_back({&fs[k], &panels[k].geo, &panels[k].views, &panels[k].odata});
-        core::Image img = painter.paint(in, style, overlay, video.width, video.height);
-        st.draw = painter.timing().draw_s;
-        st.readback = painter.timing().readback_s;
-        if (!images.push(std::move(img))) break;
-      }
-    } catch (...) {
-      render_error = std::current_exception();
-      frames.close();
-    }
-    images.close();
-  });
-
-  std::thread encode_thread([&] {
-    try {
-      core::Image img;
-      while (images.pop(img)) {
-        if (mp4) mp4->add(img);
-        if (o.png_every > 0 && encoded % o.png_every == 0) {
-          auto t0 = Clock::now();
-          char name[32];
-          std::snprintf(name, sizeof name, "frame_%06ld.png", encoded);
-          record::write_png(dir.file("frames") / name, img);
-          st.png += since(t0);
-        }
-        ++encoded;
-      }
-    } catch (...) {
-      encode_error = std::current_exception();
-      images.close();
-      frames.close();
-    }
-  });
+  std::vector<PanelLayout> layouts;
+  for (const auto& p : panels) layouts.push_back({&p.geo, &p.views, &p.odata});
+  PipelineOutputs outputs;
+  outputs.mp4 = mp4.get();
+  outputs.png_every = o.png_every;
+  if (o.png_every > 0) outputs.png_dir = dir.file("frames");
+  FramePipeline pipeline(std::move(layouts), style, overlay, video.width, video.height, outputs, o.quiet);
 
   // --- the simulations, on this thread (the other panels' on threads of their own, in step) ---
   Progress progress("record", scene.duration, !o.quiet);
@@ -317,7 +271,7 @@ int record_movie(const RecordOptions& o) {
       last_t = fs[0].t;
       slow_frames += slow;
       st.sim += since(t0);
-      if (!frames.push(std::move(fs))) break;
+      if (!pipeline.push(std::move(fs))) break;
       t0 = Clock::now();
       if (interrupted()) {
         was_interrupted = true;
@@ -331,13 +285,20 @@ int record_movie(const RecordOptions& o) {
   } catch (...) {
     sim_error = std::current_exception();
   }
-  frames.close();
-  render_thread.join();
-  encode_thread.join();
+  std::exception_ptr stage_error;
+  try {
+    pipeline.finish();
+  } catch (...) {
+    stage_error = std::current_exception();
+  }
   progress.finish();
   if (sim_error) std::rethrow_exception(sim_error);
-  if (render_error) std::rethrow_exception(render_error);
-  if (encode_error) std::rethrow_exception(encode_error);
+  if (stage_error) std::rethrow_exception(stage_error);
+  const long encoded = pipeline.frames_written();
+  const std::string& gl_renderer = pipeline.gl_renderer();
+  st.draw = pipeline.draw_seconds();
+  st.readback = pipeline.readback_seconds();
+  st.png = pipeline.png_seconds();
   const double wall = since(wall0);
 
   // --- finish: movie into place first, then the directory that describes it ---
