@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "core/arch.h"
 #include "core/error.h"
@@ -80,13 +81,15 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic))
     insp.zoom = zoom;
   remember(ps, "zoom");
-  int color = static_cast<int>(insp.style.color);
-  ImGui::RadioButton("species", &color, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("speed", &color, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("force", &color, 2);
-  insp.style.color = static_cast<render::ColorMode>(color);
+  // Each choice runs the command it stands for (color species|speed|force), no int casts.
+  const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
+                                                              {"speed", render::ColorMode::Speed},
+                                                              {"force", render::ColorMode::Force}};
+  for (size_t k = 0; k < 3; ++k) {
+    if (k > 0) ImGui::SameLine();
+    if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
+      run_command(insp, ps, painter, std::string("color ") + colors[k].first);
+  }
   bool cb = insp.style.palette == render::Palette::ColorBlind;
   if (ImGui::Checkbox("colour-blind palette", &cb))
     insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
