@@ -3,10 +3,11 @@
 
 #include <vector>
 
+#include "core/stats.h"
+
 namespace analysis {
 
-// Median of a sample (mean of the middle two for an even count); NaN when empty.
-double median(std::vector<double> v);
+using core::median;
 
 // Regularized incomplete beta function I_x(a, b).
 double incomplete_beta(double a, double b, double x);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/stats.h"
 #include "record/png.h"
 #include "render/context.h"
 #include "render/painter.h"
@@ -166,15 +167,6 @@ void save_screenshot(const std::string& path, int w, int h) {
   record::write_png(path, window_pixels(w, h), true);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-  const double hi = v[mid];
-  if (v.size() % 2) return hi;
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(mid)));
-}
-
 // Start ImGui's frame, run `panels`, draw ImGui over the window.
 template <class Panels>
 void imgui_frame(Window& win, int fw, int fh, Panels&& panels) {
@@ -255,7 +247,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
-  return median(redraws);
+  return redraws.empty() ? 0.0 : core::median(redraws);
 }
 
 namespace {

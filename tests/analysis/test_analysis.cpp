@@ -63,13 +63,17 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
                        {1, 2, 3},
                        {Species::Original, Species::Added, Species::Original},
                        {},
-                       core::ArchMethod::ContactPath});
+                       core::ArchMethod::ContactPath,
+                       {},
+                       {}});
   ev.arches.push_back({20,
                        5,
                        {4, 5, 6, 7},
                        {Species::Added, Species::Added, Species::Original, Species::Original},
                        {},
-                       core::ArchMethod::ContactPath});
+                       core::ArchMethod::ContactPath,
+                       {},
+                       {}});
   ev.clogs = {{5, 10, core::ClogEnd::Rule, true},
               {12, 13, core::ClogEnd::Vibration, true},
               {14, 15, core::ClogEnd::Spontaneous, false},
@@ -101,7 +105,9 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
                        {4, 9},
                        {Species::Original, Species::Added},
                        {0.3, 0.15, 170.0},
-                       core::ArchMethod::ContactPath});
+                       core::ArchMethod::ContactPath,
+                       {},
+                       {}});
   io::write_events(dir, ev);
   core::Events back = io::read_events(dir);
   REQUIRE(back.exits.size() == 2);

@@ -1,0 +1,18 @@
+// Small sample statistics shared by every layer (analysis, benchmarks and the windows' redraw timing).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace core {
+
+// Median of a sample (mean of the middle two for an even count); NaN when empty.
+inline double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace core
