@@ -119,7 +119,8 @@ void Overlay::ensure_font(int h) {
 }
 
 void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-                   const std::vector<View>& views, const Style& style, int w, int h) {
+                   const std::vector<View>& views, const Style& style, int w, int h,
+                   const core::Geometry* geo) {
   if (!o.any()) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
@@ -131,12 +132,12 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   // Auto-sized windows learn their size in their first frame: lay the first one out once without drawing it.
   if (!laid_out_) {
     ImGui::NewFrame();
-    build(f, d, o, views, style, w, h);
+    build(f, d, o, views, style, w, h, geo);
     ImGui::EndFrame();
     laid_out_ = true;
   }
   ImGui::NewFrame();
-  build(f, d, o, views, style, w, h);
+  build(f, d, o, views, style, w, h, geo);
   ImGui::Render();
   glViewport(0, 0, w, h);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -228,9 +229,82 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
 }
 
+namespace {
+// A world point on the container as the information box must not cover it: inside the walls (and a tenth of
+// a diameter beyond, for the walls' lines) or in the column below the aperture that exiting disks fall
+// through (four diameters deep).
+bool in_container(const core::Geometry& g, core::Vec2 p) {
+  const double m = 0.1 * g.grain_diameter;
+  if (p.y < 0) return p.y > -4 * g.grain_diameter && std::abs(p.x) < g.half_aperture + m;
+  if (p.y > g.total_height + m) return false;
+  return std::abs(p.x) < g.half_width_at(p.y) + m;
+}
+}  // namespace
+
+// The information box's lines, into the current ImGui window.
+void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const Style& style,
+                   float em) {
+  if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
+  if (o.time) ImGui::Text("t = %.2f s", f.t);
+  if (o.counts) {
+    ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Original).r,
+                              species_color(style.palette, core::Species::Original).g,
+                              species_color(style.palette, core::Species::Original).b, 1),
+                       "%lld original", static_cast<long long>(f.exits_original));
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Added).r,
+                              species_color(style.palette, core::Species::Added).g,
+                              species_color(style.palette, core::Species::Added).b, 1),
+                       "%lld added", static_cast<long long>(f.exits_added));
+    ImGui::SameLine();
+    ImGui::TextUnformatted("exits");
+  }
+  if (o.rate) ImGui::Text("Q~ = %.2f /s (originals, so far)", f.t > 0 ? f.exits_original / f.t : 0.0);
+  if (o.timer) {
+    const double frac = std::min(1.0, f.since_last_exit / d.clog_timeout);
+    const bool clogged = f.since_last_exit >= d.clog_min_gap;
+    ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
+                          clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
+    char label[64];
+    std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit,
+                  d.clog_timeout);
+    ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
+    ImGui::PopStyleColor();
+  }
+  if (o.arch && !f.arch.empty()) {
+    int added = 0;
+    for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
+    ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
+  }
+  if (o.legend) {
+    ImGui::Separator();
+    const float r = 0.4f * em;
+    auto swatch = [&](Rgba fill, Rgba ring, const char* text) {
+      ImVec2 p = ImGui::GetCursorScreenPos();
+      ImVec2 c(p.x + r + 2, p.y + 0.5f * ImGui::GetTextLineHeight());
+      if (ring.a > 0) ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(ring), 0, 0.25f * em);
+      ImGui::GetWindowDrawList()->AddCircleFilled(c, r, to_u32(fill));
+      ImGui::Dummy(ImVec2(2 * r + 0.5f * em, ImGui::GetTextLineHeight()));
+      ImGui::SameLine();
+      ImGui::TextUnformatted(text);
+    };
+    if (style.color == ColorMode::Species) {
+      swatch(species_color(style.palette, core::Species::Original), {0, 0, 0, 0}, "original");
+      ImGui::SameLine();
+      swatch(species_color(style.palette, core::Species::Added), {0, 0, 0, 0}, "added");
+      ImGui::SameLine();
+    } else {
+      colour_bar(style, em);
+    }
+    swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
+  }
+}
+
 void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-                    const std::vector<View>& views, const Style& style, int w, int h) {
+                    const std::vector<View>& views, const Style& style, int w, int h,
+                    const core::Geometry* geo) {
   const float em = static_cast<float>(font_px_);
+  info_left_ = false;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
 
   if (o.zoombox && views.size() > 1) {
@@ -310,10 +384,24 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     };
     auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
     if (o.place_clear && info_w_ > 0) {
+      // Cost of corner k: the container under the box first (sampled every few pixels), then arch members,
+      // then other disks.
+      constexpr long kContainer = 1000000;
       auto covered = [&](int k) {
         const ImVec2 a = anchor(k), pv = pivot(k);
         const float x0 = a.x - pv.x * info_w_, y0 = a.y - pv.y * info_h_;
         long n = 0;
+        if (geo) {
+          const float step = std::max(3.0f, 0.25f * em);
+          for (float py = y0; py <= y0 + info_h_; py += step)
+            for (float px = x0; px <= x0 + info_w_; px += step)
+              for (const auto& v : views)
+                if (px >= v.rect.x && px < v.rect.x + v.rect.w && py >= v.rect.y &&
+                    py < v.rect.y + v.rect.h && in_container(*geo, v.pixel_to_world({px, py}))) {
+                  n += kContainer;
+                  break;
+                }
+        }
         std::vector<char> in_arch(f.particles.size(), 0);
         for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
         for (const auto& v : views) {
@@ -335,69 +423,21 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
         const long n = covered(k);
         if (n < best) best = n, info_corner_ = k;
       }
+      info_left_ = o.may_leave && best >= kContainer;
     } else if (!o.place_clear) {
       info_corner_ = 0;
     }
-    ImGui::SetNextWindowPos(anchor(info_corner_), 0, pivot(info_corner_));
+    // Left out of the picture, the box is still laid out (off-screen) so its size follows the options.
+    if (info_left_)
+      ImGui::SetNextWindowPos(ImVec2(static_cast<float>(w) + 100 * em, 0));
+    else
+      ImGui::SetNextWindowPos(anchor(info_corner_), 0, pivot(info_corner_));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("info", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                      ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
                      ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
-    if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
-    if (o.time) ImGui::Text("t = %.2f s", f.t);
-    if (o.counts) {
-      ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Original).r,
-                                species_color(style.palette, core::Species::Original).g,
-                                species_color(style.palette, core::Species::Original).b, 1),
-                         "%lld original", static_cast<long long>(f.exits_original));
-      ImGui::SameLine();
-      ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Added).r,
-                                species_color(style.palette, core::Species::Added).g,
-                                species_color(style.palette, core::Species::Added).b, 1),
-                         "%lld added", static_cast<long long>(f.exits_added));
-      ImGui::SameLine();
-      ImGui::TextUnformatted("exits");
-    }
-    if (o.rate) ImGui::Text("Q~ = %.2f /s (originals, so far)", f.t > 0 ? f.exits_original / f.t : 0.0);
-    if (o.timer) {
-      const double frac = std::min(1.0, f.since_last_exit / d.clog_timeout);
-      const bool clogged = f.since_last_exit >= d.clog_min_gap;
-      ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
-                            clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
-      char label[64];
-      std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit,
-                    d.clog_timeout);
-      ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
-      ImGui::PopStyleColor();
-    }
-    if (o.arch && !f.arch.empty()) {
-      int added = 0;
-      for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
-      ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
-    }
-    if (o.legend) {
-      ImGui::Separator();
-      const float r = 0.4f * em;
-      auto swatch = [&](Rgba fill, Rgba ring, const char* text) {
-        ImVec2 p = ImGui::GetCursorScreenPos();
-        ImVec2 c(p.x + r + 2, p.y + 0.5f * ImGui::GetTextLineHeight());
-        if (ring.a > 0) ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(ring), 0, 0.25f * em);
-        ImGui::GetWindowDrawList()->AddCircleFilled(c, r, to_u32(fill));
-        ImGui::Dummy(ImVec2(2 * r + 0.5f * em, ImGui::GetTextLineHeight()));
-        ImGui::SameLine();
-        ImGui::TextUnformatted(text);
-      };
-      if (style.color == ColorMode::Species) {
-        swatch(species_color(style.palette, core::Species::Original), {0, 0, 0, 0}, "original");
-        ImGui::SameLine();
-        swatch(species_color(style.palette, core::Species::Added), {0, 0, 0, 0}, "added");
-        ImGui::SameLine();
-      } else {
-        colour_bar(style, em);
-      }
-      swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
-    }
+    info_contents(f, d, o, style, em);
     info_w_ = ImGui::GetWindowSize().x;
     info_h_ = ImGui::GetWindowSize().y;
     ImGui::End();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "core/geometry.h"
 #include "core/scene.h"
 #include "render/camera.h"
 #include "render/palette.h"
@@ -23,6 +24,11 @@ struct OverlayOptions {
   // whose views are zoomed and panned at will); off, it stays top-right (movies: the outlet view leaves room
   // there).
   bool place_clear = false;
+  // With place_clear: when every corner would cover the container (the hopper, its walls or the column the
+  // exiting disks fall through), leave the box out of the picture; Overlay::info_left() then tells the
+  // caller, who shows info_contents() beside the picture (the windows' side panels). Off: the least-covering
+  // corner.
+  bool may_leave = false;
   static OverlayOptions none() {
     OverlayOptions o;
     o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
@@ -46,6 +52,11 @@ struct OverlayData {
   int panel_x = 0, panel_w = 0;  // the panel this overlay belongs to, pixels (panel_w = 0: the whole image)
 };
 
+// The information box's lines (title, time, exits, Q~, clog timer, arch, legend or colour bar as `o` asks)
+// into the current ImGui window; em is the font's height in pixels.
+void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const Style& style,
+                   float em);
+
 // The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu,
 // seed.
 OverlayData overlay_data_for(const core::Scene& scene);
@@ -56,14 +67,18 @@ class Overlay {
   ~Overlay();
   Overlay(const Overlay&) = delete;
   Overlay& operator=(const Overlay&) = delete;
-  // Draw into the bound framebuffer of w x h pixels.
+  // Draw into the bound framebuffer of w x h pixels. geo (may be null) is the container, which place_clear
+  // keeps the information box off.
   void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-            const std::vector<View>& views, const Style& style, int w, int h);
+            const std::vector<View>& views, const Style& style, int w, int h,
+            const core::Geometry* geo = nullptr);
+  // The last draw left the information box out of the picture (place_clear and may_leave, no clear corner).
+  bool info_left() const { return info_left_; }
 
  private:
   void ensure_font(int h);
   void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-             const std::vector<View>& views, const Style& style, int w, int h);
+             const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo);
   void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
@@ -77,6 +92,7 @@ class Overlay {
   bool laid_out_ = false;
   float info_w_ = 0, info_h_ = 0;  // the information box's size in the last frame, pixels
   int info_corner_ = 0;            // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
+  bool info_left_ = false;         // see info_left()
 };
 
 }  // namespace render

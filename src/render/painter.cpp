@@ -18,6 +18,7 @@ Painter::~Painter() = default;
 
 void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
                    int w, int h, int overlay_w) {
+  info_left_ = false;
   for (size_t k = 0; k < panels.size(); ++k) {
     const PanelInput& p = panels[k];
     Style panel_style = style;
@@ -25,7 +26,9 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
     if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
     while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
-    overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, style, overlay_w < 0 ? w : overlay_w, h);
+    overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, style, overlay_w < 0 ? w : overlay_w, h,
+                       p.geometry);
+    if (k == 0) info_left_ = overlays_[k]->info_left();
   }
 }
 
@@ -34,7 +37,9 @@ core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& s
   if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<Target>(w, h);
   const auto t0 = std::chrono::steady_clock::now();
   target_->bind();
+  const bool window_info_left = info_left_;  // info_left() is about the window's picture, not this image
   draw(panels, style, overlay, w, h);
+  info_left_ = window_info_left;
   const auto t1 = std::chrono::steady_clock::now();
   timing_.draw_s += std::chrono::duration<double>(t1 - t0).count();
   core::Image img;

@@ -54,12 +54,15 @@ class Painter {
     return paint({{&f, &geo, &views, &data}}, style, overlay, w, h);
   }
   const PaintTiming& timing() const { return timing_; }
+  // The last draw left the first panel's information box out of the picture (OverlayOptions::may_leave).
+  bool info_left() const { return info_left_; }
 
  private:
   std::unique_ptr<Renderer> renderer_;
   std::vector<std::unique_ptr<Overlay>> overlays_;  // one per panel, made when first needed
   std::unique_ptr<Target> target_;
   PaintTiming timing_;
+  bool info_left_ = false;
 };
 
 }  // namespace render

@@ -129,6 +129,11 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
     ImGui::TextWrapped("members (left to right, o/a = original/added): %s", members.c_str());
   }
   ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
+  // No corner of the picture is clear of the container (zoomed in): the information box is shown here.
+  if (painter && painter->info_left()) {
+    ImGui::Separator();
+    render::info_contents(f, insp.overlay_data, insp.overlay, insp.style, ImGui::GetFontSize());
+  }
 
   // Outputs.
   ImGui::Separator();

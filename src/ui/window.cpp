@@ -190,7 +190,8 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   const auto views = insp.views(scene_w, scene_h);
   render::OverlayOptions overlay = insp.overlay;
-  overlay.place_clear = true;  // views are zoomed and panned at will: keep the information box off the disks
+  // Views are zoomed and panned at will: keep the information box off the container, or beside the picture.
+  overlay.place_clear = overlay.may_leave = true;
   painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, overlay, fw, fh, scene_w);
   imgui_frame(win, fw, fh, [&] {
     panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh),
@@ -275,7 +276,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   std::string message = "running";
   render::Style style;
   render::OverlayOptions overlay;
-  overlay.place_clear = true;
+  overlay.place_clear = overlay.may_leave = true;
   render::CameraSpec camera;  // split
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
@@ -320,8 +321,11 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       try {
         const auto views = views_for(1920, 1080);
         const std::string name = free_snapshot_name(f.t);
+        render::OverlayOptions in_picture = overlay;  // a snapshot has no side panel to hold the box
+        in_picture.may_leave = false;
         record::write_png(
-            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, overlay, 1920, 1080), true);
+            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, in_picture, 1920, 1080),
+            true);
         message = "snapshot " + name;
       } catch (const std::exception& e) {
         message = std::string("snapshot failed: ") + e.what();
@@ -377,8 +381,14 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       }
       ImGui::NewLine();
       ImGui::Checkbox("arch", &style.show_arch);
+      if (painter.info_left()) {  // no corner of the picture is clear of the container
+        ImGui::Separator();
+        render::info_contents(f, od, overlay, style, ImGui::GetFontSize());
+      }
       ImGui::TextWrapped("%s", message.c_str());
-      ImGui::TextDisabled("keys: space pause, right step (paused), s snapshot, q close");
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
+      ImGui::TextWrapped("keys: space pause, right step (paused), s snapshot, q close");
+      ImGui::PopStyleColor();
       ImGui::End();
     });
     if (o.frames > 0 && n + 1 >= o.frames) {

@@ -174,6 +174,59 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   CHECK_THROWS_WITH(render::parse_overlay("time,clock"), Catch::Matchers::Contains("'clock'"));
 }
 
+TEST_CASE("in a window the information box never covers the container: a clear corner or beside the picture",
+          "[render]") {
+  auto& fx = fixture();
+  core::Frame f;
+  f.t = 3.5;
+  f.exits_original = 4;
+  render::Style style;
+  render::OverlayOptions o = render::parse_overlay("time,counts,rate,timer,arch,legend");
+  o.place_clear = o.may_leave = true;
+  constexpr int w = 640, h = 360;
+  render::Target target(w, h);
+  // The pixels the overlay changed, against the same frame without it.
+  auto changed = [&](render::Overlay& overlay, const std::vector<render::View>& views,
+                     const render::OverlayOptions& opts) {
+    core::Image img[2];
+    for (int k = 0; k < 2; ++k) {
+      target.bind();
+      fx.renderer.draw(f, fx.geo, views, style, w, h);
+      if (k == 1) overlay.draw(f, {}, opts, views, style, w, h, &fx.geo);
+      target.read(img[k]);
+    }
+    std::vector<core::Vec2> px;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = 4 * (static_cast<size_t>(y) * w + x);
+        if (std::abs(img[0].rgba[i] - img[1].rgba[i]) + std::abs(img[0].rgba[i + 1] - img[1].rgba[i + 1]) > 0)
+          px.push_back({x + 0.5, y + 0.5});
+      }
+    return px;
+  };
+  SECTION("with the silo on the right, the box moves to a free corner on the left, off the container") {
+    render::Overlay overlay;
+    const auto views = render::layout_views(render::parse_camera("window:-2.5,3.0,0.6,4.0"), fx.geo, w, h);
+    const auto px = changed(overlay, views, o);
+    CHECK_FALSE(overlay.info_left());
+    CHECK(px.size() > 1000);
+    long inside = 0;
+    for (const auto& p : px) inside += fx.geo.contains(views[0].pixel_to_world(p), 0.0);
+    CHECK(inside == 0);
+  }
+  SECTION("zoomed into the column, no corner is free: the box leaves the picture") {
+    render::Overlay overlay;
+    const auto views = render::layout_views(render::parse_camera("window:-0.3,2.0,0.3,2.5"), fx.geo, w, h);
+    CHECK(changed(overlay, views, o).empty());
+    CHECK(overlay.info_left());
+    // Where it may not leave (a snapshot has no side panel), it is drawn in the least-covering corner.
+    render::OverlayOptions stay = o;
+    stay.may_leave = false;
+    CHECK(changed(overlay, views, stay).size() > 1000);
+    CHECK_FALSE(overlay.info_left());
+  }
+}
+
 TEST_CASE("image sizes outside what GL allows are refused", "[render]") {
   fixture();
   CHECK_THROWS_AS(render::Target(0, 100), core::InputError);
