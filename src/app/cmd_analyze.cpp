@@ -95,12 +95,11 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
   io::write_file_atomic(out.file("survival.csv"), analysis::pooled_survival_csv(points));
   io::RunInfo info{command_line(),
-                   {{"runs", std::to_string(runs.size())},
-                    {"points", std::to_string(points.size())},
-                    {"runs_left_out", std::to_string(left_out.size())},
-                    {"ballistic_runs",
-                     std::to_string(std::count_if(runs.begin(), runs.end(),
-                                                  [](const analysis::Run& r) { return r.m.ballistic; }))}},
+                   {{"runs", runs.size()},
+                    {"points", points.size()},
+                    {"runs_left_out", left_out.size()},
+                    {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
+                                                     [](const analysis::Run& r) { return r.m.ballistic; })}},
                    {}};
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();

@@ -45,10 +45,9 @@ int figures(const FiguresOptions& o) {
   int status = std::system(cmd.c_str());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw core::RuntimeFault("figures: the matplotlib script failed (" + cmd + ")");
-  io::RunInfo info{command_line(), {{"source", core::toml_string(src.string())}}, {}};
   std::string meta = "# siloscope figures metadata: made from the analysis in [run].source\n[siloscope]\n" +
                      std::string("version = ") + core::toml_string(io::version_string()) + "\n" +
-                     "command = " + core::toml_string(info.command) +
+                     "command = " + core::toml_string(command_line()) +
                      "\n\n[run]\nsource = " + core::toml_string(fs::absolute(src).string()) + "\n";
   io::write_file_atomic(dir.file("metadata.toml"), meta);
   dir.commit();

@@ -318,56 +318,54 @@ int record_movie(const RecordOptions& o) {
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
     io::RunInfo pinfo = info;
     pinfo.facts = {
-        {"movie", core::toml_string((o.no_movie ? std::string() : movie_path.filename().string()))},
-        {"frames", std::to_string(encoded)},
-        {"trajectory", "\"trajectory.sstraj\""},
+        {"movie", o.no_movie ? std::string() : movie_path.filename().string()},
+        {"frames", encoded},
+        {"trajectory", "trajectory.sstraj"},
         {"trajectory_bytes_per_frame",
-         std::to_string(io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total)))},
-        {"size", core::toml_string(std::to_string(video.width) + "x" + std::to_string(video.height))},
-        {"fps", std::to_string(o.fps)},
-        {"steps_per_frame", std::to_string(clock.steps)},
-        {"frame_interval_s", core::format_toml_float(clock.frame_interval)},
-        {"video_fps", core::format_toml_float(clock.video_fps)},
-        {"slowmo_effective", core::format_toml_float(clock.effective_slowmo)},
-        {"speed_sim_s_per_video_s", num6(o.speed)},
-        {"slowmo", num6(o.slowmo)},
-        {"slowmo_frames", std::to_string(slow_frames)},
-        {"camera", core::toml_string(o.camera)},
-        {"palette", core::toml_string(o.palette)},
-        {"color", core::toml_string(o.color)},
-        {"color_scale_max", core::format_toml_float(
-                                style.color == render::ColorMode::Speed ? style.speed_max : style.force_max)},
-        {"overlay", core::toml_string(o.overlay)},
-        {"crf", std::to_string(o.crf)},
-        {"preset", core::toml_string(o.preset)},
-        {"png_every", std::to_string(o.png_every)},
-        {"panels", std::to_string(n_panels)},
-        {"panel_label", core::toml_string(p.label)},
-        {"interrupted", was_interrupted ? "true" : "false"},
-        {"simulated_s", num6(h.time())},
-        {"gl_renderer", core::toml_string(gl_renderer)},
-        {"wall_s", num6(wall)},
-        {"ms_per_frame_sim", num6(st.sim * per)},
-        {"ms_per_frame_draw", num6(st.draw * per)},
-        {"ms_per_frame_readback", num6(st.readback * per)},
-        {"ms_per_frame_convert", num6(st.convert * per)},
-        {"ms_per_frame_encode", num6(st.encode * per)},
-        {"ms_per_frame_png", num6(st.png * per)}};
+         io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total))},
+        {"size", std::to_string(video.width) + "x" + std::to_string(video.height)},
+        {"fps", o.fps},
+        {"steps_per_frame", clock.steps},
+        {"frame_interval_s", clock.frame_interval},
+        {"video_fps", clock.video_fps},
+        {"slowmo_effective", clock.effective_slowmo},
+        {"speed_sim_s_per_video_s", o.speed, 6},
+        {"slowmo", o.slowmo, 6},
+        {"slowmo_frames", slow_frames},
+        {"camera", o.camera},
+        {"palette", o.palette},
+        {"color", o.color},
+        {"color_scale_max", style.color == render::ColorMode::Speed ? style.speed_max : style.force_max},
+        {"overlay", o.overlay},
+        {"crf", o.crf},
+        {"preset", o.preset},
+        {"png_every", o.png_every},
+        {"panels", n_panels},
+        {"panel_label", p.label},
+        {"interrupted", was_interrupted},
+        {"simulated_s", h.time(), 6},
+        {"gl_renderer", gl_renderer},
+        {"wall_s", wall, 6},
+        {"ms_per_frame_sim", st.sim * per, 6},
+        {"ms_per_frame_draw", st.draw * per, 6},
+        {"ms_per_frame_readback", st.readback * per, 6},
+        {"ms_per_frame_convert", st.convert * per, 6},
+        {"ms_per_frame_encode", st.encode * per, 6},
+        {"ms_per_frame_png", st.png * per, 6}};
     ms.push_back(write_run_outputs(dir.file(p.subdir), p.scene, h, analysed, pinfo));
   }
   if (n_panels > 1) {
     // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
     io::RunInfo cinfo = info;
-    std::string labels;
-    for (const auto& p : panels)
-      labels += std::string(labels.empty() ? "" : ", ") + core::toml_string(p.label);
-    cinfo.facts = {{"movie", core::toml_string(o.no_movie ? std::string() : movie_path.filename().string())},
-                   {"frames", std::to_string(encoded)},
-                   {"panels", std::to_string(n_panels)},
-                   {"panel_labels", "[" + labels + "]"},
-                   {"interrupted", was_interrupted ? "true" : "false"},
-                   {"simulated_s", num6(panels[0].hopper->time())},
-                   {"wall_s", num6(wall)}};
+    std::vector<std::string> labels;
+    for (const auto& p : panels) labels.push_back(p.label);
+    cinfo.facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
+                   {"frames", encoded},
+                   {"panels", n_panels},
+                   {"panel_labels", labels},
+                   {"interrupted", was_interrupted},
+                   {"simulated_s", panels[0].hopper->time(), 6},
+                   {"wall_s", wall, 6}};
     io::write_file_atomic(
         dir.file("metadata.toml"),
         "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));

@@ -77,12 +77,12 @@ int run(const RunOptions& o) {
 
   io::RunInfo info;
   info.command = command_line();
-  info.facts = {{"steps", std::to_string(hopper.steps())},
-                {"settle_max_speed_m_per_s", core::format_g(hopper.settle_max_speed())},
-                {"arch_fallbacks", std::to_string(hopper.arch_fallbacks())},
-                {"wall_time_settle_s", core::format_g(settle_wall)},
-                {"wall_time_discharge_s", core::format_g(run_wall)},
-                {"speed_vs_real_time", core::format_g(scene.duration / std::max(run_wall, 1e-9))}};
+  info.facts = {{"steps", hopper.steps()},
+                {"settle_max_speed_m_per_s", hopper.settle_max_speed()},
+                {"arch_fallbacks", hopper.arch_fallbacks()},
+                {"wall_time_settle_s", settle_wall},
+                {"wall_time_discharge_s", run_wall},
+                {"speed_vs_real_time", scene.duration / std::max(run_wall, 1e-9)}};
   const analysis::Measurements m = write_run_outputs(dir.file(""), scene, hopper, scene.duration, info);
   dir.commit();
 

@@ -46,7 +46,7 @@ int scene_cmd(const SceneCmdOptions& o) {
   const core::Scene s = o.scene.load();
   std::printf("# %s is valid. Resolved scene (file, then --set, --seed, --duration):\n%s\n[derived]\n",
               o.scene.path.c_str(), core::scene_toml(s).c_str());
-  for (const auto& [k, v] : io::derived_facts(s)) std::printf("%s = %s\n", k.c_str(), v.c_str());
+  for (const auto& f : io::derived_facts(s)) std::printf("%s = %s\n", f.key().c_str(), f.toml().c_str());
   return 0;
 }
 }  // namespace

@@ -99,15 +99,15 @@ CLI::Validator whole_number(long double lo, long double hi) {
       "INT", "whole_number");
 }
 
-std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h) {
+io::Facts health_facts(const sim::Hopper& h) {
   const bool ballistic = h.ballistic();
-  std::string status = h.health_warnings() > 0 ? "unsafe" : ballistic ? "ballistic" : "ok";
-  return {{"status", core::toml_string(status)},
-          {"warnings", std::to_string(h.health_warnings())},
-          {"ballistic", ballistic ? "true" : "false"},
-          {"airborne_fraction_mean", core::format_toml_float(h.airborne().mean())},
-          {"airborne_fraction_max", core::format_toml_float(h.airborne().max)},
-          {"ballistic_threshold", core::format_toml_float(sim::Hopper::kBallisticFraction)}};
+  const char* status = h.health_warnings() > 0 ? "unsafe" : ballistic ? "ballistic" : "ok";
+  return {{"status", status},
+          {"warnings", h.health_warnings()},
+          {"ballistic", ballistic},
+          {"airborne_fraction_mean", h.airborne().mean()},
+          {"airborne_fraction_max", h.airborne().max},
+          {"ballistic_threshold", sim::Hopper::kBallisticFraction}};
 }
 
 io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata) {

@@ -29,7 +29,7 @@ namespace app {
 io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata);
 
 // The [health] table of a run's metadata: warnings under --unsafe, disks in flight, the "ballistic" warning.
-std::vector<std::pair<std::string, std::string>> health_facts(const sim::Hopper& h);
+io::Facts health_facts(const sim::Hopper& h);
 // A finished run's measurements over `duration` s of discharge, with its health (for summary.csv).
 analysis::Measurements measure_run(const sim::Hopper& h, double duration);
 // A run's outputs, written the same way by run and record into `dir`: exits/clogs/arches.csv, summary.csv,

@@ -21,31 +21,42 @@ std::string quoted(const std::string& s) {
 }
 }  // namespace
 
+Fact::Fact(std::string key, const std::string& v) : key_(std::move(key)), toml_(quoted(v)) {}
+
+Fact::Fact(std::string key, const std::vector<std::string>& list) : key_(std::move(key)), toml_("[") {
+  for (size_t k = 0; k < list.size(); ++k) toml_ += (k ? ", " : "") + quoted(list[k]);
+  toml_ += "]";
+}
+
+Fact::Fact(std::string key, double v, int digits)
+    : key_(std::move(key)),
+      toml_(std::isfinite(v) ? core::format_toml_float(v, digits)
+            : v > 0          ? "inf"
+            : v < 0          ? "-inf"
+                             : "nan") {}
+
 std::string version_string() {
   return std::string(SILOSCOPE_VERSION) + " (git " + SILOSCOPE_GIT + ", " + SILOSCOPE_BUILD_TYPE + ")";
 }
 
-std::vector<std::pair<std::string, std::string>> derived_facts(const core::Scene& s) {
+Facts derived_facts(const core::Scene& s) {
   using core::kPi;
   const core::Geometry g = core::make_geometry(s);
   const double ra = s.radius_added(), ma = core::mass_of(ra, s.density);
   const double contact_force = core::dipole_contact_force(s);
-  const double safe_dt = core::dipole_safe_dt(s);
   return {
-      {"n_original", std::to_string(s.n_original())},
-      {"n_added", std::to_string(s.n_added())},
-      {"radius_added_m", core::format_toml_float(ra)},
-      {"mass_original_kg", core::format_toml_float(core::mass_of(s.radius_original, s.density))},
-      {"mass_added_kg", core::format_toml_float(ma)},
-      {"hopper_wall_angle_from_vertical_deg",
-       core::format_toml_float(g.wall_angle_from_vertical() * 180 / kPi)},
-      {"angle_between_hopper_walls_deg",
-       core::format_toml_float(2 * g.wall_angle_from_vertical() * 180 / kPi)},
-      {"aperture_over_original_diameter", core::format_toml_float(s.aperture / (2 * s.radius_original))},
-      {"dipole_contact_force_over_weight", core::format_toml_float(contact_force / (ma * s.gravity))},
-      {"dipole_safe_dt_s", std::isfinite(safe_dt) ? core::format_toml_float(safe_dt) : "inf"},
-      {"steps_per_kick", std::to_string(std::llround(s.kick_period / s.dt))},
-      {"box2d_linear_slop_m", core::format_toml_float(0.005 / s.length_scale)},
+      {"n_original", s.n_original()},
+      {"n_added", s.n_added()},
+      {"radius_added_m", ra},
+      {"mass_original_kg", core::mass_of(s.radius_original, s.density)},
+      {"mass_added_kg", ma},
+      {"hopper_wall_angle_from_vertical_deg", g.wall_angle_from_vertical() * 180 / kPi},
+      {"angle_between_hopper_walls_deg", 2 * g.wall_angle_from_vertical() * 180 / kPi},
+      {"aperture_over_original_diameter", s.aperture / (2 * s.radius_original)},
+      {"dipole_contact_force_over_weight", contact_force / (ma * s.gravity)},
+      {"dipole_safe_dt_s", core::dipole_safe_dt(s)},
+      {"steps_per_kick", std::llround(s.kick_period / s.dt)},
+      {"box2d_linear_slop_m", 0.005 / s.length_scale},
   };
 }
 
@@ -60,14 +71,14 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
   std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   s += "written_utc = " + quoted(when) + "\n\n[scene]\n" + core::scene_toml(scene) + "\n[derived]\n";
-  for (const auto& [k, v] : derived_facts(scene)) s += k + " = " + v + "\n";
+  for (const auto& f : derived_facts(scene)) s += f.key() + " = " + f.toml() + "\n";
   if (!info.facts.empty()) {
     s += "\n[run]\n";
-    for (const auto& [k, v] : info.facts) s += k + " = " + v + "\n";
+    for (const auto& f : info.facts) s += f.key() + " = " + f.toml() + "\n";
   }
   if (!info.health.empty()) {
     s += "\n[health]\n";
-    for (const auto& [k, v] : info.health) s += k + " = " + v + "\n";
+    for (const auto& f : info.health) s += f.key() + " = " + f.toml() + "\n";
   }
   return s;
 }

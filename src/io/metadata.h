@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -10,10 +11,30 @@
 
 namespace io {
 
+// One fact of a metadata file, typed where it is made: a string (written by the TOML library, every character
+// escaped), a list of strings, a boolean, an integer, or a float (written with `digits` significant digits
+// and always as a TOML float: 20 is "20.0", never an integer). The value's TOML text is made once, here.
+class Fact {
+ public:
+  Fact(std::string key, const std::string& v);
+  Fact(std::string key, const char* v) : Fact(std::move(key), std::string(v)) {}
+  Fact(std::string key, const std::vector<std::string>& list);
+  Fact(std::string key, bool v) : key_(std::move(key)), toml_(v ? "true" : "false") {}
+  Fact(std::string key, double v, int digits = 9);
+  template <class Int, std::enable_if_t<std::is_integral_v<Int> && !std::is_same_v<Int, bool>, int> = 0>
+  Fact(std::string key, Int v) : key_(std::move(key)), toml_(std::to_string(v)) {}
+  const std::string& key() const { return key_; }
+  const std::string& toml() const { return toml_; }  // the value as TOML text
+
+ private:
+  std::string key_, toml_;
+};
+using Facts = std::vector<Fact>;
+
 struct RunInfo {
-  std::string command;                                      // the command line
-  std::vector<std::pair<std::string, std::string>> facts;   // key, TOML value text; written under [run]
-  std::vector<std::pair<std::string, std::string>> health;  // key, TOML value text; written under [health]
+  std::string command;  // the command line
+  Facts facts;          // written under [run]
+  Facts health;         // written under [health]
 };
 
 // What a run's metadata says about its health and coverage (defaults when the tables or keys are absent).
@@ -31,6 +52,6 @@ std::string version_string();  // "0.1.0 (git abc1234, Release)"
 std::string metadata_toml(const core::Scene& scene, const RunInfo& info);
 
 // Facts derived from the scene (counts, angles, the dipole's safe time step, ...), as [derived].
-std::vector<std::pair<std::string, std::string>> derived_facts(const core::Scene& scene);
+Facts derived_facts(const core::Scene& scene);
 
 }  // namespace io

@@ -1,7 +1,11 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+
+#include <toml++/toml.h>
 
 #include "core/error.h"
 #include "core/scene.h"
@@ -108,8 +112,37 @@ TEST_CASE("command-line overrides edit the same fields", "[sim][scene]") {
 TEST_CASE("a run's metadata file loads back as the same scene", "[sim][scene]") {
   core::Scene s;
   core::apply_overrides(s, {"mu=0.7", "size_ratio=0.25", "seed=99", "dt=0.0005", "arch_method=visible"});
-  io::RunInfo info{"siloscope run test", {{"steps", "10"}}, {}};
+  io::RunInfo info{"siloscope run test", {{"steps", 10}}, {}};
   auto p = write_temp("metadata.toml", io::metadata_toml(s, info));
   core::Scene back = core::load_scene(p);
   for (const auto& f : core::scene_fields()) CHECK(core::field_text(back, f) == core::field_text(s, f));
+}
+
+TEST_CASE(
+    "metadata facts keep their types: integers, floats that stay floats, booleans, escaped strings, lists",
+    "[scene]") {
+  core::Scene s;
+  io::RunInfo info{"siloscope run \"quoted\" \\ path\nnext",
+                   {{"steps", 150000},
+                    {"speed", 1.0, 6},
+                    {"ratio", 2.5},
+                    {"interrupted", false},
+                    {"label", "mu = 2.2 \"strong\""},
+                    {"labels", std::vector<std::string>{"a", "b\"c"}},
+                    {"never", std::numeric_limits<double>::infinity()}},
+                   {{"ballistic", true}}};
+  const toml::table t = toml::parse(io::metadata_toml(s, info));
+  CHECK(t["run"]["steps"].is_integer());
+  CHECK(t["run"]["steps"].value<std::int64_t>() == 150000);
+  CHECK(t["run"]["speed"].is_floating_point());  // 1.0, never the integer 1
+  CHECK(t["run"]["ratio"].value<double>() == 2.5);
+  CHECK(t["run"]["interrupted"].is_boolean());
+  CHECK(t["run"]["label"].value<std::string>() == "mu = 2.2 \"strong\"");
+  REQUIRE(t["run"]["labels"].is_array());
+  CHECK(t["run"]["labels"][1].value<std::string>() == "b\"c");
+  CHECK(std::isinf(t["run"]["never"].value<double>().value_or(0)));
+  CHECK(t["health"]["ballistic"].value<bool>() == true);
+  CHECK(t["siloscope"]["command"].value<std::string>() == info.command);
+  CHECK(t["derived"]["n_original"].is_integer());
+  CHECK(t["derived"]["mass_added_kg"].is_floating_point());
 }
