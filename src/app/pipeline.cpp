@@ -56,7 +56,12 @@ void FramePipeline::render_stage() {
       std::vector<render::PanelInput> in;
       for (size_t k = 0; k < panels_.size(); ++k)
         in.push_back({&fs[k], panels_[k].geometry, panels_[k].views, panels_[k].overlay_data});
-      core::Image img = painter.paint(in, style_, overlay_, width_, height_);
+      core::Image img;
+      {
+        std::lock_guard lock(spare_mutex_);
+        if (!spare_.empty()) img = std::move(spare_.back()), spare_.pop_back();
+      }
+      painter.paint(img, in, style_, overlay_, width_, height_);
       draw_ = painter.timing().draw_s;
       readback_ = painter.timing().readback_s;
       if (!images_.push(std::move(img))) break;
@@ -81,6 +86,8 @@ void FramePipeline::encode_stage() {
         png_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       }
       ++encoded_;
+      std::lock_guard lock(spare_mutex_);
+      if (spare_.size() < 4) spare_.push_back(std::move(img));
     }
   } catch (...) {
     encode_error_ = std::current_exception();

@@ -6,6 +6,7 @@
 
 #include <exception>
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -69,6 +70,10 @@ class FramePipeline {
   bool quiet_;
   BoundedQueue<std::vector<core::Frame>> frames_{8};
   BoundedQueue<core::Image> images_{4};
+  // Images the encoder is done with, their buffers reused by the renderer: a fresh 8 MB per 1080p frame
+  // would be zero-filled page by page (about a tenth of record's CPU before).
+  std::mutex spare_mutex_;
+  std::vector<core::Image> spare_;
   std::exception_ptr render_error_, encode_error_;
   std::string gl_renderer_;
   long encoded_ = 0;

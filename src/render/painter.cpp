@@ -34,6 +34,13 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
 
 core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& style,
                            const OverlayOptions& overlay, int w, int h) {
+  core::Image img;
+  paint(img, panels, style, overlay, w, h);
+  return img;
+}
+
+void Painter::paint(core::Image& img, const std::vector<PanelInput>& panels, const Style& style,
+                    const OverlayOptions& overlay, int w, int h) {
   if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<Target>(w, h);
   const auto t0 = std::chrono::steady_clock::now();
   target_->bind();
@@ -42,11 +49,9 @@ core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& s
   info_left_ = window_info_left;
   const auto t1 = std::chrono::steady_clock::now();
   timing_.draw_s += std::chrono::duration<double>(t1 - t0).count();
-  core::Image img;
   target_->read(img, style.transparent);
   timing_.readback_s += seconds_since(t1);
-  if (!panels.empty()) img.t = panels.front().frame->t;
-  return img;
+  img.t = panels.empty() ? 0 : panels.front().frame->t;
 }
 
 }  // namespace render

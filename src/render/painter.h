@@ -47,6 +47,9 @@ class Painter {
   // panel's time.
   core::Image paint(const std::vector<PanelInput>& panels, const Style& style, const OverlayOptions& overlay,
                     int w, int h);
+  // The same into `out`, reusing its pixel buffer (a movie's frames: no fresh 8 MB, zero-filled, per frame).
+  void paint(core::Image& out, const std::vector<PanelInput>& panels, const Style& style,
+             const OverlayOptions& overlay, int w, int h);
   // One panel.
   core::Image paint(const core::Frame& f, const core::Geometry& geo, const std::vector<View>& views,
                     const Style& style, const OverlayOptions& overlay, const OverlayData& data, int w,
