@@ -31,6 +31,10 @@ class Est:
         return f"{self.m:.3g} +- {self.h:.2g} (n = {self.n})"
 
 
+# C5 is a claim that two curves coincide: agreement must be shown, not just the absence of a resolved difference.
+EQUIVALENCE = 0.10
+
+
 def diff(a, b):
     """+1 if a > b beyond the intervals, -1 if a < b, 0 if not resolved."""
     if not (math.isfinite(a.m) and math.isfinite(b.m)):
@@ -127,25 +131,45 @@ def claims(rows):
     out.append(("C4 chi_eff falls with mu", verdict(sum(v == -1 for v in d.values()), sum(v == 1 for v in d.values())),
                 ev))
 
-    # C5: magnetic Q~ versus chi_eff follows non-magnetic Q~ versus chi (r = 0.4).
-    nonmag = sorted(((p["chi"], est(p, "q_tilde_per_s")) for p in rows
-                     if abs(p["size_ratio"] - 0.4) < 1e-9 and p["mu"] == 0 and p["chi"] > 0), key=lambda t: t[0])
+    # C5: magnetic Q~ versus chi_eff follows non-magnetic Q~ versus chi (r = 0.4). The non-magnetic curve is read
+    # at its nominal chi, as the paper plots it; where the magnetic chi_eff lie beyond that range (in the outflow
+    # the small disks are over-represented, so chi_eff > chi), it is read at its own measured chi_eff instead:
+    # the same quantity on both axes, said in the evidence.
+    nonmag_pts = [p for p in rows if abs(p["size_ratio"] - 0.4) < 1e-9 and p["mu"] == 0 and p["chi"] > 0]
     mags = [p for p in pick(rows, 0.4) if p["mu"] > 0]
-    agree = disagree = 0
-    parts = []
-    if len(nonmag) >= 2:
-        for p in mags:
-            x = p["chi_eff"]
-            for (x0, e0), (x1, e1) in zip(nonmag, nonmag[1:]):
-                if x0 <= x <= x1:
-                    w = (x - x0) / (x1 - x0)
-                    ref = Est((1 - w) * e0.m + w * e1.m, max(e0.h, e1.h), min(e0.n, e1.n))
-                    v = diff(est(p, "q_tilde_per_s"), ref)
-                    agree += v == 0 and math.isfinite(math.hypot(ref.h, est(p, "q_tilde_per_s").h))
-                    disagree += v != 0
-                    parts.append(f"F/W = {p['dipole_force_ratio']:g}: chi_eff {x:.3f}, Q~ {est(p, 'q_tilde_per_s')} "
-                                 f"vs non-magnetic {ref}")
-    ev = "; ".join(parts) or "the magnetic chi_eff fall outside the non-magnetic chi range, or too few chi points"
+
+    def compare(xkey):
+        curve = sorted(((p[xkey], est(p, "q_tilde_per_s")) for p in nonmag_pts), key=lambda t: t[0])
+        agree = disagree = 0
+        parts = []
+        if len(curve) >= 2:
+            for p in mags:
+                x = p["chi_eff"]
+                for (x0, e0), (x1, e1) in zip(curve, curve[1:]):
+                    if x0 <= x <= x1 and x1 > x0:
+                        w = (x - x0) / (x1 - x0)
+                        ref = Est((1 - w) * e0.m + w * e1.m, max(e0.h, e1.h), min(e0.n, e1.n))
+                        # Following is a claim of equality: it needs the whole 95% interval of the difference
+                        # within EQUIVALENCE of the non-magnetic Q~; a difference beyond the interval contradicts.
+                        mine = est(p, "q_tilde_per_s")
+                        v = diff(mine, ref)
+                        h = math.hypot(ref.h, mine.h)
+                        agree += v == 0 and math.isfinite(h) and abs(mine.m - ref.m) + h <= EQUIVALENCE * ref.m
+                        disagree += v != 0
+                        parts.append(f"F/W = {p['dipole_force_ratio']:g}: chi_eff {x:.3f}, Q~ {est(p, 'q_tilde_per_s')} "
+                                     f"vs non-magnetic {ref}")
+                        break
+        return agree, disagree, parts
+
+    agree, disagree, parts = compare("chi")
+    how = "non-magnetic read at its nominal chi"
+    if not parts:
+        agree, disagree, parts = compare("chi_eff")
+        how = ("non-magnetic read at its own measured chi_eff (the magnetic chi_eff lie beyond its nominal chi "
+               "range)")
+    how += f"; following needs the difference's 95% interval within +-{EQUIVALENCE:.0%} of the non-magnetic Q~"
+    ev = (how + ": " + "; ".join(parts)) if parts else \
+        "the magnetic chi_eff fall outside the non-magnetic chi and chi_eff ranges, or too few chi points"
     out.append(("C5 magnetic Q~(chi_eff) follows non-magnetic Q~(chi) at r = 0.4",
                 verdict(agree, disagree, agree == len(parts) and parts), ev))
 

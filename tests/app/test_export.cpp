@@ -173,6 +173,48 @@ void synthetic_points(const fs::path& dir, double small, double large) {
 }
 }  // namespace
 
+namespace {
+// r = 0.4: non-magnetic chi = 0.1 .. 0.4 with chi_eff = chi + 0.02 and Q~ = 2 + 5 chi_eff; one magnetic point
+// (F/W = 10) at chi_eff = 0.41, beyond the nominal chi range, with Q~ = `q_mag`; every Q~ +- `ci`.
+void c5_points(const fs::path& dir, double q_mag, double ci) {
+  fs::create_directories(dir);
+  std::ofstream f(dir / "points.csv");
+  f << "size_ratio,chi,mu,kick_impulse_max,dipole_force_ratio,n_runs,q_tilde_over_qp,q_tilde_over_qp_ci95,"
+       "q_tilde_per_s,q_tilde_per_s_ci95,chi_eff,chi_eff_ci95,long_arches_per_min,long_arches_per_min_ci95,"
+       "added_per_long_arch,added_per_long_arch_ci95\n";
+  for (double chi : {0.1, 0.2, 0.3, 0.4})
+    f << "0.4," << chi << ",0,5e-05,0,10,1,0.1," << 2 + 5 * (chi + 0.02) << "," << ci << "," << chi + 0.02
+      << ",0.005,9,0.5,0.5,0.1\n";
+  f << "0.4,0.4,1,5e-05,10,10,1,0.1," << q_mag << "," << ci << ",0.41,0.005,9,0.5,0.5,0.1\n";
+  f << "0.4,0,0,5e-05,0,10,1,0.1,2,0.2,0,0,10,0.5,0,0\n";
+}
+}  // namespace
+
+TEST_CASE("claims: C5 compares at equal chi_eff and needs shown agreement, not only wide intervals",
+          "[claims][app]") {
+  fs::path d = temp_dir("claims-c5");
+  c5_points(d / "same" / "analysis", 2 + 5 * 0.41, 0.05);  // on the non-magnetic curve, tight
+  c5_points(d / "off" / "analysis", 5.5, 0.05);            // well above it
+  c5_points(d / "wide" / "analysis", 2 + 5 * 0.41, 1.0);   // on it, but the intervals allow +-25%
+  auto r = cli("claims same=" + (d / "same").string() + " off=" + (d / "off").string() +
+               " wide=" + (d / "wide").string() + " --out " + (d / "claims.md").string());
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("same: C1") && Catch::Matchers::Contains("C5 reproduced"));
+  const std::string md = slurp(d / "claims.md");
+  CHECK_THAT(md, Catch::Matchers::Contains("measured chi_eff"));
+  auto verdict_of = [&](const std::string& label) {
+    const size_t at = r.output.find(label + ": ");
+    REQUIRE(at != std::string::npos);
+    const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    const size_t c5 = line.find("C5 ");
+    REQUIRE(c5 != std::string::npos);
+    return line.substr(c5 + 3, line.find(',', c5) - c5 - 3);
+  };
+  CHECK(verdict_of("same") == "reproduced");
+  CHECK(verdict_of("off") == "contradicted");
+  CHECK(verdict_of("wide") == "not resolved");
+}
+
 TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not resolved)", "[claims][app]") {
   fs::path d = temp_dir("claims");
   synthetic_points(d / "good" / "analysis", 1.5, 0.6);  // C1's shape, resolved
