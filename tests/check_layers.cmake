@@ -1,6 +1,7 @@
 # Fails if a layer includes what it must not know (see README, "Conventions"):
 #   sim knows no GL, ImGui, FFmpeg or stb; render knows no Box2D; record knows no GL or Box2D; core knows none.
-#   ui knows no Box2D, simulation or analysis: the app owns the live simulation and feeds the window frames.
+#   ui knows render and core only: the app owns the live simulation, reads the trajectory and writes the files
+#   (ui/sources.h).
 function(forbid dir pattern what)
   file(GLOB_RECURSE files ${SRC}/${dir}/*.h ${SRC}/${dir}/*.cpp)
   foreach(f ${files})
@@ -17,7 +18,8 @@ forbid(record "box2d|GL/|glad|imgui|sim/|render/" "GL, Box2D or the simulation")
 forbid(analysis "box2d|GL/|glad|imgui|libav|sim/|render/|record/" "a library or an upper layer")
 forbid(app "box2d" "Box2D (it stays inside sim)")
 forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")
-forbid(ui "box2d|sim/|analysis/" "Box2D, the simulation or the analysis (the app feeds it frames)")
+forbid(ui "box2d|sim/|analysis/|io/|record/|libav|libsw|stb_"
+       "Box2D, the simulation, the analysis or a file format (the app feeds it frames and takes its images)")
 file(GLOB_RECURSE osmesa_users ${SRC}/*.cpp ${SRC}/*.h)
 foreach(f ${osmesa_users})
   file(STRINGS ${f} hits REGEX "#include *<GL/osmesa.h>")

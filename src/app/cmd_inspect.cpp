@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "app/common.h"
+#include "app/inspect_files.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "io/metadata.h"
@@ -46,7 +47,9 @@ int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   io::Trajectory traj(trajectory_path(o.path));
   const core::Scene scene = core::parse_scene(traj.info().metadata, o.path + " (trajectory metadata)");
-  ui::Inspector insp(traj, scene);
+  const TrajectoryFrames frames(traj);
+  const RecordFiles files;
+  ui::Inspector insp(frames, scene, &files);
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet)
     std::fprintf(stderr, "trajectory: %ld frames%s, %zu clogs, opened in %.0f ms\n", traj.size(),
@@ -64,6 +67,7 @@ int inspect(const InspectOptions& o) {
   render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
+  w.files = &files;
   const double redraw = ui::run_inspector_window(insp, w);
   if (!o.quiet && redraw > 0) std::fprintf(stderr, "median redraw after a frame change: %.1f ms\n", redraw);
   return 0;
@@ -113,6 +117,8 @@ int live(const LiveOptions& o) {
   render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
+  const RecordFiles files;
+  w.files = &files;
   LiveHopper source(scene);
   ui::run_live_window(source, w);
   return 0;

@@ -8,8 +8,6 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "record/mp4.h"
-#include "record/png.h"
 
 namespace ui {
 
@@ -31,12 +29,12 @@ const char* kCommands =
     "goto, step, next, prev, zoom, pan, color, palette, overlay, arch, snapshot, export, print";
 }  // namespace
 
-Inspector::Inspector(const io::Trajectory& traj, const core::Scene& scene)
-    : traj_(traj), scene_(scene), geo_(core::make_geometry(scene)) {
+Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
+    : traj_(traj), files_(files), scene_(scene), geo_(core::make_geometry(scene)) {
   if (traj_.size() == 0) throw core::InputError("the trajectory holds no complete frame");
   overlay_data = render::overlay_data_for(scene_);
   // Clogs: maximal stretches of frames whose clog timer is at least clog_min_gap.
-  const double gap = traj_.info().clog_min_gap;
+  const double gap = traj_.clog_min_gap();
   for (long k = 0; k < traj_.size(); ++k) {
     const double timer = traj_.since_last_exit(k);
     if (timer < gap) continue;
@@ -212,9 +210,9 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       throw core::InputError("'" + line + "': usage: snapshot FILE.png [WxH]");
     int w = 1920, h = 1080;
     if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
-    if (!painter) throw core::InputError("'" + line + "': snapshot needs a renderer");
+    if (!painter || !files_) throw core::InputError("'" + line + "': snapshot needs a renderer and files");
     const std::string path = output_name(a[1], line);
-    record::write_png(path, render_current(*painter, w, h), true);
+    files_->write_png(path, render_current(*painter, w, h));
     last_output = path;
   } else if (cmd == "export") {
     // export clog FILE.mp4 [WxH] [FPS]: the clog at (or after) this frame, from 1 s before it forms to 0.5 s
@@ -233,7 +231,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       if (!hit)
         throw core::InputError("'" + line + "': there is no clog at or after frame " +
                                std::to_string(frame_));
-      const double dt = traj_.info().frame_interval;
+      const double dt = traj_.frame_interval();
       from = std::max(0L, hit->first - std::lround(1.0 / dt));
       to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
       file = a[2];
@@ -247,24 +245,22 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       if (to < from) throw core::InputError("'" + line + "': TO must not be before FROM");
       file = a[1];
     }
-    record::VideoSettings v;
-    v.width = 1280;
-    v.height = 720;
-    if (a.size() > opt) render::parse_size(a[opt], "export size", v.width, v.height);
-    v.fps = a.size() > opt + 1
-                ? static_cast<int>(to_long(a[opt + 1], "FPS"))
-                : std::max(1, static_cast<int>(std::lround(1.0 / traj_.info().frame_interval)));
-    record::validate(v);
-    if (!painter) throw core::InputError("'" + line + "': export needs a renderer");
+    int width = 1280, height = 720;
+    if (a.size() > opt) render::parse_size(a[opt], "export size", width, height);
+    const int fps = a.size() > opt + 1
+                        ? static_cast<int>(to_long(a[opt + 1], "FPS"))
+                        : std::max(1, static_cast<int>(std::lround(1.0 / traj_.frame_interval())));
+    if (!painter || !files_) throw core::InputError("'" + line + "': export needs a renderer and files");
+    files_->check_movie(width, height, fps);
     const std::string path = output_name(file, line);
-    record::Mp4Writer mp4(path, v);
+    auto movie = files_->open_movie(path, width, height, fps);
     const long keep = frame_;
     for (long k = from; k <= to; ++k) {
       frame_ = k;
-      mp4.add(render_current(*painter, v.width, v.height));
+      movie->add(render_current(*painter, width, height));
     }
     frame_ = keep;
-    mp4.finish();
+    movie->finish();
     last_output = path + " (frames " + std::to_string(from) + " to " + std::to_string(to) + ")";
   } else {
     throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);

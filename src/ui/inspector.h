@@ -20,11 +20,11 @@
 
 #include "core/geometry.h"
 #include "core/image.h"
-#include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/overlay.h"
 #include "render/painter.h"
 #include "render/palette.h"
+#include "ui/sources.h"
 
 namespace ui {
 
@@ -39,7 +39,8 @@ using render::Painter;  // Frame -> Image, shared with record (render/painter.h)
 
 class Inspector {
  public:
-  Inspector(const io::Trajectory& traj, const core::Scene& scene);
+  // `files` (may be null: snapshot and export then refuse) is where snapshots and clips go.
+  Inspector(const FrameSource& frames, const core::Scene& scene, const ImageFiles* files = nullptr);
 
   // Run one command; throws core::InputError naming the problem (unknown command, frame out of range...).
   // `painter` is needed by snapshot and export only.
@@ -49,7 +50,8 @@ class Inspector {
   void set_frame(long k);  // clamps to the trajectory
   core::Frame current() const { return traj_.frame(frame_); }
   const std::vector<ClogSpan>& clogs() const { return clogs_; }
-  const io::Trajectory& trajectory() const { return traj_; }
+  const FrameSource& trajectory() const { return traj_; }
+  const ImageFiles* files() const { return files_; }
   const core::Geometry& geometry() const { return geo_; }
   const core::Scene& scene() const { return scene_; }
 
@@ -68,7 +70,8 @@ class Inspector {
  private:
   // FILE with {frame} and {t} filled in; throws core::InputError if it exists.
   std::string output_name(const std::string& pattern, const std::string& line) const;
-  const io::Trajectory& traj_;
+  const FrameSource& traj_;
+  const ImageFiles* files_;
   core::Scene scene_;
   core::Geometry geo_;
   long frame_ = 0;

@@ -18,7 +18,6 @@
 
 #include "core/error.h"
 #include "core/stats.h"
-#include "record/png.h"
 #include "render/context.h"
 #include "render/painter.h"
 #include "render/target.h"
@@ -163,8 +162,9 @@ core::Image window_pixels(int w, int h) {
   return img;
 }
 
-void save_screenshot(const std::string& path, int w, int h) {
-  record::write_png(path, window_pixels(w, h), true);
+void save_screenshot(const ImageFiles* files, const std::string& path, int w, int h) {
+  if (!files) throw core::InputError("--screenshot " + path + ": this window has nowhere to write files");
+  files->write_png(path, window_pixels(w, h));
 }
 
 // Start ImGui's frame, run `panels`, draw ImGui over the window.
@@ -217,7 +217,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     last = now;
     if (ps.playing) {
       // Play at the recording's own pace times the playback speed.
-      play_acc += dt * ps.speed / insp.trajectory().info().frame_interval;
+      play_acc += dt * ps.speed / insp.trajectory().frame_interval();
       const long step = static_cast<long>(play_acc);
       play_acc -= step;
       insp.set_frame(insp.frame_index() + step);
@@ -240,7 +240,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     if (o.frames > 0 && n + 1 >= o.frames) {
       int fw = 0, fh = 0;
       glfwGetFramebufferSize(win.get(), &fw, &fh);
-      if (!o.screenshot.empty()) save_screenshot(o.screenshot, fw, fh);
+      if (!o.screenshot.empty()) save_screenshot(o.files, o.screenshot, fw, fh);
       break;
     }
     glfwSwapBuffers(win.get());
@@ -323,9 +323,9 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
         const std::string name = free_snapshot_name(f.t);
         render::OverlayOptions in_picture = overlay;  // a snapshot has no side panel to hold the box
         in_picture.may_leave = false;
-        record::write_png(
-            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, in_picture, 1920, 1080),
-            true);
+        if (!o.files) throw core::InputError("this window has nowhere to write files");
+        o.files->write_png(
+            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, in_picture, 1920, 1080));
         message = "snapshot " + name;
       } catch (const std::exception& e) {
         message = std::string("snapshot failed: ") + e.what();
@@ -392,7 +392,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       ImGui::End();
     });
     if (o.frames > 0 && n + 1 >= o.frames) {
-      if (!o.screenshot.empty()) save_screenshot(o.screenshot, fw, fh);
+      if (!o.screenshot.empty()) save_screenshot(o.files, o.screenshot, fw, fh);
       break;
     }
     glfwSwapBuffers(win.get());

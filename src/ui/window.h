@@ -15,6 +15,7 @@ struct WindowOptions {
   int width = 1280, height = 720;
   std::string screenshot;  // save the window's own pixels to this PNG after `frames` frames, then close
   int frames = 0;          // > 0: close after this many frames (tests, screenshots)
+  const ImageFiles* files = nullptr;  // where screenshots and snapshots go (none: they are refused)
 };
 
 // Returns the median redraw time (ms) of frames where the shown frame changed, 0 if none.

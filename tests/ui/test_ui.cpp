@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/inspect_files.h"
 #include "core/error.h"
 #include "helpers.h"
 #include "io/metadata.h"
@@ -127,7 +128,9 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   gl();
   fs::path d = temp_dir("script");
   io::Trajectory t(synthetic_trajectory(d));
-  ui::Inspector insp(t, two_disk_scene());
+  const app::TrajectoryFrames frames(t);
+  const app::RecordFiles files;
+  ui::Inspector insp(frames, two_disk_scene(), &files);
   REQUIRE(insp.clogs().size() == 1);
   CHECK(insp.clogs()[0].first == 2);
   CHECK(insp.clogs()[0].last == 3);
@@ -160,7 +163,9 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   gl();
   fs::path d = temp_dir("script_err");
   io::Trajectory t(synthetic_trajectory(d));
-  ui::Inspector insp(t, two_disk_scene());
+  const app::TrajectoryFrames frames(t);
+  const app::RecordFiles files;
+  ui::Inspector insp(frames, two_disk_scene(), &files);
   ui::Painter painter;
   std::ofstream(d / "bad.txt") << "goto frame 1\nzom outlet\n";
   CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "bad.txt").string()),
@@ -178,7 +183,9 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
   gl();
   fs::path d = temp_dir("names");
   io::Trajectory t(synthetic_trajectory(d));
-  ui::Inspector insp(t, two_disk_scene());
+  const app::TrajectoryFrames frames(t);
+  const app::RecordFiles files;
+  ui::Inspector insp(frames, two_disk_scene(), &files);
   ui::Painter painter;
   const std::string pattern = (d / "shot-{frame}-{t}.png").string();
   insp.execute("goto frame 3");
@@ -209,7 +216,9 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   gl();
   fs::path d = temp_dir("panels");
   io::Trajectory t(synthetic_trajectory(d));
-  ui::Inspector insp(t, two_disk_scene());
+  const app::TrajectoryFrames frames(t);
+  const app::RecordFiles files;
+  ui::Inspector insp(frames, two_disk_scene(), &files);
   ImGuiContext* ctx = ImGui::CreateContext();
   ImGui::SetCurrentContext(ctx);
   ImGuiIO& io = ImGui::GetIO();

@@ -1,0 +1,46 @@
+// What the windows read and write, handed in by the app: ui knows frames and images, not the trajectory file
+// format nor the PNG and MP4 writers (app/inspect_files.h implements both from io and record).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/frame.h"
+#include "core/image.h"
+
+namespace ui {
+
+// The recorded frames the inspector steps through.
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual long size() const = 0;
+  virtual core::Frame frame(long k) const = 0;
+  virtual double time(long k) const = 0;             // s
+  virtual double since_last_exit(long k) const = 0;  // s: the clog timer at frame k
+  virtual int long_arches(long k) const = 0;         // arches the clog rule removed up to frame k
+  virtual double frame_interval() const = 0;         // s between frames
+  virtual double clog_min_gap() const = 0;           // s: a gap at least this long is a clog
+};
+
+// A movie being written: frames in order, then finish() (the file appears only then).
+class MovieSink {
+ public:
+  virtual ~MovieSink() = default;
+  virtual void add(const core::Image& img) = 0;
+  virtual void finish() = 0;
+};
+
+// Where the windows' pictures go.
+class ImageFiles {
+ public:
+  virtual ~ImageFiles() = default;
+  // A PNG, written whole under a temporary name and renamed (synced: a snapshot is a user's file).
+  virtual void write_png(const std::string& path, const core::Image& img) const = 0;
+  // Throws core::InputError naming the value when width x height or fps cannot be encoded.
+  virtual void check_movie(int width, int height, int fps) const = 0;
+  virtual std::unique_ptr<MovieSink> open_movie(const std::string& path, int width, int height,
+                                                int fps) const = 0;
+};
+
+}  // namespace ui
