@@ -155,14 +155,20 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
 }
 
 namespace {
-// A synthetic analysis/points.csv: r = 0.4 and 1.0 at F/W 0 and 10, the pure system; Q~/Q_p at r = 0.4 is
-// `small`, at r = 1 `large`, each +- 0.1 from 10 realizations.
-void synthetic_points(const fs::path& dir, double small, double large) {
+// An analysis/points.csv in dir, its header written.
+std::ofstream points_csv(const fs::path& dir) {
   fs::create_directories(dir);
   std::ofstream f(dir / "points.csv");
   f << "size_ratio,chi,mu,kick_impulse_max,dipole_force_ratio,n_runs,q_tilde_over_qp,q_tilde_over_qp_ci95,"
        "q_tilde_per_s,q_tilde_per_s_ci95,chi_eff,chi_eff_ci95,long_arches_per_min,long_arches_per_min_ci95,"
        "added_per_long_arch,added_per_long_arch_ci95\n";
+  return f;
+}
+
+// A synthetic analysis/points.csv: r = 0.4 and 1.0 at F/W 0 and 10, the pure system; Q~/Q_p at r = 0.4 is
+// `small`, at r = 1 `large`, each +- 0.1 from 10 realizations.
+void synthetic_points(const fs::path& dir, double small, double large) {
+  std::ofstream f = points_csv(dir);
   for (double r : {0.4, 1.0})
     for (double fr : {0.0, 10.0}) {
       const double ratio = r < 0.5 ? small : large;
@@ -171,17 +177,11 @@ void synthetic_points(const fs::path& dir, double small, double large) {
     }
   f << "0.4,0,0,5e-05,0,10,1,0.1,2,0.2,0,0,10,0.5,0,0\n";
 }
-}  // namespace
 
-namespace {
 // r = 0.4: non-magnetic chi = 0.1 .. 0.4 with chi_eff = chi + 0.02 and Q~ = 2 + 5 chi_eff; one magnetic point
 // (F/W = 10) at chi_eff = 0.41, beyond the nominal chi range, with Q~ = `q_mag`; every Q~ +- `ci`.
 void c5_points(const fs::path& dir, double q_mag, double ci) {
-  fs::create_directories(dir);
-  std::ofstream f(dir / "points.csv");
-  f << "size_ratio,chi,mu,kick_impulse_max,dipole_force_ratio,n_runs,q_tilde_over_qp,q_tilde_over_qp_ci95,"
-       "q_tilde_per_s,q_tilde_per_s_ci95,chi_eff,chi_eff_ci95,long_arches_per_min,long_arches_per_min_ci95,"
-       "added_per_long_arch,added_per_long_arch_ci95\n";
+  std::ofstream f = points_csv(dir);
   for (double chi : {0.1, 0.2, 0.3, 0.4})
     f << "0.4," << chi << ",0,5e-05,0,10,1,0.1," << 2 + 5 * (chi + 0.02) << "," << ci << "," << chi + 0.02
       << ",0.005,9,0.5,0.5,0.1\n";
