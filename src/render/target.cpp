@@ -38,17 +38,41 @@ void Target::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
 }
 
+namespace {
+#ifndef GL_PACK_INVERT_MESA
+#define GL_PACK_INVERT_MESA 0x8758  // GL_MESA_pack_invert; glad is generated for the core profile only
+#endif
+// Mesa (llvmpipe under OSMesa and under Xvfb) can return rows from the top itself, in the copy it makes anyway;
+// other drivers get the flip below.
+bool has_pack_invert() {
+  GLint n = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+  for (GLint i = 0; i < n; ++i) {
+    const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (e && std::strcmp(e, "GL_MESA_pack_invert") == 0) return true;
+  }
+  return false;
+}
+}  // namespace
+
 void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch) {
   const size_t row = static_cast<size_t>(w) * 4;
-  scratch.resize(row * h);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   if (fbo == 0) glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, scratch.data());
-  check_gl("glReadPixels");
   out.width = w;
   out.height = h;
   out.rgba.resize(row * h);
+  if (has_pack_invert()) {
+    glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+    glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);
+    check_gl("glReadPixels");
+    return;
+  }
+  scratch.resize(row * h);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, scratch.data());
+  check_gl("glReadPixels");
   for (int y = 0; y < h; ++y) std::memcpy(&out.rgba[row * y], &scratch[row * (h - 1 - y)], row);
 }
 
