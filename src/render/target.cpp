@@ -38,12 +38,12 @@ void Target::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
 }
 
-namespace {
 #ifndef GL_PACK_INVERT_MESA
 #define GL_PACK_INVERT_MESA 0x8758  // GL_MESA_pack_invert; glad is generated for the core profile only
 #endif
+
 // Mesa (llvmpipe under OSMesa and under Xvfb) can return rows from the top itself, in the copy it makes anyway;
-// other drivers get the flip below.
+// other drivers get the flip in read_framebuffer.
 bool has_pack_invert() {
   GLint n = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &n);
@@ -53,9 +53,9 @@ bool has_pack_invert() {
   }
   return false;
 }
-}  // namespace
 
-void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch) {
+void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch,
+                      bool pack_invert) {
   const size_t row = static_cast<size_t>(w) * 4;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   if (fbo == 0) glReadBuffer(GL_BACK);
@@ -63,7 +63,7 @@ void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<
   out.width = w;
   out.height = h;
   out.rgba.resize(row * h);
-  if (has_pack_invert()) {
+  if (pack_invert && has_pack_invert()) {
     glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);

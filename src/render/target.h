@@ -9,8 +9,13 @@
 namespace render {
 
 // Read w x h pixels of framebuffer `fbo` (0: the window's back buffer) into `out`, rows from the top. The one
-// read-back of the project: Target::read and the window's screenshot both use it.
-void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch);
+// read-back of the project: Target::read and the window's screenshot both use it. Where the context offers
+// GL_MESA_pack_invert (Mesa: OSMesa, Xvfb) GL writes the rows from the top itself; otherwise, or with
+// pack_invert false, they are read into `scratch` and flipped.
+void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch,
+                      bool pack_invert = true);
+// The current context offers GL_MESA_pack_invert.
+bool has_pack_invert();
 
 class Target {
  public:
@@ -21,6 +26,7 @@ class Target {
   Target& operator=(const Target&) = delete;
   void bind() const;
   int width() const { return w_; }
+  unsigned framebuffer() const { return fbo_; }
   int height() const { return h_; }
   // Read the pixels into `out` (resized), flipping GL's bottom-up rows. The renderer blends with
   // premultiplied alpha; straight_alpha converts back (needed only for transparent backgrounds).
