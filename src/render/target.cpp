@@ -42,8 +42,8 @@ void Target::bind() const {
 #define GL_PACK_INVERT_MESA 0x8758  // GL_MESA_pack_invert; glad is generated for the core profile only
 #endif
 
-// Mesa (llvmpipe under OSMesa and under Xvfb) can return rows from the top itself, in the copy it makes anyway;
-// other drivers get the flip in read_framebuffer.
+// Mesa (llvmpipe under OSMesa and under Xvfb) can return rows from the top itself, in the copy it makes
+// anyway; other drivers get the flip in read_framebuffer.
 bool has_pack_invert() {
   GLint n = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &n);
