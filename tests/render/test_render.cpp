@@ -112,7 +112,8 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   CHECK(at(0.0, 0.25)[0] < 60);
   // Rows come from the top: the top row of the image shows world y = 1 (empty), not y = 0.
   CHECK(distance(img.pixel(200, 0), render::background_color(style)) == 0);
-  // GL's own top-down read-back (GL_MESA_pack_invert, where offered) and the flip on the CPU give the same bytes.
+  // GL's own top-down read-back (GL_MESA_pack_invert, where offered) and the flip on the CPU give the same
+  // bytes.
   INFO("GL_MESA_pack_invert offered: " << render::has_pack_invert());
   core::Image flipped;
   std::vector<std::uint8_t> scratch;
