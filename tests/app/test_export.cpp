@@ -213,6 +213,11 @@ TEST_CASE("claims: C5 compares at equal chi_eff and needs shown agreement, not o
   CHECK(verdict_of("same") == "reproduced");
   CHECK(verdict_of("off") == "contradicted");
   CHECK(verdict_of("wide") == "not resolved");
+  // What would settle "wide": the difference (0) +- sqrt(2) inside +-10% of 4.05 needs n = 10 (1.414 /
+  // 0.405)^2.
+  CHECK_THAT(md, Catch::Matchers::Contains("## What stands between each verdict and the paper") &&
+                     Catch::Matchers::Contains("within +-10% at about n = 122 per point (now 10)") &&
+                     Catch::Matchers::Contains("a resolved difference (n = 10)"));
 }
 
 TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not resolved)", "[claims][app]") {
@@ -229,6 +234,10 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   const std::string md = slurp(d / "claims.md");
   CHECK_THAT(
       md, Catch::Matchers::Contains("| C1 non-magnetic") && Catch::Matchers::Contains("n = 10 realizations"));
+  // The contradicted claim names the comparison that contradicts it; a reproduced one is not listed.
+  CHECK_THAT(
+      md, Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: -0.4 +- 0.1, resolved against the claim"));
+  CHECK_THAT(md, !Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: +0.5"));
   // One realization per point: no interval, nothing resolved.
   fs::path one = d / "one" / "analysis";
   synthetic_points(one, 1.5, 0.6);
