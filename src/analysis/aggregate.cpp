@@ -34,19 +34,21 @@ Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*
 }
 }  // namespace
 
-std::vector<Point> aggregate(const std::vector<Run>& runs) {
+std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused) {
   if (runs.empty()) throw core::InputError("analyze: no runs to aggregate");
   // Every key a campaign does not vary must agree with the first run's.
   const Run& first = runs.front();
-  for (const Run& r : runs) {
+  auto same_campaign = [&](const core::Scene& s, const std::string& source) {
     for (const auto& f : core::scene_fields()) {
       if (is_point_key(f.key)) continue;
-      std::string a = core::field_text(first.scene, f), b = core::field_text(r.scene, f);
+      std::string a = core::field_text(first.scene, f), b = core::field_text(s, f);
       if (a != b)
         throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " +
-                               f.key + " = " + a + " but " + r.source + " has " + f.key + " = " + b);
+                               f.key + " = " + a + " but " + source + " has " + f.key + " = " + b);
     }
-  }
+  };
+  for (const Run& r : runs) same_campaign(r.scene, r.source);
+  for (const Refused& r : refused) same_campaign(r.scene, r.source);
   std::map<std::string, Point> by_label;
   std::vector<std::string> order;
   std::map<std::string, std::set<std::uint64_t>> seeds;
@@ -61,6 +63,15 @@ std::vector<Point> aggregate(const std::vector<Run>& runs) {
                              " appears twice at the point (" + label + "); " + r.source +
                              " duplicates an earlier run");
     by_label[label].runs.push_back(&r);
+  }
+  for (const Refused& r : refused) {
+    const std::string label = point_label(r.scene);
+    if (!by_label.count(label)) continue;  // a point with no finished run has no row
+    if (!seeds[label].insert(r.scene.seed).second)
+      throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) +
+                             " appears twice at the point (" + label + "); " + r.source +
+                             " records a refusal of a seed that also finished");
+    ++by_label[label].refused;
   }
   // Q_p: the mean Q of the pure system (chi = 0) at the same kick strength; a campaign over kicks has one
   // pure point per kick.
@@ -117,7 +128,7 @@ std::string points_csv(const std::vector<Point>& points) {
   std::string s;
   for (const auto& k : kVaried) s += k + ",";
   s += "dipole_force_ratio,kick_dv_over_sqrt_g_ro,n_runs,n_runs_pure,clogs,clogs_vibration,clogs_rule,"
-       "clogs_spontaneous,ballistic_runs";
+       "clogs_spontaneous,ballistic_runs,n_refused";
   const char* names[] = {"q_per_s",
                          "q_tilde_per_s",
                          "chi_eff",
@@ -144,7 +155,8 @@ std::string points_csv(const std::vector<Point>& points) {
          ",";
     s += std::to_string(p.runs.size()) + "," + std::to_string(p.q_p.n) + "," + std::to_string(p.clogs) + "," +
          std::to_string(p.clogs_vibration) + "," + std::to_string(p.clogs_rule) + "," +
-         std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs);
+         std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs) + "," +
+         std::to_string(p.refused);
     for (const Estimate* e :
          {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
           &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p, &p.airborne_fraction})

@@ -21,6 +21,12 @@ struct Run {
   Measurements m;
 };
 
+// A realization the health monitor refused (sweep's NAME.refused.toml): its scene, to find its point.
+struct Refused {
+  std::string source;
+  core::Scene scene;
+};
+
 struct Point {
   core::Scene scene;  // seed of the first run
   std::vector<const Run*> runs;
@@ -29,10 +35,13 @@ struct Point {
   Estimate q_p;              // Q of the pure point this point is compared with (same kick strength)
   Estimate airborne_fraction;
   long clogs = 0, clogs_vibration = 0, clogs_rule = 0, clogs_spontaneous = 0, ballistic_runs = 0;
+  long refused = 0;  // realizations of this point the health monitor refused: not in `runs`, so every
+                     // estimate is of the realizations that finished (a selection when this is not 0)
 };
 
-// Throws core::InputError when runs of different scenes are mixed or a seed repeats within a point.
-std::vector<Point> aggregate(const std::vector<Run>& runs);
+// Throws core::InputError when runs (or refused realizations) of different scenes are mixed or a seed repeats
+// within a point.
+std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused = {});
 
 std::string realizations_csv(const std::vector<Run>& runs);
 std::string points_csv(const std::vector<Point>& points);

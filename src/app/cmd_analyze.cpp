@@ -23,8 +23,9 @@ struct AnalyzeOptions {
   bool include_interrupted = false, include_unhealthy = false;
 };
 
-// Run directories (holding metadata.toml and exits.csv) at or below `root`, sorted.
-void find_runs(const fs::path& root, std::vector<fs::path>& out) {
+// Run directories (holding metadata.toml and exits.csv) at or below `root`, sorted; and the records of
+// realizations the health monitor refused (NAME.refused.toml, written by sweep).
+void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs::path>& refused) {
   std::error_code ec;
   if (!fs::is_directory(root, ec))
     throw core::InputError("analyze: " + root.string() + " is not a directory");
@@ -33,11 +34,16 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out) {
     return;
   }
   std::vector<fs::path> children;
-  for (const auto& e : fs::directory_iterator(root, ec))
-    if (e.is_directory() && e.path().filename().string().find(".partial-") == std::string::npos)
-      children.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(root, ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_directory() && name.find(".partial-") == std::string::npos) children.push_back(e.path());
+    const std::string suffix = ".refused.toml";
+    if (e.is_regular_file() && name.size() > suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      refused.push_back(e.path());
+  }
   std::sort(children.begin(), children.end());
-  for (const auto& c : children) find_runs(c, out);
+  for (const auto& c : children) find_runs(c, out, refused);
 }
 
 }  // namespace
@@ -45,10 +51,10 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out) {
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
                  bool include_interrupted, bool include_unhealthy) {
   AnalyzeOptions o{inputs, out_dir, force, include_interrupted, include_unhealthy};
-  std::vector<fs::path> dirs;
+  std::vector<fs::path> dirs, refused_files;
   for (const auto& in : o.inputs) {
     size_t before = dirs.size();
-    find_runs(in, dirs);
+    find_runs(in, dirs, refused_files);
     if (dirs.size() == before)
       throw core::InputError("analyze: no runs under " + in +
                              " (a run directory holds metadata.toml and exits.csv)");
@@ -90,7 +96,21 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
   if (runs.empty())
     throw core::InputError("analyze: every run was left out (see above); nothing to aggregate");
-  auto points = analysis::aggregate(runs);
+  std::sort(refused_files.begin(), refused_files.end());
+  std::vector<analysis::Refused> refused;
+  for (const auto& f : refused_files) {
+    core::Scene s = core::load_scene(f.string());
+    core::validate(s);
+    refused.push_back({f.string(), s});
+  }
+  auto points = analysis::aggregate(runs, refused);
+  long refused_counted = 0;
+  for (const auto& p : points) refused_counted += p.refused;
+  if (refused_counted < static_cast<long>(refused.size()))
+    std::fprintf(stderr,
+                 "siloscope: analyze: %ld refused realizations belong to points with no finished run; they "
+                 "appear in no row\n",
+                 static_cast<long>(refused.size()) - refused_counted);
   io::write_file_atomic(out.file("realizations.csv"), analysis::realizations_csv(runs));
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
   io::write_file_atomic(out.file("survival.csv"), analysis::pooled_survival_csv(points));
@@ -98,6 +118,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                    {{"runs", runs.size()},
                     {"points", points.size()},
                     {"runs_left_out", left_out.size()},
+                    {"runs_refused", refused.size()},
                     {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
                                                      [](const analysis::Run& r) { return r.m.ballistic; })}},
                    {}};

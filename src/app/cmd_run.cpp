@@ -6,6 +6,7 @@
 #include "app/common.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/scene.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -21,10 +22,33 @@ struct RunOptions {
   double trajectory_fps = 0;
   bool force = false;
   bool quiet = false;
+  bool record_refusal = false;
 };
 
+int simulate(const RunOptions& o, const core::Scene& scene);
+
+// A run the health monitor stops is refused for good (the same scene, seed and numerics stop again). With
+// --record-refusal (campaign jobs) that outcome is written as OUT.refused.toml: the scene with its seed and
+// the reason, which `sweep` reads to leave the realization settled and `analyze` counts as n_refused.
 int run(const RunOptions& o) {
   const core::Scene scene = o.scene.load();
+  try {
+    return simulate(o, scene);
+  } catch (const core::Unstable& e) {
+    if (o.record_refusal)
+      io::write_file_atomic(
+          o.out + ".refused.toml",
+          "# " + o.out +
+              ": refused by the health monitor (exit 3); the same seed and numerics refuse\n"
+              "# again, so `sweep` does not rerun it and `analyze` counts it as n_refused at its "
+              "point.\n# Delete this file to run it again (with other numerics, say).\n"
+              "# reason: " +
+              std::string(e.what()) + "\n" + core::scene_toml(scene));
+    throw;
+  }
+}
+
+int simulate(const RunOptions& o, const core::Scene& scene) {
   if (o.trajectory_fps < 0 || o.trajectory_fps > 1.0 / scene.dt)
     throw core::InputError("--trajectory-fps " + std::to_string(o.trajectory_fps) +
                            ": allowed range is 0 to 1/dt");
@@ -106,6 +130,9 @@ void add_run_command(CLI::App& app, Action& action) {
                   "also write trajectory.sstraj with this many frames per simulated second (for inspect)");
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--quiet", opts->quiet, "print nothing but errors");
+  cmd->add_flag("--record-refusal", opts->record_refusal,
+                "if the health monitor stops the run (exit 3), write OUT.refused.toml (scene, seed, reason): "
+                "how campaign jobs record a refused realization");
   cmd->callback([opts, &action] { action = [opts] { return run(*opts); }; });
 }
 

@@ -132,12 +132,18 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   }
 }
 
+// Where a realization the health monitor refused is recorded (next to where its run would be).
+fs::path refused_marker(const fs::path& dir, const Job& j) {
+  return dir / (j.dir + ".refused.toml");
+}
+
 // Realization-major: every point gets its k-th realization before any gets its (k+1)-th, so a campaign
-// stopped at any moment has nearly the same number of realizations at every point.
+// stopped at any moment has nearly the same number of realizations at every point. Realizations recorded as
+// refused count as settled (`refused` of `done`).
 std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std::string& binary, int up_to,
-                              size_t& done) {
+                              size_t& done, size_t& refused) {
   std::vector<Job> jobs;
-  done = 0;
+  done = refused = 0;
   const int last = up_to > 0 ? std::min(up_to, c.realizations) : c.realizations;
   for (int k = 0; k < last; ++k) {
     for (size_t p = 0; p < c.points.size(); ++p) {
@@ -146,10 +152,14 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
         ++done;
         continue;
       }
+      if (fs::exists(refused_marker(dir, j))) {
+        ++done, ++refused;
+        continue;
+      }
       char scene[48];
       std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
       j.line = core::shell_quote(binary) + " run " + scene + " --seed " +
-               std::to_string(c.realization_seed(p, k)) + " --quiet --out " + j.dir;
+               std::to_string(c.realization_seed(p, k)) + " --quiet --record-refusal --out " + j.dir;
       jobs.push_back(j);
     }
   }
@@ -227,8 +237,8 @@ int sweep(const SweepOptions& o) {
   ResultsLock lock(dir);
   prepare_results(c, dir);
   fs::create_directories(dir / "logs");
-  size_t done = 0;
-  std::vector<Job> jobs = pending_jobs(c, dir, binary, o.up_to, done);
+  size_t done = 0, refused = 0;
+  std::vector<Job> jobs = pending_jobs(c, dir, binary, o.up_to, done, refused);
   const size_t total =
       c.points.size() * static_cast<size_t>(o.up_to > 0 ? std::min(o.up_to, c.realizations) : c.realizations);
   if (o.emit_jobs) {
@@ -236,8 +246,10 @@ int sweep(const SweepOptions& o) {
     return 0;
   }
   if (!o.quiet)
-    std::printf("campaign %s: %zu points x %d realizations; %zu finished, %zu to run on %d workers -> %s\n",
-                c.name.c_str(), c.points.size(), c.realizations, done, jobs.size(), workers, dir.c_str());
+    std::printf(
+        "campaign %s: %zu points x %d realizations; %zu finished (%zu refused by the health monitor: "
+        "runs/*/*.refused.toml), %zu to run on %d workers -> %s\n",
+        c.name.c_str(), c.points.size(), c.realizations, done, refused, jobs.size(), workers, dir.c_str());
 
   install_interrupt_handler();
   Progress progress("sweep", static_cast<double>(jobs.size()), !o.quiet);
@@ -284,7 +296,15 @@ int sweep(const SweepOptions& o) {
         continue;
       }
     }
-    if (!ok && !interrupted()) {
+    // Exit 3: the health monitor refused the realization and the run recorded it (--record-refusal).
+    const bool unstable = !ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 3 &&
+                          fs::exists(refused_marker(dir, j));
+    if (unstable) {
+      ++refused;
+      if (!o.quiet)
+        std::fprintf(stderr, "\nsiloscope: realization %s refused by the health monitor (recorded in %s)\n",
+                     j.dir.c_str(), refused_marker(dir, j).c_str());
+    } else if (!ok && !interrupted()) {
       char log[64];
       std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
       failures.push_back(j.dir + " (exit " +
@@ -298,6 +318,12 @@ int sweep(const SweepOptions& o) {
     progress.update(static_cast<double>(finished), extra);
   }
   progress.finish();
+  if (refused > 0)
+    std::fprintf(
+        stderr,
+        "siloscope: %zu realizations refused by the health monitor (runs/*/*.refused.toml; not rerun, "
+        "counted by analyze as n_refused)\n",
+        refused);
   if (interrupted()) {
     std::fprintf(stderr, "siloscope: sweep interrupted; finished realizations are kept, rerun to resume\n");
     return 130;

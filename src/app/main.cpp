@@ -47,6 +47,9 @@ int main(int argc, char** argv) {
   } catch (const core::InputError& e) {
     std::fprintf(stderr, "siloscope: error: %s\n", e.what());
     return 2;
+  } catch (const core::Unstable& e) {
+    std::fprintf(stderr, "siloscope: failed: %s\n", e.what());
+    return 3;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "siloscope: failed: %s\n", e.what());
     return 1;

@@ -303,7 +303,14 @@ def main(out, version, specs):
              ", ".join(f"`{label}` = `{path}`" for label, path, *_ in presets) + ".",
              "A difference counts only beyond the combined 95% half-widths; one realization gives no interval.", ""]
     for label, path, rows, cs, lo, hi in presets:
-        lines.append(f"**{label}**: n = {lo}" + (f"-{hi}" if hi != lo else "") + " realizations per point.")
+        line = f"**{label}**: n = {lo}" + (f"-{hi}" if hi != lo else "") + " realizations per point."
+        refused = [p for p in rows if p.get("n_refused", 0) and p["n_refused"] > 0]
+        if refused:
+            line += (" Refused by the health monitor, not in n (the estimates there are of the realizations that "
+                     "finished, a selection): " + "; ".join(
+                         f"r = {p['size_ratio']:g}, chi = {p['chi']:g}, F/W = {p['dipole_force_ratio']:g}: "
+                         f"{int(p['n_refused'])} of {int(p['n_refused'] + p['n_runs'])}" for p in refused) + ".")
+        lines.append(line)
     lines += ["", "| claim | " + " | ".join(label for label, *_ in presets) + " |",
               "|---|" + "---|" * len(presets)]
     for k in range(7):

@@ -231,7 +231,7 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
     warn_unsafe(o.str());
     return;
   }
-  throw core::RuntimeFault(o.str());
+  throw core::Unstable(o.str());
 }
 
 void Hopper::check_overlaps() {
@@ -258,7 +258,7 @@ void Hopper::check_overlaps() {
     warn_unsafe(o.str());
     return;
   }
-  throw core::RuntimeFault(o.str());
+  throw core::Unstable(o.str());
 }
 
 void Hopper::warn_unsafe(const std::string& msg) const {

@@ -238,6 +238,20 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   CHECK_THAT(
       md, Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: -0.4 +- 0.1, resolved against the claim"));
   CHECK_THAT(md, !Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: +0.5"));
+  // Realizations the health monitor refused are named with their point, out of n.
+  {
+    fs::path sel = d / "sel" / "analysis";
+    synthetic_points(sel, 1.5, 0.6);
+    std::istringstream in(slurp(sel / "points.csv"));
+    std::string out, line;
+    for (int k = 0; std::getline(in, line); ++k)
+      out += line + (k == 0 ? ",n_refused" : k == 1 ? ",3" : ",0") + "\n";
+    std::ofstream(sel / "points.csv") << out;
+    REQUIRE(cli("claims sel=" + (d / "sel").string() + " --out " + (d / "sel.md").string()).code == 0);
+    CHECK_THAT(slurp(d / "sel.md"), Catch::Matchers::Contains("Refused by the health monitor") &&
+                                        Catch::Matchers::Contains("r = 0.4, chi = 0.4, F/W = 0: 3 of 13"));
+    CHECK_THAT(md, !Catch::Matchers::Contains("Refused by the health monitor"));
+  }
   // One realization per point: no interval, nothing resolved.
   fs::path one = d / "one" / "analysis";
   synthetic_points(one, 1.5, 0.6);

@@ -171,3 +171,65 @@ TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realiz
   CHECK(slurp(d / "int" / "analysis" / "points.csv") == whole);
   CHECK(slurp(d / "kill" / "analysis" / "points.csv") == whole);
 }
+
+TEST_CASE("a realization the health monitor refuses is recorded once, not rerun, and counted by analyze",
+          "[campaign][app]") {
+  fs::path d = temp_dir("refused");
+  // Two points: the literal kick, and one so strong (0.5 N s) that the first kick throws a disk out.
+  std::ofstream(d / "short.toml") << "settle_time = 1.0\n";
+  std::ofstream(d / "c.toml") << "name = \"refusals\"\nscene = \"short.toml\"\nseed = 3\nrealizations = 2\n"
+                                 "duration = 1.0\n[grid]\nkick_impulse_max = [5e-05, 0.5]\n";
+  const fs::path res = d / "res";
+  auto r = test::cli("sweep " + (d / "c.toml").string() + " --workers 2 --results " + res.string());
+  CHECK(r.code == 0);  // a refusal is an outcome, recorded; not a failure of the sweep
+  CHECK_THAT(r.output, Catch::Matchers::Contains("2 realizations refused by the health monitor"));
+  CHECK(count_runs(res) == 2);
+  std::vector<fs::path> markers;
+  for (const auto& e : fs::recursive_directory_iterator(res / "runs"))
+    if (e.path().string().find(".refused.toml") != std::string::npos) markers.push_back(e.path());
+  REQUIRE(markers.size() == 2);
+  const std::string marker = slurp(markers.front());
+  CHECK_THAT(marker, Catch::Matchers::Contains("# reason: unstable integration") &&
+                         Catch::Matchers::Contains("kick_impulse_max = 0.5"));
+  // The refused point has no finished run, so no row; analyze says so.
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("2 refused realizations belong to points with no finished run"));
+  // Resuming runs nothing again: the refusals are settled.
+  r = test::cli("sweep " + (d / "c.toml").string() + " --workers 2 --no-analyze --results " + res.string());
+  CHECK(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("4 finished (2 refused by the health monitor") &&
+                           Catch::Matchers::Contains("0 to run"));
+  // A refusal recorded at a point that has finished runs is counted there: n_refused.
+  std::string text = slurp(markers.front());
+  const size_t at = text.find("kick_impulse_max = 0.5");
+  text.replace(at, std::string("kick_impulse_max = 0.5").size(), "kick_impulse_max = 5e-05");
+  const size_t seed = text.find("\nseed = ");
+  text = text.substr(0, seed) + "\nseed = 987654321\n";
+  std::ofstream(res / "runs" / "extra.refused.toml") << text;
+  fs::remove(markers[0]);
+  fs::remove(markers[1]);
+  REQUIRE(test::cli("analyze " + (res / "runs").string() + " --out " + (d / "an").string()).code == 0);
+  const std::string points = slurp(d / "an" / "points.csv");
+  const std::string header = points.substr(0, points.find('\n'));
+  const std::string row =
+      points.substr(header.size() + 1, points.find('\n', header.size() + 1) - header.size() - 1);
+  auto column = [](const std::string& line, int k) {
+    std::stringstream s(line);
+    std::string cell;
+    for (int i = 0; i <= k; ++i) std::getline(s, cell, ',');
+    return cell;
+  };
+  int k = 0;
+  while (column(header, k) != "n_refused") REQUIRE(++k < 60);
+  CHECK(column(row, k) == "1");
+  CHECK(column(row, 6) == "2");  // n_runs: the two that finished
+  // A plain run refused the same way exits 3 and writes nothing, no record either (that is for campaign
+  // jobs).
+  r = test::cli("run " + (d / "short.toml").string() +
+                " --duration 1 --set kick_impulse_max=0.5 --quiet --out " + (d / "alone").string());
+  CHECK(r.code == 3);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("unstable integration"));
+  CHECK_FALSE(fs::exists(d / "alone"));
+  CHECK_FALSE(fs::exists(d / "alone.refused.toml"));
+  CHECK_THAT(slurp(d / "an" / "metadata.toml"), Catch::Matchers::Contains("runs_refused = 1"));
+}
