@@ -97,6 +97,10 @@ def stats_note(points, planned):
     text = f"n = {lo}" + (f"-{hi}" if hi != lo else "") + " realizations per point"
     if planned and lo < planned:
         text += f" (PARTIAL: {planned} planned)"
+    refused = [p for p in points if finite(p.get("n_refused")) and p["n_refused"] > 0]
+    if refused:
+        text += (f"\n{sum(int(p['n_refused']) for p in refused)} refused by the health monitor at "
+                 f"{len(refused)} points (not in n)")
     return text
 
 
