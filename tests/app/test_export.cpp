@@ -220,6 +220,31 @@ TEST_CASE("claims: C5 compares at equal chi_eff and needs shown agreement, not o
                      Catch::Matchers::Contains("a resolved difference (n = 10)"));
 }
 
+TEST_CASE("claims: a claim of several comparisons is not decided by one that chance alone resolves",
+          "[claims][app]") {
+  fs::path d = temp_dir("claims-holm");
+  // C2: Q~ at r = 1 falls with the dipoles by 0.3 +- 0.28 (p = 0.038 alone): resolved when it is the claim's
+  // only comparison, not when r = 0.4 (no change) is a second one (Holm: the smallest p must be below 0.05 /
+  // 2).
+  for (const char* name : {"one", "two"}) {
+    std::ofstream f = points_csv(d / name / "analysis");
+    if (std::string(name) == "two")
+      f << "0.4,0.4,0,5e-05,0,10,1.5,0.1,3.0,0.2,0.45,0.02,9,0.5,0.5,0.1\n"
+           "0.4,0.4,1,5e-05,10,10,1.5,0.1,3.0,0.2,0.30,0.02,9,0.5,0.5,0.1\n";
+    f << "1,0.4,0,5e-05,0,10,0.6,0.1,2.0,0.2,0.45,0.02,9,0.5,0.5,0.1\n"
+         "1,0.4,5,5e-05,10,10,0.6,0.1,1.7,0.2,0.30,0.02,9,0.5,0.5,0.1\n"
+         "0.4,0,0,5e-05,0,10,1,0.1,2,0.2,0,0,10,0.5,0,0\n";
+  }
+  auto r = cli("claims one=" + (d / "one").string() + " two=" + (d / "two").string() + " --out " +
+               (d / "claims.md").string());
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("one: C1 not resolved, C2 contradicted") &&
+                           Catch::Matchers::Contains("two: C1 reproduced, C2 not resolved"));
+  CHECK_THAT(slurp(d / "claims.md"),
+             Catch::Matchers::Contains("-0.3 +- 0.28 (p = 0.038), against the claim, not resolved "
+                                       "among the claim's 2 comparisons"));
+}
+
 TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not resolved)", "[claims][app]") {
   fs::path d = temp_dir("claims");
   synthetic_points(d / "good" / "analysis", 1.5, 0.6);  // C1's shape, resolved
@@ -235,8 +260,8 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   CHECK_THAT(
       md, Catch::Matchers::Contains("| C1 non-magnetic") && Catch::Matchers::Contains("n = 10 realizations"));
   // The contradicted claim names the comparison that contradicts it; a reproduced one is not listed.
-  CHECK_THAT(
-      md, Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: -0.4 +- 0.1, resolved against the claim"));
+  CHECK_THAT(md, Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: -0.4 +- 0.1 (p = ") &&
+                     Catch::Matchers::Contains("resolved against the claim (n = 10)"));
   CHECK_THAT(md, !Catch::Matchers::Contains("Q~/Q_p at r = 0.4 against 1: +0.5"));
   // Realizations the health monitor refused are named with their point, out of n.
   {
