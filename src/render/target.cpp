@@ -26,6 +26,7 @@ Target::Target(int width, int height) : w_(width), h_(height) {
   if (status != GL_FRAMEBUFFER_COMPLETE)
     throw core::RuntimeFault("off-screen framebuffer " + std::to_string(w_) + "x" + std::to_string(h_) +
                              " is incomplete (status " + std::to_string(status) + ")");
+  pack_invert_ = has_pack_invert();
   check_gl("Target");
 }
 
@@ -63,7 +64,7 @@ void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<
   out.width = w;
   out.height = h;
   out.rgba.resize(row * h);
-  if (pack_invert && has_pack_invert()) {
+  if (pack_invert) {
     glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);
@@ -77,7 +78,7 @@ void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<
 }
 
 void Target::read(core::Image& out, bool straight_alpha) const {
-  read_framebuffer(fbo_, w_, h_, out, scratch_);
+  read_framebuffer(fbo_, w_, h_, out, scratch_, pack_invert_);
   if (!straight_alpha) return;
   for (size_t i = 0; i < out.rgba.size(); i += 4) {
     const unsigned a = out.rgba[i + 3];

@@ -9,12 +9,12 @@
 namespace render {
 
 // Read w x h pixels of framebuffer `fbo` (0: the window's back buffer) into `out`, rows from the top. The one
-// read-back of the project: Target::read and the window's screenshot both use it. Where the context offers
-// GL_MESA_pack_invert (Mesa: OSMesa, Xvfb) GL writes the rows from the top itself; otherwise, or with
-// pack_invert false, they are read into `scratch` and flipped.
+// read-back of the project: Target::read and the window's screenshot both use it. With pack_invert (pass
+// has_pack_invert() of the current context, asked once per context: it walks GL's extension list) GL writes
+// the rows from the top itself; without, they are read into `scratch` and flipped.
 void read_framebuffer(unsigned fbo, int w, int h, core::Image& out, std::vector<std::uint8_t>& scratch,
-                      bool pack_invert = true);
-// The current context offers GL_MESA_pack_invert.
+                      bool pack_invert);
+// The current context offers GL_MESA_pack_invert (Mesa: OSMesa, Xvfb).
 bool has_pack_invert();
 
 class Target {
@@ -35,6 +35,7 @@ class Target {
  private:
   int w_, h_;
   unsigned fbo_ = 0, color_ = 0;
+  bool pack_invert_ = false;  // has_pack_invert() of the context the target was made in
   mutable std::vector<std::uint8_t> scratch_;
 };
 

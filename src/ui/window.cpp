@@ -157,7 +157,7 @@ void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
 core::Image window_pixels(int w, int h) {
   core::Image img;
   std::vector<std::uint8_t> scratch;
-  render::read_framebuffer(0, w, h, img, scratch);
+  render::read_framebuffer(0, w, h, img, scratch, render::has_pack_invert());  // a screenshot: rare
   for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
   return img;
 }

@@ -115,8 +115,10 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   // GL's own top-down read-back (GL_MESA_pack_invert, where offered) and the flip on the CPU give the same
   // bytes.
   INFO("GL_MESA_pack_invert offered: " << render::has_pack_invert());
-  core::Image flipped;
+  core::Image gl_rows, flipped;
   std::vector<std::uint8_t> scratch;
+  render::read_framebuffer(target.framebuffer(), w, h, gl_rows, scratch, render::has_pack_invert());
+  CHECK(gl_rows.rgba == img.rgba);
   render::read_framebuffer(target.framebuffer(), w, h, flipped, scratch, false);
   CHECK(flipped.rgba == img.rgba);
 }
