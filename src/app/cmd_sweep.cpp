@@ -20,6 +20,8 @@
 #include <sstream>
 #include <thread>
 
+#include <toml++/toml.h>
+
 #include "app/campaign.h"
 #include "app/common.h"
 #include "core/error.h"
@@ -38,7 +40,7 @@ struct SweepOptions {
   std::string campaign, results, binary;
   int workers = 0;
   int up_to = 0;  // run only realizations 0..up_to-1 of every point (0: all)
-  bool emit_jobs = false, dry_run = false, no_analyze = false, quiet = false;
+  bool emit_jobs = false, dry_run = false, no_analyze = false, quiet = false, status = false;
 };
 
 struct Job {
@@ -85,25 +87,34 @@ std::string without_realizations(const std::string& text) {
 
 // Prepare the results directory: the campaign file it belongs to, the scene of each point. Refuses a
 // directory that holds a different campaign.
+// A run directory under construction: NAME.partial-PID. Its PID is alive while a run is writing it.
+bool partial_is_live(const fs::path& p) {
+  const std::string name = p.filename().string();
+  const pid_t pid = static_cast<pid_t>(std::atol(name.substr(name.rfind('-') + 1).c_str()));
+  return pid > 0 && ::kill(pid, 0) == 0;
+}
+
+// The campaign.toml a results directory was made for ("" if none). Throws if it is another campaign.
+std::string stamped_campaign(const Campaign& c, const fs::path& dir) {
+  const fs::path stamp = dir / "campaign.toml";
+  if (!fs::exists(stamp)) return "";
+  std::ifstream in(stamp);
+  std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (without_realizations(old) != without_realizations(c.text))
+    throw core::InputError("results directory " + dir.string() +
+                           " holds a different campaign (its campaign.toml "
+                           "differs from " +
+                           c.path +
+                           " in more than `realizations`); choose another --results "
+                           "directory");
+  return old;
+}
+
 void prepare_results(const Campaign& c, const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir / "scenes", ec);
   if (ec) throw core::InputError("results directory " + dir.string() + ": cannot create it: " + ec.message());
-  const fs::path stamp = dir / "campaign.toml";
-  if (fs::exists(stamp)) {
-    std::ifstream in(stamp);
-    std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (without_realizations(old) != without_realizations(c.text))
-      throw core::InputError("results directory " + dir.string() +
-                             " holds a different campaign (its campaign.toml "
-                             "differs from " +
-                             c.path +
-                             " in more than `realizations`); choose another --results "
-                             "directory");
-    if (old != c.text) io::write_file_atomic(stamp, c.text);
-  } else {
-    io::write_file_atomic(stamp, c.text);
-  }
+  if (stamped_campaign(c, dir) != c.text) io::write_file_atomic(dir / "campaign.toml", c.text);
   for (size_t p = 0; p < c.points.size(); ++p) {
     char name[32];
     std::snprintf(name, sizeof name, "p%03zu.toml", p);
@@ -118,13 +129,11 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir / "runs", ec))
     if (e.path().filename().string().find(".partial-") != std::string::npos) partial.push_back(e.path());
   for (const auto& p : partial) {
-    const std::string name = p.filename().string();
-    const pid_t pid = static_cast<pid_t>(std::atol(name.substr(name.rfind('-') + 1).c_str()));
     bool said = false;
-    while (pid > 0 && ::kill(pid, 0) == 0 && fs::exists(p)) {
+    while (partial_is_live(p) && fs::exists(p)) {
       if (!said)
-        std::fprintf(stderr,
-                     "siloscope: waiting for a realization left running by an earlier sweep (pid %d)\n", pid);
+        std::fprintf(stderr, "siloscope: waiting for a realization left running by an earlier sweep (%s)\n",
+                     p.filename().c_str());
       said = true;
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
@@ -164,6 +173,115 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
     }
   }
   return jobs;
+}
+
+// Wall time a finished realization took (settling + discharge), from its metadata; < 0 if not recorded.
+double realization_wall_s(const fs::path& metadata) {
+  try {
+    toml::table t = toml::parse_file(metadata.string());
+    auto settle = t["run"]["wall_time_settle_s"].value<double>();
+    auto discharge = t["run"]["wall_time_discharge_s"].value<double>();
+    if (settle && discharge) return *settle + *discharge;
+  } catch (const toml::parse_error&) {
+  }
+  return -1;
+}
+
+// A span of time for a person: "40 s", "12 min", "4.2 h".
+std::string span_text(double seconds) {
+  char b[32];
+  if (seconds < 90)
+    std::snprintf(b, sizeof b, "%.0f s", seconds);
+  else if (seconds < 5400)
+    std::snprintf(b, sizeof b, "%.0f min", seconds / 60);
+  else
+    std::snprintf(b, sizeof b, "%.1f h", seconds / 3600);
+  return b;
+}
+
+// sweep --status: how far a campaign has got, read from its results directory alone (while a sweep runs, or
+// after SLURM array tasks on other machines), and what is left in hours. Writes nothing.
+int print_status(const Campaign& c, const fs::path& dir, int up_to, int workers) {
+  if (!fs::is_directory(dir / "runs") || !fs::exists(dir / "campaign.toml"))
+    throw core::InputError("--results " + dir.string() + ": no results of campaign " + c.name +
+                           " there yet (start it with `siloscope sweep " + c.path + "`)");
+  stamped_campaign(c, dir);
+  const int last = up_to > 0 ? std::min(up_to, c.realizations) : c.realizations;
+  size_t finished = 0, refused = 0;
+  std::vector<int> per_point(c.points.size(), 0), refused_at(c.points.size(), 0);
+  std::vector<double> walls;
+  for (size_t p = 0; p < c.points.size(); ++p)
+    for (int k = 0; k < last; ++k) {
+      const fs::path run = dir / "runs" / c.run_dir(p, k);
+      if (fs::exists(run / "metadata.toml")) {
+        ++finished, ++per_point[p];
+        if (double w = realization_wall_s(run / "metadata.toml"); w > 0) walls.push_back(w);
+      } else if (fs::exists(run.string() + ".refused.toml")) {
+        ++refused, ++per_point[p], ++refused_at[p];
+      }
+    }
+  std::vector<std::string> running;
+  size_t dead = 0;
+  std::error_code ec;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "runs", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".partial-") == std::string::npos) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    if (partial_is_live(e.path()))
+      running.push_back(rel.substr(0, rel.find(".partial-")));
+    else
+      ++dead;
+  }
+  std::sort(running.begin(), running.end());
+  const size_t total = c.points.size() * static_cast<size_t>(last);
+  const size_t settled = finished + refused, left = total - settled;
+  std::printf(
+      "campaign %s in %s: %zu points x %d realizations of %g s%s\n", c.name.c_str(), dir.c_str(),
+      c.points.size(), last, c.duration,
+      last < c.realizations
+          ? (" (--up-to " + std::to_string(last) + " of " + std::to_string(c.realizations) + ")").c_str()
+          : "");
+  std::printf("  settled   %zu of %zu (%.1f%%): %zu finished, %zu refused by the health monitor\n", settled,
+              total, 100.0 * static_cast<double>(settled) / static_cast<double>(total), finished, refused);
+  std::string now;
+  for (const auto& r : running) now += (now.empty() ? " (" : ", ") + r;
+  std::printf(
+      "  running   %zu%s%s\n", running.size(), now.empty() ? "" : (now + ")").c_str(),
+      dead ? (", and " + std::to_string(dead) + " left by killed runs (removed when the next sweep starts)")
+                 .c_str()
+           : "");
+  const auto [lo, hi] = std::minmax_element(per_point.begin(), per_point.end());
+  const size_t fewest = static_cast<size_t>(lo - per_point.begin());
+  if (*lo == *hi)
+    std::printf("  per point %d settled at every point\n", *lo);
+  else
+    std::printf("  per point %d to %d settled; fewest at p%03zu %s\n", *lo, *hi, fewest,
+                c.points[fewest].label.c_str());
+  std::string where;
+  for (size_t p = 0; p < c.points.size(); ++p)
+    if (refused_at[p] > 0) {
+      char b[48];
+      std::snprintf(b, sizeof b, "p%03zu: %d", p, refused_at[p]);
+      where += (where.empty() ? "" : ", ") + std::string(b);
+    }
+  if (!where.empty()) std::printf("  refused   %s (runs/pNNN/*.refused.toml)\n", where.c_str());
+  if (left == 0) {
+    std::printf("  complete  every realization is settled\n");
+    return 0;
+  }
+  if (walls.empty()) {
+    std::printf("  time      no finished realization records its wall time yet; no estimate\n");
+    return 0;
+  }
+  std::sort(walls.begin(), walls.end());
+  const double median = walls.size() % 2 ? walls[walls.size() / 2]
+                                         : 0.5 * (walls[walls.size() / 2 - 1] + walls[walls.size() / 2]);
+  const double core_s = static_cast<double>(left) * median;
+  std::printf("  time      median %.1f s wall per realization (settling + discharge; %zu finished runs)\n",
+              median, walls.size());
+  std::printf("  left      %zu realizations: about %s of one core, %s on %d workers\n", left,
+              span_text(core_s).c_str(), span_text(core_s / workers).c_str(), workers);
+  return 0;
 }
 
 void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& jobs) {
@@ -230,6 +348,7 @@ int sweep(const SweepOptions& o) {
   }
   const int workers =
       o.workers > 0 ? o.workers : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.status) return print_status(c, dir, o.up_to, workers);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
@@ -350,10 +469,14 @@ void add_sweep_command(CLI::App& app, Action& action) {
   cmd->add_option("--up-to", o->up_to,
                   "run only the first K realizations of every point (a first pass over the whole grid)")
       ->check(whole_number(1, 1000000));
-  cmd->add_flag("--emit-jobs", o->emit_jobs,
-                "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
+  auto* emit = cmd->add_flag("--emit-jobs", o->emit_jobs,
+                             "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
   cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
-  cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");
+  auto* dry = cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");
+  cmd->add_flag("--status", o->status,
+                "how far the campaign in --results has got and the hours left; runs and writes nothing")
+      ->excludes(dry)
+      ->excludes(emit);
   cmd->add_flag("--no-analyze", o->no_analyze, "do not aggregate into RESULTS/analysis at the end");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return sweep(*o); }; });

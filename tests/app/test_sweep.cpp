@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -232,4 +233,72 @@ TEST_CASE("a realization the health monitor refuses is recorded once, not rerun,
   CHECK_FALSE(fs::exists(d / "alone"));
   CHECK_FALSE(fs::exists(d / "alone.refused.toml"));
   CHECK_THAT(slurp(d / "an" / "metadata.toml"), Catch::Matchers::Contains("runs_refused = 1"));
+}
+
+TEST_CASE("sweep --status says how far a campaign got and what is left, and writes nothing",
+          "[campaign][app]") {
+  fs::path d = temp_dir("status");
+  fs::path c = tiny_campaign(d, 2);  // 3 points x 2
+  const fs::path res = d / "res";
+  // No results yet: one line, exit 2, nothing made.
+  auto r = test::cli("sweep " + c.string() + " --status --results " + res.string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("no results of campaign tiny there yet"));
+  CHECK_FALSE(fs::exists(res));
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --up-to 1 --quiet --no-analyze --results " + res.string()) ==
+          0);
+  // A realization a killed run left half-written (its process is gone), and one the health monitor refused.
+  pid_t gone = fork();
+  if (gone == 0) _exit(0);
+  waitpid(gone, nullptr, 0);
+  fs::create_directories(res / "runs" / "p000" / ("r001.partial-" + std::to_string(gone)));
+  std::ofstream(res / "runs" / "p002" / "r001.refused.toml") << "# reason: test\n";
+  auto listing = [&] {
+    std::string all;
+    for (const auto& e : fs::recursive_directory_iterator(res)) all += e.path().string() + "\n";
+    return all;
+  };
+  // The estimate is the median wall time of the finished runs (read from their metadata) times what is left,
+  // shared by the workers. Give the three runs known times: 1000, 1800 and 3600 s.
+  const std::vector<std::string> runs = {"p000/r000", "p001/r000", "p002/r000"};
+  const double walls[] = {1000, 1800, 3600};
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const fs::path meta = res / "runs" / runs[i] / "metadata.toml";
+    std::string text = slurp(meta), out;
+    std::istringstream lines(text);
+    int replaced = 0;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("wall_time_settle_s = ", 0) == 0) line = "wall_time_settle_s = 0.0", ++replaced;
+      if (line.rfind("wall_time_discharge_s = ", 0) == 0)
+        line = "wall_time_discharge_s = " + std::to_string(walls[i]), ++replaced;
+      out += line + "\n";
+    }
+    REQUIRE(replaced == 2);
+    std::ofstream(meta) << out;
+  }
+  const std::string before = listing();
+  r = test::cli("sweep " + c.string() + " --status --workers 2 --results " + res.string());
+  INFO(r.output);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("3 points x 2 realizations of 1 s"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("settled   4 of 6 (66.7%): 3 finished, 1 refused"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("running   0, and 1 left by killed runs"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("per point 1 to 2 settled; fewest at p000"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("refused   p002: 1"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("median 1800.0 s wall per realization") &&
+                           Catch::Matchers::Contains("3 finished runs"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains(
+                           "left      2 realizations: about 60 min of one core, 30 min on 2 workers"));
+  r = test::cli("sweep " + c.string() + " --status --workers 4 --results " + res.string());
+  CHECK_THAT(r.output, Catch::Matchers::Contains("15 min on 4 workers"));
+  CHECK(listing() == before);  // read only: the dead run's leftovers go when a sweep starts, not here
+  // --up-to counts against the first K realizations.
+  r = test::cli("sweep " + c.string() + " --status --up-to 1 --results " + res.string());
+  CHECK_THAT(r.output, Catch::Matchers::Contains("settled   3 of 3 (100.0%)") &&
+                           Catch::Matchers::Contains("complete  every realization is settled"));
+  // Another campaign's directory is refused.
+  fs::path other = tiny_campaign(d, 2, "[[points]]\nchi = 0.2\n");
+  r = test::cli("sweep " + other.string() + " --status --results " + res.string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("holds a different campaign"));
 }
