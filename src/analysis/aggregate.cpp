@@ -1,6 +1,7 @@
 #include "analysis/aggregate.h"
 #include "core/format.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -90,6 +91,7 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
     if (pure) qp = estimate_of(pure->runs, &Measurements::q);
     p.q_p = qp;
     p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
+    p.avalanche_mean = estimate_of(p.runs, &Measurements::avalanche_mean);
     for (const Run* r : p.runs) {
       p.clogs += r->m.clogs;
       p.clogs_vibration += r->m.clogs_vibration;
@@ -137,7 +139,8 @@ std::string points_csv(const std::vector<Point>& points) {
                          "fraction_broken_by_vibration",
                          "q_tilde_over_qp",
                          "q_p_per_s",
-                         "airborne_fraction"};
+                         "airborne_fraction",
+                         "avalanche_mean"};
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
   s += "\n";
   for (const auto& p : points) {
@@ -157,9 +160,9 @@ std::string points_csv(const std::vector<Point>& points) {
          std::to_string(p.clogs_vibration) + "," + std::to_string(p.clogs_rule) + "," +
          std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs) + "," +
          std::to_string(p.refused);
-    for (const Estimate* e :
-         {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
-          &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p, &p.airborne_fraction})
+    for (const Estimate* e : {&p.q, &p.q_tilde, &p.chi_eff, &p.long_arches_per_min, &p.added_per_long_arch,
+                              &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p,
+                              &p.airborne_fraction, &p.avalanche_mean})
       s += "," + core::format_g(e->mean) + "," + core::format_g(e->half_width);
     s += "\n";
   }
@@ -183,6 +186,38 @@ std::string pooled_survival_csv(const std::vector<Point>& points) {
     for (size_t i = 0; i < taus.size(); ++i)
       s += prefix + core::format_g(taus[i]) + "," + core::format_g(surv[i]) + "," +
            std::to_string(gaps.size()) + "\n";
+  }
+  return s;
+}
+
+std::string pooled_avalanches_csv(const std::vector<Point>& points) {
+  std::string s;
+  for (const auto& k : kVaried) s += k + ",";
+  s += "size,survival,avalanches\n";
+  for (const auto& p : points) {
+    std::vector<double> sizes;
+    for (const Run* r : p.runs) {
+      std::vector<core::ExitEvent> within;
+      for (const auto& e : r->events.exits)
+        if (e.t <= r->m.duration) within.push_back(e);
+      auto a = avalanche_sizes(within, p.scene.clog_min_gap);
+      sizes.insert(sizes.end(), a.begin(), a.end());
+    }
+    std::string prefix;
+    for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
+    if (sizes.empty()) continue;
+    const double largest = *std::max_element(sizes.begin(), sizes.end());
+    std::vector<double> at;
+    for (double v = 1; v <= std::min(10.0, largest); ++v) at.push_back(v);
+    for (int k = 21; std::pow(10.0, k / 20.0) <= largest; ++k) {
+      const double v = std::round(std::pow(10.0, k / 20.0));
+      if (v > at.back()) at.push_back(v);
+    }
+    if (at.back() < largest) at.push_back(largest);
+    const auto surv = survival(sizes, at);
+    for (size_t i = 0; i < at.size(); ++i)
+      s += prefix + core::format_g(at[i]) + "," + core::format_g(surv[i]) + "," +
+           std::to_string(sizes.size()) + "\n";
   }
   return s;
 }

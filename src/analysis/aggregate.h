@@ -34,6 +34,7 @@ struct Point {
   Estimate q_tilde_over_qp;  // NaN mean when no pure point exists
   Estimate q_p;              // Q of the pure point this point is compared with (same kick strength)
   Estimate airborne_fraction;
+  Estimate avalanche_mean;  // of the realizations' mean avalanche sizes (disks between clogs)
   long clogs = 0, clogs_vibration = 0, clogs_rule = 0, clogs_spontaneous = 0, ballistic_runs = 0;
   long refused = 0;  // realizations of this point the health monitor refused: not in `runs`, so every
                      // estimate is of the realizations that finished (a selection when this is not 0)
@@ -46,5 +47,8 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
 std::string realizations_csv(const std::vector<Run>& runs);
 std::string points_csv(const std::vector<Point>& points);
 std::string pooled_survival_csv(const std::vector<Point>& points);
+// P(S >= s) of the avalanche sizes S (disks between two clogs) pooled over each point's realizations, at
+// s = 1..10 and then about 20 sizes per decade up to the largest; `avalanches` is the number pooled.
+std::string pooled_avalanches_csv(const std::vector<Point>& points);
 
 }  // namespace analysis

@@ -5,11 +5,13 @@
 
 namespace analysis {
 
-Measurements measure(const core::Events& ev, double duration) {
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap) {
   Measurements m;
   m.duration = duration;
+  std::vector<core::ExitEvent> within;
   for (const auto& e : ev.exits) {
     if (e.t > duration) continue;
+    within.push_back(e);
     ++m.exits;
     ++(e.species == core::Species::Original ? m.exits_original : m.exits_added);
   }
@@ -46,6 +48,11 @@ Measurements measure(const core::Events& ev, double duration) {
   }
   long decided = m.clogs_vibration + m.clogs_rule;
   m.fraction_broken_by_vibration = decided > 0 ? static_cast<double>(m.clogs_vibration) / decided : NAN;
+  const std::vector<double> sizes = avalanche_sizes(within, clog_min_gap);
+  m.avalanches = static_cast<long>(sizes.size());
+  double sum = 0;
+  for (double s : sizes) sum += s;
+  m.avalanche_mean = sizes.empty() ? NAN : sum / static_cast<double>(sizes.size());
   return m;
 }
 

@@ -20,13 +20,16 @@ struct Measurements {
   long clogs = 0;                    // exit gaps >= clog_min_gap, any ending
   long clogs_spontaneous = 0, clogs_vibration = 0, clogs_rule = 0, clogs_run_end = 0;
   double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
+  long avalanches = 0;        // complete avalanches between clogs (avalanche_sizes), within `duration`
+  double avalanche_mean = 0;  // mean disks (both species) per complete avalanche (NaN if none)
   // Health, from the run's metadata (not from the events): set by the caller.
   long health_warnings = 0;      // --unsafe warnings
   double airborne_fraction = 0;  // mean fraction of disks in flight above the column
   bool ballistic = false;        // airborne_fraction above the ballistic threshold
 };
 
-Measurements measure(const core::Events& ev, double duration);
+// `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches.
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap);
 
 // Gaps between consecutive exits of original disks, s (added disks may exit in between).
 std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);

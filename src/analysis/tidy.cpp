@@ -30,7 +30,8 @@ std::string summary_header() {
          "duration_s,exits,exits_original,exits_added,q_per_s,q_tilde_per_s,chi_eff,long_arches,"
          "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_"
          "vibration,"
-         "clogs_rule,clogs_run_end,fraction_broken_by_vibration,airborne_fraction,ballistic,health_warnings";
+         "clogs_rule,clogs_run_end,fraction_broken_by_vibration,airborne_fraction,ballistic,health_warnings,"
+         "avalanches,avalanche_mean";
 }
 
 std::string summary_row(const core::Scene& s, const Measurements& m) {
@@ -43,7 +44,8 @@ std::string summary_row(const core::Scene& s, const Measurements& m) {
          std::to_string(m.clogs_vibration) + "," + std::to_string(m.clogs_rule) + "," +
          std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration) + "," +
          core::format_g(m.airborne_fraction) + "," + (m.ballistic ? "1" : "0") + "," +
-         std::to_string(m.health_warnings);
+         std::to_string(m.health_warnings) + "," + std::to_string(m.avalanches) + "," +
+         core::format_g(m.avalanche_mean);
 }
 
 std::vector<double> survival_taus(const core::Scene& s) {

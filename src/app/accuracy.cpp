@@ -50,7 +50,7 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
         std::lock_guard lock(m);
         out.sim_seconds += s.duration;
         out.wall_seconds += wall;
-        out.runs.push_back(analysis::measure(h.events(), s.duration));
+        out.runs.push_back(analysis::measure(h.events(), s.duration, s.clog_min_gap));
         auto av = analysis::avalanche_sizes(h.events().exits, s.clog_min_gap);
         out.avalanche_sizes.insert(out.avalanche_sizes.end(), av.begin(), av.end());
         auto gaps = analysis::original_gaps(h.events().exits);

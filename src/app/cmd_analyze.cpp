@@ -87,7 +87,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                          " --unsafe warnings (--include-unhealthy counts it)");
       continue;
     }
-    r.m = analysis::measure(r.events, covered);
+    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap);
     r.m.health_warnings = rec.health_warnings;
     r.m.ballistic = rec.ballistic;
     r.m.airborne_fraction = rec.airborne_fraction;
@@ -114,6 +114,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("realizations.csv"), analysis::realizations_csv(runs));
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
   io::write_file_atomic(out.file("survival.csv"), analysis::pooled_survival_csv(points));
+  io::write_file_atomic(out.file("avalanches.csv"), analysis::pooled_avalanches_csv(points));
   io::RunInfo info{command_line(),
                    {{"runs", runs.size()},
                     {"points", points.size()},
@@ -125,8 +126,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
   if (quiet) return 0;
-  std::printf("%zu runs, %zu points -> %s/{points,realizations,survival}.csv\n", runs.size(), points.size(),
-              o.out.c_str());
+  std::printf("%zu runs, %zu points -> %s/{points,realizations,survival,avalanches}.csv\n", runs.size(),
+              points.size(), o.out.c_str());
   std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
               "chi_eff");
   for (const auto& p : points) {

@@ -64,7 +64,7 @@ std::string command_line() {
 }
 
 analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
-  analysis::Measurements m = analysis::measure(h.events(), duration);
+  analysis::Measurements m = analysis::measure(h.events(), duration, h.scene().clog_min_gap);
   m.health_warnings = h.health_warnings();
   m.airborne_fraction = h.airborne().mean();
   m.ballistic = h.ballistic();

@@ -3,7 +3,7 @@
 
     python3 figures.py ANALYSIS_DIR OUT_DIR
 
-Reads points.csv and survival.csv; writes each figure as PNG, SVG and PDF. Error bars are the 95% confidence
+Reads points.csv, survival.csv and avalanches.csv; writes each figure as PNG, SVG and PDF. Error bars are the 95% confidence
 intervals of the mean over realizations. Restyle freely: every number comes from the CSV.
 """
 import csv
@@ -239,44 +239,75 @@ def main(src, out):
     ax.legend()
     save(fig, out, "qtilde_vs_chi_eff")
 
-    # Survival functions: one panel per size ratio (every curve of the grid), each with the pure system.
-    surv_path = os.path.join(src, "survival.csv")
-    if not os.path.exists(surv_path):
-        print("skipped survival: no survival.csv")
+    # Survival of the gaps between original exits, and of the avalanche sizes: one panel per size ratio.
+    for name, x, xlabel, ylabel, logx in (
+            ("survival", "tau_s", r"$\tau$ [s]", r"$\tilde P(\Delta t \geq \tau)$", False),
+            ("avalanches", "size", r"avalanche size $s$ (disks between two clogs)", r"$P(S \geq s)$", True)):
+        path = os.path.join(src, name + ".csv")
+        if not os.path.exists(path):
+            print(f"skipped {name}: no {name}.csv")
+            continue
+        distribution_panels(read(path), chi0, x, xlabel, ylabel, logx, out, name)
+
+    # Mean avalanche size versus r, one curve per dipole strength, the pure system as a band.
+    if "avalanche_mean" not in points[0]:
+        print("skipped avalanche_size_vs_r: points.csv has no avalanche_mean (analyzed by an older siloscope)")
         return
-    surv = read(surv_path)
+    if len(sizes) < 2:
+        print(f"skipped avalanche_size_vs_r: the grid has one size ratio at chi = {chi0:g}")
+        return
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    for i, fr in enumerate(ratios):
+        xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio",
+                            "avalanche_mean", "avalanche_mean_ci95")
+        label = "non-magnetic" if fr == 0 else f"$F_{{dip}}/W_a$ = {fr:g}"
+        ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=COLORS[i % len(COLORS)], label=label)
+    for p in points:
+        if p["chi"] == 0 and finite(p.get("avalanche_mean")):
+            h = p["avalanche_mean_ci95"] if finite(p.get("avalanche_mean_ci95")) else 0.0
+            ax.axhspan(p["avalanche_mean"] - h, p["avalanche_mean"] + h, color="k", alpha=0.12, lw=0)
+            ax.axhline(p["avalanche_mean"], color="k", lw=0.8, ls="--", label="pure")
+    ax.set_xlabel(r"size ratio $r = r_a / r_o$")
+    ax.set_ylabel(r"mean avalanche size $\langle s \rangle$ [disks]")
+    ax.set_title(rf"$\chi$ = {chi0:g}")
+    ax.legend()
+    save(fig, out, "avalanche_size_vs_r")
+
+
+def distribution_panels(rows, chi0, x, xlabel, ylabel, logx, out, name):
+    """P(X >= x) per point at chi0, one panel per size ratio (every curve of the grid), each with the pure system."""
     groups = {}
-    for s in surv:
+    for s in rows:
         groups.setdefault((s["size_ratio"], s["chi"], s["mu"]), []).append(s)
-    pure = [rows for (r, chi, mu), rows in groups.items() if chi == 0]
+    pure = [g for (r, chi, mu), g in groups.items() if chi == 0]
     rs = sorted({r for (r, chi, mu) in groups if chi > 0 and abs(chi - chi0) < 1e-9})
     if not rs:
-        print(f"skipped survival: no points at chi = {chi0:g}")
+        print(f"skipped {name}: no points at chi = {chi0:g}")
         return
     cols = min(3, len(rs))
     nrows = math.ceil(len(rs) / cols)
     fig, axes = plt.subplots(nrows, cols, figsize=(4.2 * cols, 3.2 * nrows), squeeze=False)
     for ax, r in zip(axes.flat, rs):
-        def curve(rows, **kw):
-            rows = sorted(rows, key=lambda s: s["tau_s"])
-            taus = [s["tau_s"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
-            ps = [s["survival"] for s in rows if finite(s["survival"]) and s["survival"] > 0]
-            ax.step(taus, ps, where="post", **kw)
-        for rows in pure:
-            curve(rows, color="k", lw=1.6, label="pure")
+        def curve(g, **kw):
+            g = sorted((s for s in g if finite(s["survival"]) and s["survival"] > 0), key=lambda s: s[x])
+            ax.step([s[x] for s in g], [s["survival"] for s in g], where="post", **kw)
+        for g in pure:
+            curve(g, color="k", lw=1.6, label="pure")
         i = 0
-        for (rr, chi, mu), rows in sorted(groups.items()):
+        for (rr, chi, mu), g in sorted(groups.items()):
             if rr == r and abs(chi - chi0) < 1e-9:
-                curve(rows, color=COLORS[i % len(COLORS)], lw=1.1, label=rf"$\mu$ = {mu:.3g}")
+                curve(g, color=COLORS[i % len(COLORS)], lw=1.1, label=rf"$\mu$ = {mu:.3g}")
                 i += 1
         ax.set_yscale("log")
+        if logx:
+            ax.set_xscale("log")
         ax.set_title(f"r = {r:g}")
-        ax.set_xlabel(r"$\tau$ [s]")
-        ax.set_ylabel(r"$\tilde P(\Delta t \geq \tau)$")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
         ax.legend(fontsize=6)
     for ax in list(axes.flat)[len(rs):]:
         ax.axis("off")
-    save(fig, out, "survival")
+    save(fig, out, name)
 
 
 if __name__ == "__main__":

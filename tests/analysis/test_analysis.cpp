@@ -1,10 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include <filesystem>
 #include <fstream>
 
+#include "analysis/aggregate.h"
 #include "analysis/measure.h"
 #include "analysis/stats.h"
 #include "core/error.h"
@@ -52,6 +54,43 @@ TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
   CHECK(analysis::avalanche_sizes(exits, 0.15) == std::vector<double>{3, 1, 1});
   CHECK(analysis::avalanche_sizes(exits, 2.0).empty());  // never clogged: the only avalanche is cut short
   CHECK(analysis::avalanche_sizes({}, 0.5).empty());
+  // A realization's avalanche count and mean size, within its analysed duration.
+  core::Events ev;
+  ev.exits = exits;
+  auto m = analysis::measure(ev, 10.0, 0.5);
+  CHECK(m.avalanches == 2);
+  CHECK(m.avalanche_mean == Approx(2.5));
+  m = analysis::measure(ev, 2.5, 0.5);  // the exits after 2.5 s are outside: {3} complete, {2} cut short
+  CHECK(m.avalanches == 1);
+  CHECK(m.avalanche_mean == Approx(3.0));
+  m = analysis::measure(ev, 10.0, 2.0);
+  CHECK(m.avalanches == 0);
+  CHECK(std::isnan(m.avalanche_mean));
+  // Pooled over a point's realizations: P(S >= s) at s = 1..largest, with the number pooled; points.csv
+  // carries the mean over realizations of each one's mean size.
+  std::vector<analysis::Run> runs(2);
+  for (int k = 0; k < 2; ++k) {
+    runs[k].source = "r" + std::to_string(k);
+    runs[k].scene.seed = static_cast<std::uint64_t>(k + 1);
+    runs[k].scene.duration = 10;
+    runs[k].events = ev;
+    if (k == 1) runs[k].events.exits.resize(4);  // gaps 0.1 0.1 | 0.6: {3} complete, then {1} cut short
+    runs[k].m = analysis::measure(runs[k].events, 10.0, 0.5);
+  }
+  REQUIRE(runs[1].m.avalanches == 1);
+  auto points = analysis::aggregate(runs);
+  REQUIRE(points.size() == 1);
+  CHECK(points[0].avalanche_mean.mean == Approx((2.5 + 3.0) / 2));
+  CHECK(points[0].avalanche_mean.n == 2);
+  // Pooled sizes {3, 2, 3}: P(S >= 1) = P(S >= 2) = 1, P(S >= 3) = 2/3.
+  const std::string csv = analysis::pooled_avalanches_csv(points);
+  CHECK_THAT(csv,
+             Catch::Matchers::StartsWith("size_ratio,chi,mu,kick_impulse_max,size,survival,avalanches\n"));
+  CHECK_THAT(csv, Catch::Matchers::Contains(",1,1,3\n") && Catch::Matchers::Contains(",2,1,3\n") &&
+                      Catch::Matchers::Contains(",3,0.666666667,3\n"));
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 4);  // header + s = 1, 2, 3 (the largest)
+  CHECK_THAT(analysis::points_csv(points),
+             Catch::Matchers::Contains(",avalanche_mean,avalanche_mean_ci95\n"));
 }
 
 TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
@@ -78,7 +117,7 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
               {12, 13, core::ClogEnd::Vibration, true},
               {14, 15, core::ClogEnd::Spontaneous, false},
               {15, 20, core::ClogEnd::Rule, true}};
-  auto m = analysis::measure(ev, 30.0);
+  auto m = analysis::measure(ev, 30.0, 0.5);
   CHECK(m.exits == 30);
   CHECK(m.exits_added == 10);
   CHECK(m.q == Approx(1.0));
@@ -89,6 +128,9 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
   CHECK(m.members_per_long_arch == Approx(3.5));
   CHECK(m.clogs_rule == 2);
   CHECK(m.fraction_broken_by_vibration == Approx(1.0 / 3.0));
+  CHECK(m.avalanches ==
+        29);  // every 1 s gap is a clog at 0.5 s: 29 avalanches of one disk, the last cut short
+  CHECK(m.avalanche_mean == Approx(1.0));
 }
 
 TEST_CASE("event files round-trip, truncated or corrupted ones are refused with file and line",
@@ -135,8 +177,6 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
   CHECK_THROWS_AS(io::read_events(dir), core::InputError);
 }
 
-#include "analysis/aggregate.h"
-
 namespace {
 analysis::Run synthetic_run(double chi, std::uint64_t seed, double q_tilde) {
   analysis::Run r;
@@ -147,7 +187,7 @@ analysis::Run synthetic_run(double chi, std::uint64_t seed, double q_tilde) {
   // q_tilde originals per second, plus (for chi > 0) one added exit per second.
   for (int i = 0; i < static_cast<int>(q_tilde * 10); ++i)
     r.events.exits.push_back({i * 0.1, i, Species::Original});
-  r.m = analysis::measure(r.events, r.scene.duration);
+  r.m = analysis::measure(r.events, r.scene.duration, r.scene.clog_min_gap);
   return r;
 }
 }  // namespace

@@ -104,7 +104,7 @@ TEST_CASE(
     sim::Hopper h(s);
     h.advance_to(s.duration);
     h.finish();
-    return analysis::measure(h.events(), s.duration);
+    return analysis::measure(h.events(), s.duration, s.clog_min_gap);
   };
   const analysis::Measurements weak = run(5e-5), strong = run(5e-3);
   INFO("literal: " << weak.clogs_vibration << " vibration, " << weak.clogs_rule
