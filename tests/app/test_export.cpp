@@ -298,3 +298,44 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("holds no points.csv"));
 }
+
+TEST_CASE("claims: controls check the r = 1 non-magnetic point against the pure system and chi",
+          "[claims][app]") {
+  fs::path d = temp_dir("claims-controls");
+  // r = 1 without dipoles is the pure system relabelled: Q, the mean avalanche size and chi_eff = chi must
+  // agree. "same" agrees; "asym" has chi_eff 0.37 +- 0.01 (p < 1e-8) and Q 2.3 +- 0.1 against 2.0 +- 0.1
+  // (p = 3.2e-5); "alone" has no pure point.
+  for (const char* name : {"same", "asym", "alone"}) {
+    const std::string n = name;
+    fs::create_directories(d / name / "analysis");
+    std::ofstream f(d / name / "analysis" / "points.csv");
+    f << "size_ratio,chi,mu,kick_impulse_max,dipole_force_ratio,n_runs,q_per_s,q_per_s_ci95,q_tilde_over_qp,"
+         "q_tilde_over_qp_ci95,q_tilde_per_s,q_tilde_per_s_ci95,chi_eff,chi_eff_ci95,long_arches_per_min,"
+         "long_arches_per_min_ci95,added_per_long_arch,added_per_long_arch_ci95,avalanche_mean,"
+         "avalanche_mean_ci95\n";
+    f << "1,0.4,0,5e-05,0,20," << (n == "asym" ? "2.3" : "2.0") << ",0.1,0.6,0.05,1.2,0.06,"
+      << (n == "asym" ? "0.37" : "0.401") << ",0.01,10,0.2,0.5,0.1,12,1\n";
+    if (n != "alone") f << "0.4,0,0,5e-05,0,20,2.0,0.1,1,0.05,2.0,0.1,0,0,10,0.2,0,0,12.5,1\n";
+  }
+  auto r = cli("claims same=" + (d / "same").string() + " asym=" + (d / "asym").string() +
+               " alone=" + (d / "alone").string() + " --out " + (d / "claims.md").string());
+  REQUIRE(r.code == 0);
+  const std::string md = slurp(d / "claims.md");
+  INFO(md);
+  CHECK_THAT(md, Catch::Matchers::Contains("## Controls: the model against itself"));
+  CHECK_THAT(md,
+             Catch::Matchers::Contains("- **same**: chi_eff at r = 1, F/W = 0 against chi = 0.4: 0.401 +- "
+                                       "0.01 (n = 20) vs 0.4: +0.001 +- 0.01 (p = 0.84): consistent"));
+  CHECK_THAT(md,
+             Catch::Matchers::Contains("- **same**: Q [1/s], all disks at r = 1, F/W = 0 against the pure "
+                                       "system: 2 +- 0.1 (n = 20) vs 2 +- 0.1 (n = 20): +0 +- 0.14 (p = 1): "
+                                       "consistent"));
+  CHECK_THAT(md,
+             Catch::Matchers::Contains("- **same**: mean avalanche size [disks] at r = 1, F/W = 0 against "
+                                       "the pure system: 12 +- 1 (n = 20) vs 12.5 +- 1 (n = 20)"));
+  CHECK_THAT(md, Catch::Matchers::Contains("-0.03 +- 0.01 (p = ") &&
+                     Catch::Matchers::Contains("): **differs** (measured cause: the deposition"));
+  CHECK_THAT(md, Catch::Matchers::Contains("+0.3 +- 0.14 (p = 3.2e-05): **differs**"));
+  CHECK_THAT(
+      md, Catch::Matchers::Contains("- **alone**: the grid lacks r = 1 without dipoles or the pure system"));
+}
