@@ -67,6 +67,8 @@ const std::vector<Field>& scene_fields() {
       {"global_kick", &Scene::global_kick, "", 0, 0, nullptr,
        "also kick every particle by one shared impulse"},
       {"settle_kicks", &Scene::settle_kicks, "", 0, 0, nullptr, "also kick while settling (aperture closed)"},
+      {"deposit_order", &Scene::deposit_order, "", 0, 0, "originals_first|shuffled",
+       "order of the random deposition: original disks first, or species at random"},
       {"settle_time", &Scene::settle_time, "s", 0.0, 1e4, nullptr, "settling with the aperture closed"},
       {"duration", &Scene::duration, "s", 0.0, 1e6, nullptr, "discharge time after the aperture opens"},
       {"clog_timeout", &Scene::clog_timeout, "s", 1e-3, 1e6, nullptr,

@@ -43,6 +43,10 @@ struct Scene {
       false;  // also kick while settling with the aperture closed (strong kicks fling disks out)
 
   // --- protocol ---
+  // Order of random sequential deposition: "originals_first" (the original disks, then the added ones: every
+  // campaign so far) or "shuffled" (species interleaved at random; the bottom then holds chi added disks, see
+  // docs/campaigns/README.md, "The initial packing").
+  std::string deposit_order = "originals_first";
   double settle_time = 4.0;   // s, settling with the aperture closed before t = 0
   double duration = 150.0;    // s of discharge after the aperture opens
   double clog_timeout = 5.0;  // s without an exit before the blocking arch is removed (the 5 s rule)

@@ -31,11 +31,24 @@ double Hopper::deposit_height() const {
 
 void Hopper::deposit() {
   const int n_o = static_cast<int>(scene_.n_original()), n = static_cast<int>(scene_.n_total);
+  auto species_of = [&](int id) { return id < n_o ? core::Species::Original : core::Species::Added; };
+  auto radius_of = [&](int id) {
+    return species_of(id) == core::Species::Original ? scene_.radius_original : scene_.radius_added();
+  };
+  // Placement order: ids in order (the larger original disks first, so the smaller ones fit into the gaps), or
+  // shuffled (Fisher-Yates on the deposition stream; the default order draws nothing extra).
+  std::vector<int> order(static_cast<size_t>(n));
+  for (int id = 0; id < n; ++id) order[static_cast<size_t>(id)] = id;
+  if (scene_.deposit_order == "shuffled")
+    for (int k = n - 1; k > 0; --k)
+      std::swap(order[static_cast<size_t>(k)],
+                order[static_cast<size_t>(rng_deposit_.uniform() * (k + 1)) % static_cast<size_t>(k + 1)]);
+  std::vector<core::Vec2> at(static_cast<size_t>(n));
   std::vector<core::Vec2> placed;
-  for (int id = 0; id < n; ++id) {
-    const core::Species sp = id < n_o ? core::Species::Original : core::Species::Added;
-    const double r = sp == core::Species::Original ? scene_.radius_original : scene_.radius_added();
-    // Random sequential deposition, larger disks first (ids are ordered so), no overlaps, aperture closed.
+  std::vector<double> placed_r;
+  for (int id : order) {
+    const double r = radius_of(id);
+    // Random sequential deposition, no overlaps, aperture closed.
     core::Vec2 p;
     bool ok = false;
     for (int attempt = 0; attempt < 200000 && !ok; ++attempt) {
@@ -45,8 +58,8 @@ void Hopper::deposit() {
       p.x = rng_deposit_.uniform(-hw, hw);
       if (p.y - r < 0 || geo_.side_clearance(p, r) < 0) continue;
       ok = true;
-      for (int j = 0; j < id && ok; ++j) {
-        double rr = r + radius_[j];
+      for (size_t j = 0; j < placed.size() && ok; ++j) {
+        double rr = r + placed_r[j];
         core::Vec2 d = p - placed[j];
         ok = core::dot(d, d) >= rr * rr;
       }
@@ -55,6 +68,13 @@ void Hopper::deposit() {
       throw core::InputError("scene: could not deposit " + std::to_string(n) +
                              " disks without overlap; lower n_total or raise silo_height");
     placed.push_back(p);
+    placed_r.push_back(r);
+    at[static_cast<size_t>(id)] = p;
+  }
+  for (int id = 0; id < n; ++id) {
+    const core::Species sp = species_of(id);
+    const double r = radius_of(id);
+    const core::Vec2 p = at[static_cast<size_t>(id)];
     radius_.push_back(r);
     species_.push_back(sp);
     if (sp == core::Species::Added) added_ids_.push_back(id);
