@@ -35,8 +35,8 @@ void Hopper::deposit() {
   auto radius_of = [&](int id) {
     return species_of(id) == core::Species::Original ? scene_.radius_original : scene_.radius_added();
   };
-  // Placement order: ids in order (the larger original disks first, so the smaller ones fit into the gaps), or
-  // shuffled (Fisher-Yates on the deposition stream; the default order draws nothing extra).
+  // Placement order: ids in order (the larger original disks first, so the smaller ones fit into the gaps),
+  // or shuffled (Fisher-Yates on the deposition stream; the default order draws nothing extra).
   std::vector<int> order(static_cast<size_t>(n));
   for (int id = 0; id < n; ++id) order[static_cast<size_t>(id)] = id;
   if (scene_.deposit_order == "shuffled")
