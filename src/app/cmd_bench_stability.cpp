@@ -12,6 +12,7 @@
 #include "app/common.h"
 #include "core/error.h"
 #include "core/physics.h"
+#include "core/setup.h"
 #include "io/metadata.h"
 #include "io/output.h"
 #include "sim/hopper.h"
@@ -55,7 +56,8 @@ int bench_stability(const StabilityOptions& o) {
       s.duration = o.seconds;
       s.unsafe = true;  // run it anyway: we want to know whether it really breaks
       c.mu = s.mu;
-      c.safe_dt = std::min(core::dipole_safe_dt(s), core::kinematic_safe_dt(s));
+      const core::Setup st = core::resolve(s);
+      c.safe_dt = std::min(core::dipole_safe_dt(st), core::kinematic_safe_dt(st, s.gravity));
       c.refused = s.dt > c.safe_dt;
       try {
         sim::Hopper h(s);

@@ -8,19 +8,27 @@
 
 namespace core {
 
+// A grain's species: its place in the scene's species list (core/setup.h), 0 to 15. The paper's shorthand
+// has two: Original (0) and Added (1); the names of any other list come from the scene.
 enum class Species : std::uint8_t { Original = 0, Added = 1 };
-inline const char* species_name(Species s) {
-  return s == Species::Original ? "original" : "added";
+inline int species_index(Species s) {
+  return static_cast<int>(s);
 }
+// The shorthand's names ("original", "added"); "species K" beyond them (outputs use the scene's names).
+std::string species_name(Species s);
 
 struct Particle {
-  float x, y;    // m, centre
+  float x, y;    // m, centre (world frame: a vibrating container's displacement included)
   float angle;   // rad
   float vx, vy;  // m/s
-  float radius;  // m
-  float force;   // N, sum of contact normal force magnitudes on this disk over the last step
+  float radius;  // m, of the disk of equal area (a disk's own radius)
+  float force;   // N, sum of contact normal force magnitudes on this grain over the last step
   Species species;
+  std::uint8_t sides = 0;  // 0: disk; 3-8: regular polygon of circumradius radius * polygon_extent(sides)
 };
+
+// Circumradius over equal-area radius of a regular polygon of `sides` sides (1 for a disk).
+double polygon_extent(int sides);
 
 // What a movie frame should point out beyond the state itself (filled by the recorder from the events; empty
 // elsewhere): disks a rule removal took away, marked where they stood, a caption, a slow-motion badge.
@@ -41,6 +49,7 @@ struct Frame {
   double since_last_exit = 0;       // s, the clog timer
   std::int64_t exits_original = 0;  // exits so far of each species
   std::int64_t exits_added = 0;
+  double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
   Marks marks;
 };
 

@@ -1,5 +1,6 @@
 // The container's geometry, derived from a scene: shared by the simulation, the renderer and the tests,
-// so the walls are defined once. Coordinates in metres; the aperture is centred at (0, 0), y points up.
+// so the walls are defined once. Coordinates in metres, in the container's own frame: the outlet is centred
+// at (0, 0) and y points up (a tilted or vibrating container moves this frame; see core/setup.h).
 #pragma once
 
 #include <array>
@@ -31,31 +32,63 @@ inline double length(Vec2 a) {
 struct Segment {
   Vec2 a, b;
 };
+// Distance from p to the segment s, m.
+double distance_to_segment(Vec2 p, const Segment& s);
 
-// Wall identifiers, used by contact graphs and the renderer.
-enum class Wall : int { HopperLeft = 0, HopperRight, SiloLeft, SiloRight, Top, Lid, Count };
+// Wall identifiers, used by contact graphs and the renderer. HopperLeft and HopperRight are the walls the
+// outlet opens between: the sloped hopper walls, or the two halves of a flat floor.
+enum class Wall : int { HopperLeft = 0, HopperRight, SiloLeft, SiloRight, Top, Lid, Obstacle, Count };
+
+enum class ContainerKind { Hopper, Flat };
+
+// An obstacle above the outlet: a disk (width = height = its diameter) or a horizontal bar.
+struct Obstacle {
+  enum class Kind { None, Disk, Bar } kind = Kind::None;
+  Vec2 centre;        // m
+  double width = 0;   // m: the disk's diameter, the bar's width
+  double height = 0;  // m: the disk's diameter, the bar's thickness
+  bool present() const { return kind != Kind::None; }
+  // Signed distance from p to the obstacle's surface (negative inside), m.
+  double gap(Vec2 p) const;
+};
 
 struct Geometry {
-  double half_width;      // W/2, m
-  double half_aperture;   // D/2, m
-  double hopper_height;   // H_t, m
-  double total_height;    // H_t + H_s, m
-  double grain_diameter;  // 2 r_o, m: what cameras are sized by
-  // The walls in order of Wall (Lid is the closed aperture during deposition).
+  ContainerKind kind = ContainerKind::Hopper;
+  double half_width;       // W/2, m
+  double x_left, x_right;  // the silo's side walls, m (-W/2 and W/2 shifted by -outlet_x)
+  double half_aperture;    // D/2, m
+  double hopper_height;    // H_t, m (0 for a flat silo)
+  double total_height;     // H_t + H_s, m
+  double grain_diameter;   // the largest species' mean diameter, m: what cameras and slabs are sized by
+  // The walls in order of Wall (Lid is the closed aperture during deposition; Obstacle is unused here: see
+  // `obstacle`).
   std::array<Segment, static_cast<int>(Wall::Count)> walls;
+  Obstacle obstacle;
 
-  // Angle of each hopper wall from the vertical, radians.
-  double wall_angle_from_vertical() const { return std::atan((half_width - half_aperture) / hopper_height); }
-  // Inner half-width of the container at height y (m): the hopper narrows linearly below H_t.
-  double half_width_at(double y) const {
-    if (y >= hopper_height) return half_width;
-    if (y <= 0) return half_aperture;
-    return half_aperture + (half_width - half_aperture) * y / hopper_height;
+  // Angle of each bottom wall from the vertical, radians (90 degrees for a flat floor).
+  double left_wall_angle() const;
+  double right_wall_angle() const;
+  // The mean of the two (the paper's hopper: 14.45 degrees).
+  double wall_angle_from_vertical() const { return 0.5 * (left_wall_angle() + right_wall_angle()); }
+  // Inner side walls at height y (m): the hopper narrows linearly below H_t to the outlet's edges.
+  double left_at(double y) const {
+    if (y >= hopper_height) return x_left;
+    if (y <= 0) return -half_aperture;
+    return -half_aperture + (x_left + half_aperture) * y / hopper_height;
   }
-  // Signed clearance of a disk at p with radius r from the side walls (negative: it pokes through).
+  double right_at(double y) const {
+    if (y >= hopper_height) return x_right;
+    if (y <= 0) return half_aperture;
+    return half_aperture + (x_right - half_aperture) * y / hopper_height;
+  }
+  double width_at(double y) const { return right_at(y) - left_at(y); }
+  // Signed clearance of a disk at p with radius r from the side walls, the floor and the obstacle (negative:
+  // it pokes through).
   double side_clearance(Vec2 p, double r) const;
   // True if a disk of radius r at p lies inside the container (above the aperture line, below the top).
   bool contains(Vec2 p, double r) const;
+  // The container's area below the top (m^2), the obstacle left out.
+  double area() const;
 };
 
 Geometry make_geometry(const Scene& s);

@@ -13,20 +13,20 @@
 
 #include "core/error.h"
 #include "core/format.h"
-#include "core/physics.h"
+#include "core/setup.h"
 
 namespace core {
 
 namespace {
 
-std::string range_text(const Field& f) {
+std::string range_text(double min, double max) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "[%.10g, %.10g]", f.min, f.max);
+  std::snprintf(buf, sizeof buf, "[%.10g, %.10g]", min, max);
   return buf;
 }
 
-std::string unit_text(const Field& f) {
-  std::string u = f.unit ? f.unit : "";
+std::string unit_suffix(const char* unit) {
+  std::string u = unit ? unit : "";
   return (u.empty() || u == "1") ? "" : " " + u;
 }
 
@@ -34,64 +34,206 @@ std::string unit_text(const Field& f) {
                       const std::string& allowed) {
   throw InputError(origin + ": " + key + " = " + value + " is not allowed; " + allowed);
 }
+
+bool in_choices(const char* choices, const std::string& v) {
+  std::stringstream ss(choices ? choices : "");
+  for (std::string c; std::getline(ss, c, '|');)
+    if (c == v) return true;
+  return false;
+}
+
+// Parse `value` into `v` (a number, whole number, boolean or text), naming `key` and `origin` on failure.
+template <class T>
+void parse_value(T& v, const std::string& key, const std::string& value, const std::string& origin,
+                 double min, double max) {
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>) {
+    char* end = nullptr;
+    double d = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(d))
+      bad(origin, key, value, "expected a finite number");
+    v = d;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (value == "true" || value == "1")
+      v = true;
+    else if (value == "false" || value == "0")
+      v = false;
+    else
+      bad(origin, key, value, "expected true or false");
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    std::string t = value;
+    if (t.size() >= 2 && t.front() == '"' && t.back() == '"') t = t.substr(1, t.size() - 2);
+    v = t;
+  } else {
+    char* end = nullptr;
+    errno = 0;
+    T i{};
+    if constexpr (std::is_unsigned_v<T>)
+      i = std::strtoull(value.c_str(), &end, 10);
+    else
+      i = std::strtoll(value.c_str(), &end, 10);
+    bool negative_unsigned = std::is_unsigned_v<T> && value.find('-') != std::string::npos;
+    if (value.empty() || *end != '\0' || errno != 0 || negative_unsigned)
+      bad(origin, key, value, "expected a whole number in " + range_text(min, max));
+    v = i;
+  }
+}
+
+template <class T>
+std::string value_text(const T& v) {
+  if constexpr (std::is_same_v<T, double>)
+    return format_shortest(v);
+  else if constexpr (std::is_same_v<T, std::optional<double>>)
+    return v ? format_shortest(*v) : std::string();
+  else if constexpr (std::is_same_v<T, bool>)
+    return v ? "true" : "false";
+  else if constexpr (std::is_same_v<T, std::string>)
+    return toml_string(v);
+  else
+    return std::to_string(v);
+}
+
+// A species name: a lower-case letter, then lower-case letters, digits or '_', at most 32 characters (it
+// names columns, legends and command-line keys).
+bool valid_species_name(const std::string& n) {
+  if (n.empty() || n.size() > 32 || !(n[0] >= 'a' && n[0] <= 'z')) return false;
+  for (char c : n)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return false;
+  return true;
+}
+
+SpeciesSpec* species_named(Scene& s, const std::string& name) {
+  for (auto& sp : s.species)
+    if (sp.name == name) return &sp;
+  return nullptr;
+}
 }  // namespace
 
 std::int64_t Scene::n_added() const {
   return std::llround(chi * static_cast<double>(n_total));
 }
 
+std::string Scene::where(const std::string& key) const {
+  auto it = origin.find(key);
+  return it == origin.end() ? std::string("scene") : it->second;
+}
+
 const std::vector<Field>& scene_fields() {
-  // key, member, unit, min, max, choices, doc
+  // key, member, unit, min, max, choices, doc, section
   static const std::vector<Field> fields = {
       {"radius_original", &Scene::radius_original, "m", 1e-3, 1.0, nullptr,
-       "radius r_o of the original disks"},
-      {"size_ratio", &Scene::size_ratio, "1", 0.2, 1.0, nullptr, "r = r_a / r_o, size ratio of added disks"},
-      {"n_total", &Scene::n_total, "1", 1, 5000, nullptr, "N_o + N_a, total number of disks"},
-      {"chi", &Scene::chi, "1", 0.0, 1.0, nullptr, "N_a / (N_o + N_a), number fraction of added disks"},
-      {"density", &Scene::density, "kg/m^2", 1e-6, 1e4, nullptr, "areal density of both species"},
-      {"friction", &Scene::friction, "1", 0.0, 10.0, nullptr, "friction coefficient, static = dynamic"},
-      {"restitution", &Scene::restitution, "1", 0.0, 1.0, nullptr, "restitution coefficient"},
+       "radius r_o of the original disks (two-species shorthand)", "particles"},
+      {"size_ratio", &Scene::size_ratio, "1", 0.2, 1.0, nullptr,
+       "r = r_a / r_o, size ratio of the added disks (shorthand)", "particles"},
+      {"n_total", &Scene::n_total, "1", 1, 20000, nullptr,
+       "N_o + N_a; with [[species]] fractions, the total they divide", "particles"},
+      {"chi", &Scene::chi, "1", 0.0, 1.0, nullptr, "N_a / N, number fraction of added disks (shorthand)",
+       "particles"},
+      {"mu", &Scene::mu, "A*m^2", 0.0, 100.0, nullptr, "dipole moment of the added disks (shorthand)",
+       "particles"},
+      {"density", &Scene::density, "kg/m^2", 1e-6, 1e4, nullptr, "areal density (every species' default)",
+       "particles"},
+      {"friction", &Scene::friction, "1", 0.0, 10.0, nullptr,
+       "friction, static = dynamic, grains and walls (every species' default)", "particles"},
+      {"restitution", &Scene::restitution, "1", 0.0, 1.0, nullptr,
+       "restitution coefficient (every species' default)", "particles"},
       {"restitution_threshold", &Scene::restitution_threshold, "m/s", 0.0, 100.0, nullptr,
-       "impacts slower than this are perfectly inelastic (Box2D)"},
-      {"mu", &Scene::mu, "A*m^2", 0.0, 100.0, nullptr, "dipole moment of the added disks"},
+       "impacts slower than this are perfectly inelastic (Box2D)", "particles"},
       {"dipole_cutoff", &Scene::dipole_cutoff, "m", 0.0, 100.0, nullptr,
-       "dipole pairs farther apart are skipped; 0 = all pairs"},
-      {"silo_width", &Scene::silo_width, "m", 0.01, 100.0, nullptr, "W, width of the silo"},
-      {"silo_height", &Scene::silo_height, "m", 0.01, 1000.0, nullptr, "H_s, height of the vertical part"},
-      {"hopper_height", &Scene::hopper_height, "m", 0.01, 100.0, nullptr, "H_t, height of the hopper part"},
-      {"aperture", &Scene::aperture, "m", 1e-3, 100.0, nullptr, "D = 2R, total width of the outlet"},
-      {"gravity", &Scene::gravity, "m/s^2", 0.0, 1000.0, nullptr, "gravitational acceleration, downward"},
-      {"kick_period", &Scene::kick_period, "s", 1e-4, 1e4, nullptr, "time between kicks"},
+       "dipole pairs farther apart are skipped (cell list); 0 = all pairs", "particles"},
+      {"container", &Scene::container, "", 0, 0, "hopper|flat",
+       "hopper (sloped walls) or flat (outlet in a horizontal floor)", "container"},
+      {"silo_width", &Scene::silo_width, "m", 0.01, 100.0, nullptr, "W, width of the silo", "container"},
+      {"silo_height", &Scene::silo_height, "m", 0.01, 1000.0, nullptr,
+       "H_s, height of the vertical part above the hopper or floor", "container"},
+      {"hopper_height", &Scene::hopper_height, "m", 0.01, 100.0, nullptr,
+       "H_t, height of the hopper (hopper_angle = 0)", "container"},
+      {"hopper_angle", &Scene::hopper_angle, "deg", 0.0, 89.0, nullptr,
+       "each hopper wall from the vertical; 0: from hopper_height", "container"},
+      {"aperture", &Scene::aperture, "m", 1e-3, 100.0, nullptr, "D, width of the outlet", "container"},
+      {"outlet_x", &Scene::outlet_x, "m", -50.0, 50.0, nullptr, "outlet centre from the silo's axis",
+       "container"},
+      {"obstacle", &Scene::obstacle, "", 0, 0, "none|disk|bar", "an obstacle above the outlet", "container"},
+      {"obstacle_size", &Scene::obstacle_size, "m", 0.0, 100.0, nullptr,
+       "the disk's diameter, the bar's width", "container"},
+      {"obstacle_thickness", &Scene::obstacle_thickness, "m", 0.0, 100.0, nullptr, "the bar's height",
+       "container"},
+      {"obstacle_height", &Scene::obstacle_height, "m", 0.0, 1000.0, nullptr,
+       "the obstacle's centre above the outlet", "container"},
+      {"obstacle_x", &Scene::obstacle_x, "m", -50.0, 50.0, nullptr, "the obstacle's centre from the outlet's",
+       "container"},
+      {"tilt", &Scene::tilt, "deg", -80.0, 80.0, nullptr,
+       "container turned counter-clockwise: gravity at this angle", "container"},
+      {"gravity", &Scene::gravity, "m/s^2", 0.0, 1000.0, nullptr, "gravitational acceleration", "container"},
+      {"kick_period", &Scene::kick_period, "s", 1e-4, 1e4, nullptr, "time between kicks and arrest checks",
+       "drive"},
       {"kick_impulse_max", &Scene::kick_impulse_max, "N*s", 0.0, 1e3, nullptr,
-       "kick impulse magnitudes are uniform in [0, this]"},
-      {"global_kick", &Scene::global_kick, "", 0, 0, nullptr,
-       "also kick every particle by one shared impulse"},
-      {"settle_kicks", &Scene::settle_kicks, "", 0, 0, nullptr, "also kick while settling (aperture closed)"},
+       "kick impulses uniform in [0, this]; 0: no kicks", "drive"},
+      {"global_kick", &Scene::global_kick, "", 0, 0, nullptr, "also one shared impulse for every grain",
+       "drive"},
+      {"settle_kicks", &Scene::settle_kicks, "", 0, 0, nullptr, "also kick while settling (aperture closed)",
+       "drive"},
+      {"vibration_amplitude", &Scene::vibration_amplitude, "m", 0.0, 10.0, nullptr,
+       "harmonic vibration of the container; 0: none", "drive"},
+      {"vibration_gamma", &Scene::vibration_gamma, "1", 0.0, 100.0, nullptr,
+       "Gamma = A (2 pi f)^2 / g, instead of the amplitude", "drive"},
+      {"vibration_frequency", &Scene::vibration_frequency, "Hz", 0.0, 1000.0, nullptr,
+       "frequency f of the vibration", "drive"},
+      {"vibration_direction", &Scene::vibration_direction, "", 0, 0, "vertical|horizontal",
+       "direction of the vibration, in the container's frame", "drive"},
       {"deposit_order", &Scene::deposit_order, "", 0, 0, "originals_first|shuffled",
-       "order of the random deposition: original disks first, or species at random"},
-      {"settle_time", &Scene::settle_time, "s", 0.0, 1e4, nullptr, "settling with the aperture closed"},
-      {"duration", &Scene::duration, "s", 0.0, 1e6, nullptr, "discharge time after the aperture opens"},
-      {"clog_timeout", &Scene::clog_timeout, "s", 1e-3, 1e6, nullptr,
-       "time without exits before the blocking arch is removed"},
-      {"clog_min_gap", &Scene::clog_min_gap, "s", 0.0, 1e6, nullptr,
-       "exit gaps this long are recorded as clogs"},
+       "deposition: species in list order, or at random", "protocol"},
+      {"settle_time", &Scene::settle_time, "s", 0.0, 1e4, nullptr, "settling with the aperture closed",
+       "protocol"},
+      {"duration", &Scene::duration, "s", 1e-3, 1e6, nullptr, "discharge time after the aperture opens",
+       "protocol"},
+      {"clog_timeout", &Scene::clog_timeout, "s", 0.0, 1e6, nullptr,
+       "no exit this long: the arch is removed; 0: rule off", "protocol"},
+      {"clog_min_gap", &Scene::clog_min_gap, "s", 0.0, 1e6, nullptr, "exit gaps this long are clogs",
+       "protocol"},
       {"arrest_hold", &Scene::arrest_hold, "s", 1e-6, 1e4, nullptr,
-       "a clog is arrested when the outlet disks held still this long before a kick"},
+       "a clog is arrested if the outlet held still this long", "protocol"},
       {"arrest_shift", &Scene::arrest_shift, "1", 0.0, 10.0, nullptr,
-       "largest move, in disk radii, over arrest_hold that still counts as held still"},
+       "... moving less than this many grain radii", "protocol"},
       {"arch_wall_reach", &Scene::arch_wall_reach, "m", 1e-3, 100.0, nullptr,
-       "wall contacts below this height anchor arches"},
+       "wall contacts below this height anchor arches", "protocol"},
       {"arch_method", &Scene::arch_method, "", 0, 0, "contact_path|visible",
-       "which particles the clog rule removes"},
+       "which grains the clog rule removes", "protocol"},
       {"reinject_gap", &Scene::reinject_gap, "m", 0.0, 10.0, nullptr,
-       "clearance above the column for re-injected disks"},
-      {"dt", &Scene::dt, "s", 1e-6, 0.02, nullptr, "fixed time step"},
-      {"velocity_iterations", &Scene::velocity_iterations, "1", 1, 500, nullptr, "Box2D velocity iterations"},
-      {"position_iterations", &Scene::position_iterations, "1", 1, 500, nullptr, "Box2D position iterations"},
-      {"length_scale", &Scene::length_scale, "1/m", 0.1, 1000.0, nullptr, "Box2D length units per metre"},
-      {"continuous", &Scene::continuous, "", 0, 0, nullptr, "Box2D continuous collision for the disks"},
-      {"unsafe", &Scene::unsafe, "", 0, 0, nullptr, "health monitor warns instead of stopping"},
-      {"seed", &Scene::seed, "", 0, 1.8446744073709552e19, nullptr, "random seed of the run"},
+       "clearance above the column, re-injection", "protocol"},
+      {"dt", &Scene::dt, "s", 1e-6, 0.02, nullptr, "fixed time step", "numerics"},
+      {"velocity_iterations", &Scene::velocity_iterations, "1", 1, 500, nullptr, "Box2D velocity iterations",
+       "numerics"},
+      {"position_iterations", &Scene::position_iterations, "1", 1, 500, nullptr, "Box2D position iterations",
+       "numerics"},
+      {"length_scale", &Scene::length_scale, "1/m", 0.1, 1000.0, nullptr, "Box2D length units per metre",
+       "numerics"},
+      {"continuous", &Scene::continuous, "", 0, 0, nullptr, "Box2D continuous collision for the grains",
+       "numerics"},
+      {"unsafe", &Scene::unsafe, "", 0, 0, nullptr, "health monitor warns instead of stopping", "numerics"},
+      {"seed", &Scene::seed, "", 0, 1.8446744073709552e19, nullptr, "random seed of the run", "run"},
+  };
+  return fields;
+}
+
+const std::vector<SpeciesField>& species_fields() {
+  static const std::vector<SpeciesField> fields = {
+      {"name", &SpeciesSpec::name, "", 0, 0, nullptr, "[a-z][a-z0-9_]*, unique; names it in every output"},
+      {"color", &SpeciesSpec::color, "", 0, 0, nullptr, "#rrggbb; empty: the palette's colour"},
+      {"count", &SpeciesSpec::count, "1", 0, 20000, nullptr, "grains of this species"},
+      {"fraction", &SpeciesSpec::fraction, "1", 0.0, 1.0, nullptr, "or: number fraction of n_total"},
+      {"size", &SpeciesSpec::size, "", 0, 0, "fixed|uniform|lognormal", "how each grain's radius is drawn"},
+      {"radius", &SpeciesSpec::radius, "m", 0.0, 10.0, nullptr,
+       "radius (fixed) or mean radius (lognormal); polygons: equal-area disk"},
+      {"radius_min", &SpeciesSpec::radius_min, "m", -10.0, 10.0, nullptr,
+       "uniform: lower end; lognormal: truncation (0: 3 sigma)"},
+      {"radius_max", &SpeciesSpec::radius_max, "m", 0.0, 10.0, nullptr,
+       "uniform: upper end; lognormal: truncation (0: 3 sigma)"},
+      {"spread", &SpeciesSpec::spread, "1", 0.0, 2.0, nullptr, "lognormal: standard deviation / mean"},
+      {"sides", &SpeciesSpec::sides, "1", 0, 8, nullptr, "0: disk; 3-8: regular polygon, random orientation"},
+      {"density", &SpeciesSpec::density, "kg/m^2", 1e-6, 1e4, nullptr, "areal density; absent: the scene's"},
+      {"friction", &SpeciesSpec::friction, "1", 0.0, 10.0, nullptr, "friction; absent: the scene's"},
+      {"restitution", &SpeciesSpec::restitution, "1", 0.0, 1.0, nullptr, "restitution; absent: the scene's"},
+      {"dipole", &SpeciesSpec::dipole, "A*m^2", 0.0, 100.0, nullptr, "dipole moment (model's dipole law)"},
   };
   return fields;
 }
@@ -102,71 +244,80 @@ const Field* find_field(const std::string& key) {
   return nullptr;
 }
 
-std::string field_text(const Scene& s, const Field& f) {
-  return std::visit(
-      [&](auto ptr) -> std::string {
-        const auto& v = s.*ptr;
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, double>)
-          return format_shortest(v);
-        else if constexpr (std::is_same_v<T, bool>)
-          return v ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>)
-          return toml_string(v);
-        else
-          return std::to_string(v);
-      },
-      f.ptr);
+const SpeciesField* find_species_field(const std::string& key) {
+  for (const auto& f : species_fields())
+    if (key == f.key) return &f;
+  return nullptr;
 }
 
+bool is_shorthand_key(const std::string& key) {
+  return key == "radius_original" || key == "size_ratio" || key == "chi" || key == "mu";
+}
+
+std::string field_text(const Scene& s, const Field& f) {
+  return std::visit([&](auto ptr) -> std::string { return value_text(s.*ptr); }, f.ptr);
+}
+
+std::string species_field_text(const SpeciesSpec& sp, const SpeciesField& f) {
+  return std::visit([&](auto ptr) -> std::string { return value_text(sp.*ptr); }, f.ptr);
+}
+
+std::map<std::string, std::string> scene_values(const Scene& s) {
+  std::map<std::string, std::string> out;
+  for (const auto& f : scene_fields()) out[f.key] = field_text(s, f);
+  for (const auto& sp : s.species)
+    for (const auto& f : species_fields())
+      out["species." + sp.name + "." + f.key] = species_field_text(sp, f);
+  return out;
+}
+
+namespace {
+void set_species_field(Scene& s, const std::string& key, const std::string& value,
+                       const std::string& origin) {
+  // species.NAME.KEY
+  const auto dot = key.find('.', 8);
+  const std::string name = dot == std::string::npos ? "" : key.substr(8, dot - 8);
+  const std::string sub = dot == std::string::npos ? "" : key.substr(dot + 1);
+  SpeciesSpec* sp = species_named(s, name);
+  if (!sp) {
+    std::string names;
+    for (const auto& x : s.species) names += (names.empty() ? "" : ", ") + x.name;
+    throw InputError(origin + ": " + key + ": no species named '" + name + "'" +
+                     (names.empty()
+                          ? "; this scene has no [[species]] tables (it uses the two-species shorthand)"
+                          : "; the species are " + names));
+  }
+  const SpeciesField* f = find_species_field(sub);
+  if (!f || sub == "name") {
+    std::string keys;
+    for (const auto& g : species_fields())
+      if (std::string(g.key) != "name") keys += std::string(keys.empty() ? "" : ", ") + g.key;
+    throw InputError(origin + ": " + key + ": unknown species key '" + sub + "'; species keys: " + keys);
+  }
+  std::visit([&](auto ptr) { parse_value(sp->*ptr, key, value, origin, f->min, f->max); }, f->ptr);
+  s.origin[key] = origin;
+}
+}  // namespace
+
 void set_field(Scene& s, const std::string& key, const std::string& value, const std::string& origin) {
+  if (key.rfind("species.", 0) == 0) return set_species_field(s, key, value, origin);
   const Field* f = find_field(key);
   if (!f) {
     std::string keys;
     for (const auto& g : scene_fields()) keys += std::string(keys.empty() ? "" : ", ") + g.key;
-    throw InputError(origin + ": unknown key '" + key + "'; known keys: " + keys);
+    throw InputError(origin + ": unknown key '" + key + "'; known keys: " + keys +
+                     ", and species.NAME.KEY for a species' KEY");
   }
-  std::visit(
-      [&](auto ptr) {
-        auto& v = s.*ptr;
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, double>) {
-          char* end = nullptr;
-          double d = std::strtod(value.c_str(), &end);
-          if (value.empty() || *end != '\0' || !std::isfinite(d))
-            bad(origin, key, value, "expected a finite number");
-          v = d;
-        } else if constexpr (std::is_same_v<T, bool>) {
-          if (value == "true" || value == "1")
-            v = true;
-          else if (value == "false" || value == "0")
-            v = false;
-          else
-            bad(origin, key, value, "expected true or false");
-        } else if constexpr (std::is_same_v<T, std::string>) {
-          std::string t = value;
-          if (t.size() >= 2 && t.front() == '"' && t.back() == '"') t = t.substr(1, t.size() - 2);
-          v = t;
-        } else {
-          char* end = nullptr;
-          errno = 0;
-          T i{};
-          if constexpr (std::is_unsigned_v<T>)
-            i = std::strtoull(value.c_str(), &end, 10);
-          else
-            i = std::strtoll(value.c_str(), &end, 10);
-          bool negative_unsigned = std::is_unsigned_v<T> && value.find('-') != std::string::npos;
-          if (value.empty() || *end != '\0' || errno != 0 || negative_unsigned)
-            bad(origin, key, value, "expected a whole number in " + range_text(*f));
-          v = i;
-        }
-      },
-      f->ptr);
+  if (!s.shorthand() && is_shorthand_key(key))
+    throw InputError(origin + ": " + key +
+                     " belongs to the two-species shorthand; this scene lists its grains as [[species]]: set "
+                     "species.NAME.radius, species.NAME.count or species.NAME.dipole instead");
+  std::visit([&](auto ptr) { parse_value(s.*ptr, key, value, origin, f->min, f->max); }, f->ptr);
+  s.origin[key] = origin;
 }
 
 void validate(const Scene& s) {
-  const std::string origin = "scene";
-  // Each field against its own range or choices.
+  // Each field against its own range or choices, naming where it was set.
   for (const auto& f : scene_fields()) {
     std::visit(
         [&](auto ptr) {
@@ -175,53 +326,57 @@ void validate(const Scene& s) {
           if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>) {
             double d = static_cast<double>(v);
             if (!std::isfinite(d) || d < f.min || d > f.max)
-              bad(origin, f.key, field_text(s, f), "allowed range is " + range_text(f) + unit_text(f));
+              bad(s.where(f.key), f.key, field_text(s, f),
+                  "allowed range is " + range_text(f.min, f.max) + unit_suffix(f.unit));
           } else if constexpr (std::is_same_v<T, std::string>) {
-            std::string choices = f.choices ? f.choices : "";
-            bool ok = false;
-            std::stringstream ss(choices);
-            for (std::string c; std::getline(ss, c, '|');) ok = ok || c == v;
-            if (!ok) bad(origin, f.key, field_text(s, f), "allowed values are " + choices);
+            if (!in_choices(f.choices, v))
+              bad(s.where(f.key), f.key, field_text(s, f), std::string("allowed values are ") + f.choices);
           }
         },
         f.ptr);
   }
-  // Relations between fields.
-  if (s.aperture <= 2.0 * s.radius_added() && s.n_added() > 0)
-    bad(origin, "aperture", format_shortest(s.aperture),
-        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_added()) +
-            " m)");
-  if (s.aperture <= 2.0 * s.radius_original && s.n_original() > 0)
-    bad(origin, "aperture", format_shortest(s.aperture),
-        "it must be wider than the smallest disk (diameter " + format_shortest(2.0 * s.radius_original) +
-            " m)");
-  if (s.aperture >= s.silo_width)
-    bad(origin, "aperture", format_shortest(s.aperture),
-        "it must be narrower than silo_width = " + format_shortest(s.silo_width));
-  if (2.0 * s.radius_original >= s.silo_width)
-    bad(origin, "radius_original", format_shortest(s.radius_original), "a disk must fit in silo_width");
-  // Kicks land on steps: the period must be a whole number of steps (to 1e-6 of a step).
-  double steps_per_kick = s.kick_period / s.dt;
-  if (steps_per_kick < 1.0 || std::abs(steps_per_kick - std::round(steps_per_kick)) > 1e-6)
-    bad(origin, "kick_period", format_shortest(s.kick_period),
-        "it must be a whole multiple of dt = " + format_shortest(s.dt) + " s");
-  const double hold_steps = std::round(s.arrest_hold / s.dt);
-  if (hold_steps < 1.0 || hold_steps >= std::round(steps_per_kick))
-    bad(origin, "arrest_hold", format_shortest(s.arrest_hold),
-        "it must be at least dt = " + format_shortest(s.dt) +
-            " s and shorter than kick_period = " + format_shortest(s.kick_period) + " s");
-  if (s.clog_min_gap >= s.clog_timeout)
-    bad(origin, "clog_min_gap", format_shortest(s.clog_min_gap),
-        "it must be shorter than clog_timeout = " + format_shortest(s.clog_timeout) + " s");
-  // The settled column (packing fraction at most ~0.8) must fit below the top of the container.
-  double area_disks = kPi * (static_cast<double>(s.n_original()) * s.radius_original * s.radius_original +
-                             static_cast<double>(s.n_added()) * s.radius_added() * s.radius_added());
-  double area_box = s.silo_width * s.silo_height + 0.5 * (s.silo_width + s.aperture) * s.hopper_height;
-  if (area_disks / 0.8 > 0.9 * area_box)
-    bad(origin, "n_total", std::to_string(s.n_total),
-        "the disks' packed area " + format_shortest(area_disks / 0.8) +
-            " m^2 does not fit in the container (" + format_shortest(area_box) +
-            " m^2); raise silo_height or lower n_total");
+  if (s.species.size() > kMaxSpecies)
+    throw InputError("scene: " + std::to_string(s.species.size()) + " [[species]] tables; at most " +
+                     std::to_string(kMaxSpecies));
+  for (size_t k = 0; k < s.species.size(); ++k) {
+    const SpeciesSpec& sp = s.species[k];
+    if (!valid_species_name(sp.name))
+      throw InputError(
+          s.where("species." + sp.name + ".name") + ": species " + std::to_string(k + 1) +
+          ": name = " + toml_string(sp.name) +
+          " is not allowed; a lower-case letter, then lower-case letters, digits or _ (at most 32)");
+    for (size_t j = 0; j < k; ++j)
+      if (s.species[j].name == sp.name)
+        throw InputError(s.where("species." + sp.name + ".name") + ": two species are named " +
+                         toml_string(sp.name) + "; names must be unique");
+    for (const auto& f : species_fields()) {
+      const std::string key = "species." + sp.name + "." + f.key;
+      std::visit(
+          [&](auto ptr) {
+            const auto& v = sp.*ptr;
+            using T = std::decay_t<decltype(v)>;
+            double d = 0;
+            bool numeric = true;
+            if constexpr (std::is_same_v<T, std::optional<double>>) {
+              numeric = v.has_value();
+              d = v.value_or(0);
+            } else if constexpr (std::is_same_v<T, std::string>) {
+              numeric = false;
+              if (f.choices && !in_choices(f.choices, v))
+                bad(s.where(key), key, species_field_text(sp, f),
+                    std::string("allowed values are ") + f.choices);
+            } else {
+              d = static_cast<double>(v);
+            }
+            if (numeric && (!std::isfinite(d) || d < f.min || d > f.max))
+              bad(s.where(key), key, species_field_text(sp, f),
+                  "allowed range is " + range_text(f.min, f.max) + unit_suffix(f.unit));
+          },
+          f.ptr);
+    }
+  }
+  // The relations between fields: resolving the scene checks them all.
+  (void)resolve(s);
 }
 
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
@@ -249,6 +404,63 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
+namespace {
+// A TOML value as the text set_field takes; `is_text` says whether the field wants a string.
+std::string node_text(const toml::node& node, const std::string& where, const std::string& key,
+                      bool is_text) {
+  std::string text;
+  if (auto v = node.as_floating_point())
+    text = format_shortest(v->get());
+  else if (auto i = node.as_integer())
+    text = std::to_string(i->get());
+  else if (auto b = node.as_boolean())
+    text = b->get() ? "true" : "false";
+  else if (auto t = node.as_string())
+    text = t->get();
+  else
+    throw InputError(where + ": " + key + " must be a number, boolean or string, not a " +
+                     std::string(toml::impl::node_type_friendly_names[static_cast<int>(node.type())]));
+  if (is_text != static_cast<bool>(node.as_string()))
+    throw InputError(where + ": " + key + " = " + text + " has the wrong type; expected " +
+                     (is_text ? "a string" : "a number or boolean"));
+  return text;
+}
+
+void parse_species(Scene& s, const toml::array& arr, const std::string& path) {
+  int k = 0;
+  for (auto&& e : arr) {
+    ++k;
+    const std::string where0 = path + ":" + std::to_string(e.source().begin.line);
+    const toml::table* t = e.as_table();
+    if (!t) throw InputError(where0 + ": species must be tables ([[species]]), not values");
+    SpeciesSpec sp;
+    const toml::node* name = t->get("name");
+    if (!name || !name->as_string())
+      throw InputError(where0 + ": species " + std::to_string(k) + " has no name = \"...\"");
+    sp.name = name->as_string()->get();
+    if (!valid_species_name(sp.name))
+      throw InputError(
+          path + ":" + std::to_string(name->source().begin.line) + ": species " + std::to_string(k) +
+          ": name = " + toml_string(sp.name) +
+          " is not allowed; a lower-case letter, then lower-case letters, digits or _ (at most 32)");
+    if (species_named(s, sp.name))
+      throw InputError(path + ":" + std::to_string(name->source().begin.line) + ": two species are named " +
+                       toml_string(sp.name) + "; names must be unique");
+    s.species.push_back(sp);
+    s.origin["species." + sp.name + ".name"] = path + ":" + std::to_string(name->source().begin.line);
+    for (auto&& [kk, node] : *t) {
+      const std::string key(kk.str());
+      if (key == "name") continue;
+      const std::string where = path + ":" + std::to_string(node.source().begin.line);
+      const SpeciesField* f = find_species_field(key);
+      if (!f) set_field(s, "species." + sp.name + "." + key, "", where);  // throws with the list of keys
+      const bool is_text = std::holds_alternative<std::string SpeciesSpec::*>(f->ptr);
+      set_field(s, "species." + sp.name + "." + key, node_text(node, where, key, is_text), where);
+    }
+  }
+}
+}  // namespace
+
 Scene parse_scene(const std::string& text, const std::string& path) {
   toml::table tbl;
   try {
@@ -265,28 +477,20 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     tbl = std::move(copy);
   }
   Scene s;
+  // Species first: they decide whether the shorthand keys are allowed.
+  if (const toml::node* sp = tbl.get("species")) {
+    const std::string where = path + ":" + std::to_string(sp->source().begin.line);
+    if (!sp->as_array()) throw InputError(where + ": species must be [[species]] tables");
+    parse_species(s, *sp->as_array(), path);
+  }
   for (auto&& [k, node] : tbl) {
     std::string key(k.str());
+    if (key == "species") continue;
     std::string where = path + ":" + std::to_string(node.source().begin.line);
     const Field* f = find_field(key);
     if (!f) set_field(s, key, "", where);  // throws "unknown key" with the list of keys
-    std::string text;
-    if (auto v = node.as_floating_point())
-      text = format_shortest(v->get());
-    else if (auto i = node.as_integer())
-      text = std::to_string(i->get());
-    else if (auto b = node.as_boolean())
-      text = b->get() ? "true" : "false";
-    else if (auto t = node.as_string())
-      text = t->get();
-    else
-      throw InputError(where + ": " + key + " must be a number, boolean or string, not a " +
-                       std::string(toml::impl::node_type_friendly_names[static_cast<int>(node.type())]));
-    bool is_text_field = std::holds_alternative<std::string Scene::*>(f->ptr);
-    if (is_text_field != static_cast<bool>(node.as_string()))
-      throw InputError(where + ": " + key + " = " + text + " has the wrong type; expected " +
-                       (is_text_field ? "a string" : "a number or boolean"));
-    set_field(s, key, text, where);
+    const bool is_text = std::holds_alternative<std::string Scene::*>(f->ptr);
+    set_field(s, key, node_text(node, where, key, is_text), where);
   }
   return s;
 }
@@ -300,12 +504,28 @@ void apply_overrides(Scene& s, const std::vector<std::string>& assignments) {
   }
 }
 
-std::string scene_toml(const Scene& s) {
+std::string scene_toml(const Scene& s, const std::string& table) {
   std::ostringstream o;
+  const bool counts = !s.species.empty() && s.species.front().count > 0;
   for (const auto& f : scene_fields()) {
-    o << f.key << " = " << field_text(s, f) << "  # ";
+    if (!s.shorthand() && is_shorthand_key(f.key)) continue;
+    std::string value = field_text(s, f);
+    if (counts && std::string(f.key) == "n_total") {
+      std::int64_t n = 0;
+      for (const auto& sp : s.species) n += sp.count;
+      value = std::to_string(n);
+    }
+    o << f.key << " = " << value << "  # ";
     if (f.unit && *f.unit) o << "[" << f.unit << "] ";
     o << f.doc << "\n";
+  }
+  for (const auto& sp : s.species) {
+    o << "\n[[" << (table.empty() ? "" : table + ".") << "species]]\n";
+    for (const auto& f : species_fields()) {
+      const std::string v = species_field_text(sp, f);
+      if (v.empty()) continue;  // an absent optional: the scene's value applies
+      o << f.key << " = " << v << "\n";
+    }
   }
   return o.str();
 }

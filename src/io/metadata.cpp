@@ -11,6 +11,7 @@
 
 #include "core/geometry.h"
 #include "core/physics.h"
+#include "core/setup.h"
 #include "siloscope_version.h"
 
 namespace io {
@@ -41,23 +42,49 @@ std::string version_string() {
 
 Facts derived_facts(const core::Scene& s) {
   using core::kPi;
-  const core::Geometry g = core::make_geometry(s);
-  const double ra = s.radius_added(), ma = core::mass_of(ra, s.density);
-  const double contact_force = core::dipole_contact_force(s);
-  return {
-      {"n_original", s.n_original()},
-      {"n_added", s.n_added()},
-      {"radius_added_m", ra},
-      {"mass_original_kg", core::mass_of(s.radius_original, s.density)},
-      {"mass_added_kg", ma},
-      {"hopper_wall_angle_from_vertical_deg", g.wall_angle_from_vertical() * 180 / kPi},
-      {"angle_between_hopper_walls_deg", 2 * g.wall_angle_from_vertical() * 180 / kPi},
-      {"aperture_over_original_diameter", s.aperture / (2 * s.radius_original)},
-      {"dipole_contact_force_over_weight", contact_force / (ma * s.gravity)},
-      {"dipole_safe_dt_s", core::dipole_safe_dt(s)},
-      {"steps_per_kick", std::llround(s.kick_period / s.dt)},
-      {"box2d_linear_slop_m", 0.005 / s.length_scale},
-  };
+  const core::Setup st = core::resolve(s);
+  const core::Geometry& g = st.geo;
+  Facts f;
+  if (st.shorthand) {
+    const double ra = s.radius_added(), ma = core::mass_of(ra, s.density);
+    const double contact_force = core::dipole_contact_force(s);
+    f = {{"n_original", s.n_original()},
+         {"n_added", s.n_added()},
+         {"radius_added_m", ra},
+         {"mass_original_kg", core::mass_of(s.radius_original, s.density)},
+         {"mass_added_kg", ma},
+         {"hopper_wall_angle_from_vertical_deg", g.wall_angle_from_vertical() * 180 / kPi},
+         {"angle_between_hopper_walls_deg", 2 * g.wall_angle_from_vertical() * 180 / kPi},
+         {"aperture_over_original_diameter", s.aperture / (2 * s.radius_original)},
+         {"dipole_contact_force_over_weight", contact_force / (ma * s.gravity)}};
+  } else {
+    f.push_back({"species", st.species_names()});
+    for (const auto& d : st.species) {
+      f.push_back({"n_" + d.name, d.count});
+      f.push_back({"radius_range_" + d.name + "_m",
+                   core::format_g(d.radius_min, 6) + " .. " + core::format_g(d.radius_max, 6)});
+      f.push_back({"mean_mass_" + d.name + "_kg", core::kPi * d.mean_square_radius() * d.density});
+    }
+    f.push_back({"n_total", st.n_total});
+    f.push_back({"aperture_over_largest_mean_diameter", s.aperture / (2 * st.reference_radius)});
+  }
+  f.push_back({"hopper_height_m", g.hopper_height});
+  f.push_back({"left_wall_angle_from_vertical_deg", g.left_wall_angle() * 180 / kPi});
+  f.push_back({"right_wall_angle_from_vertical_deg", g.right_wall_angle() * 180 / kPi});
+  f.push_back({"gravity_x_m_per_s2", st.gravity.x});
+  f.push_back({"gravity_y_m_per_s2", st.gravity.y});
+  if (st.drive.vibrating()) {
+    f.push_back({"vibration_amplitude_m", st.drive.amplitude});
+    f.push_back({"vibration_gamma", st.drive.amplitude * st.drive.omega * st.drive.omega / s.gravity});
+    f.push_back({"vibration_peak_speed_m_per_s", st.drive.amplitude * st.drive.omega});
+  }
+  f.push_back({"clog_rule", st.clog_rule ? std::string("on")
+                                         : std::string("off: clogs end only by the drive or the run's end")});
+  f.push_back({"dipole_safe_dt_s", core::dipole_safe_dt(st)});
+  f.push_back({"kinematic_safe_dt_s", core::kinematic_safe_dt(st, s.gravity)});
+  f.push_back({"steps_per_kick", std::llround(s.kick_period / s.dt)});
+  f.push_back({"box2d_linear_slop_m", 0.005 / s.length_scale});
+  return f;
 }
 
 std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
@@ -70,7 +97,7 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
   char when[64];
   std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  s += "written_utc = " + quoted(when) + "\n\n[scene]\n" + core::scene_toml(scene) + "\n[derived]\n";
+  s += "written_utc = " + quoted(when) + "\n\n[scene]\n" + core::scene_toml(scene, "scene") + "\n[derived]\n";
   for (const auto& f : derived_facts(scene)) s += f.key() + " = " + f.toml() + "\n";
   if (!info.facts.empty()) {
     s += "\n[run]\n";

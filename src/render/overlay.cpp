@@ -237,7 +237,7 @@ bool in_container(const core::Geometry& g, core::Vec2 p) {
   const double m = 0.1 * g.grain_diameter;
   if (p.y < 0) return p.y > -4 * g.grain_diameter && std::abs(p.x) < g.half_aperture + m;
   if (p.y > g.total_height + m) return false;
-  return std::abs(p.x) < g.half_width_at(p.y) + m;
+  return p.x > g.left_at(p.y) - m && p.x < g.right_at(p.y) + m;
 }
 }  // namespace
 

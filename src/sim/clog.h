@@ -20,8 +20,9 @@ class ClogTracker {
   // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
   // kick strength.
   void on_rest_check(double t, bool outlet_at_rest);
-  // The rule is due when nothing has exited (and the rule has not fired) for `timeout`.
-  bool rule_due(double t) const { return t - last_ >= timeout_ - 1e-9; }
+  // The rule is due when nothing has exited (and the rule has not fired) for `timeout`; never when the rule
+  // is off (timeout 0: clogs end only by the drive or the end of the run).
+  bool rule_due(double t) const { return timeout_ > 0 && t - last_ >= timeout_ - 1e-9; }
   // The rule fired at t: the current clog ends, a new gap starts.
   void on_rule(double t);
   // The run ended at t: an open clog is recorded as censored.

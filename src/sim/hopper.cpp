@@ -44,23 +44,26 @@ int decode(const b2Fixture* f) {
 
 Hopper::Hopper(const core::Scene& scene)
     : scene_(scene),
-      geo_(core::make_geometry(scene)),
+      setup_((core::validate(scene), core::resolve(scene))),
+      geo_(setup_.geo),
       L_(scene.length_scale),
       rng_deposit_(scene.seed, 1),
       rng_kick_(scene.seed, 2),
       rng_reinject_(scene.seed, 3),
+      rng_shape_(scene.seed, 4),
+      rng_orient_(scene.seed, 5),
       clogs_(scene.clog_min_gap, scene.clog_timeout) {
-  core::validate(scene_);
-  core::parse_arch_method(scene_.arch_method, arch_method_);  // validate() allowed only the two names
+  arch_method_ = setup_.arch_method;
   // Time steps the integration cannot survive are refused before any work: the explicit dipole repulsion,
-  // and disks outrunning their own size in one step.
-  const double dipole_dt = core::dipole_safe_dt(scene_), kinematic_dt = core::kinematic_safe_dt(scene_);
+  // and grains outrunning their own size in one step.
+  const double dipole_dt = core::dipole_safe_dt(setup_),
+               kinematic_dt = core::kinematic_safe_dt(setup_, scene_.gravity);
   std::string refusal;
   if (scene_.dt > dipole_dt)
-    refusal = "dt = " + fmt4(scene_.dt) +
-              " s is too large for the dipole repulsion at mu = " + fmt4(scene_.mu) +
-              " A*m^2 and r = " + fmt4(scene_.size_ratio) + "; the largest safe time step is " +
-              fmt4(std::min(dipole_dt, kinematic_dt)) + " s";
+    refusal = "dt = " + fmt4(scene_.dt) + " s is too large for the dipole repulsion " +
+              (setup_.shorthand ? "at mu = " + fmt4(scene_.mu) + " A*m^2 and r = " + fmt4(scene_.size_ratio)
+                                : std::string("between the smallest grains that carry dipoles")) +
+              "; the largest safe time step is " + fmt4(std::min(dipole_dt, kinematic_dt)) + " s";
   else if (scene_.dt > kinematic_dt)
     refusal = "dt = " + fmt4(scene_.dt) +
               " s lets a falling disk move more than the smallest diameter per step " +
@@ -73,9 +76,11 @@ Hopper::Hopper(const core::Scene& scene)
   open_step_ = static_cast<std::uint64_t>(std::llround(scene_.settle_time / scene_.dt));
   hold_steps_ = static_cast<std::uint64_t>(std::llround(scene_.arrest_hold / scene_.dt));
 
-  world_ = std::make_unique<b2World>(b2Vec2(0.0f, static_cast<float>(-scene_.gravity * L_)));
+  world_ = std::make_unique<b2World>(
+      b2Vec2(static_cast<float>(setup_.gravity.x * L_), static_cast<float>(setup_.gravity.y * L_)));
   world_->SetAllowSleeping(false);  // sleeping would freeze clogged arches between kicks
   world_->SetContinuousPhysics(scene_.continuous);
+  make_grains();
   deposit_height_ = deposit_height();
   build_walls();
   deposit();
@@ -87,14 +92,38 @@ Hopper::~Hopper() = default;
 
 void Hopper::build_walls() {
   b2BodyDef def;
+  // A vibrating container is a kinematic body that the drive moves; otherwise a static one (a kinematic body
+  // would merge every grain touching it into one island and change the solver's order).
+  if (setup_.drive.vibrating()) def.type = b2_kinematicBody;
   walls_ = world_->CreateBody(&def);
   for (int w = 0; w < static_cast<int>(core::Wall::Count); ++w) {
-    if (w != static_cast<int>(core::Wall::Top)) add_wall(w);
+    if (w != static_cast<int>(core::Wall::Top) && w != static_cast<int>(core::Wall::Obstacle)) add_wall(w);
   }
-  // While settling, a ceiling closes the deposition column: strong dipoles can throw disks upwards.
+  if (geo_.obstacle.present()) {
+    const core::Obstacle& ob = geo_.obstacle;
+    b2FixtureDef fd;
+    b2CircleShape circle;
+    b2PolygonShape box;
+    if (ob.kind == core::Obstacle::Kind::Disk) {
+      circle.m_radius = static_cast<float>(0.5 * ob.width * L_);
+      circle.m_p.Set(static_cast<float>(ob.centre.x * L_), static_cast<float>(ob.centre.y * L_));
+      fd.shape = &circle;
+    } else {
+      box.SetAsBox(static_cast<float>(0.5 * ob.width * L_), static_cast<float>(0.5 * ob.height * L_),
+                   b2Vec2(static_cast<float>(ob.centre.x * L_), static_cast<float>(ob.centre.y * L_)), 0.0f);
+      fd.shape = &box;
+    }
+    fd.friction = static_cast<float>(scene_.friction);
+    fd.restitution = static_cast<float>(scene_.restitution);
+    fd.restitutionThreshold = static_cast<float>(scene_.restitution_threshold * L_);
+    fd.userData.pointer = kWallTag + static_cast<std::uintptr_t>(core::Wall::Obstacle);
+    walls_->CreateFixture(&fd);
+  }
+  // While settling, a ceiling closes the deposition column: strong dipoles can throw grains upwards.
   b2EdgeShape edge;
-  const float x = static_cast<float>(geo_.half_width * L_), y = static_cast<float>(deposit_height_ * L_);
-  edge.SetTwoSided(b2Vec2(-x, y), b2Vec2(x, y));
+  const float y = static_cast<float>(deposit_height_ * L_);
+  edge.SetTwoSided(b2Vec2(static_cast<float>(geo_.x_left * L_), y),
+                   b2Vec2(static_cast<float>(geo_.x_right * L_), y));
   b2FixtureDef fd;
   fd.shape = &edge;
   fd.friction = static_cast<float>(scene_.friction);
@@ -123,8 +152,9 @@ b2Fixture* Hopper::add_wall(int w) {
 }
 
 core::Vec2 Hopper::pos(int id) const {
+  // In the container's frame (offset_ is zero unless it vibrates: x - 0 is x, bit for bit).
   const b2Vec2& p = bodies_[id]->GetPosition();
-  return {p.x / L_, p.y / L_};
+  return {p.x / L_ - offset_.x, p.y / L_ - offset_.y};
 }
 core::Vec2 Hopper::vel(int id) const {
   const b2Vec2& v = bodies_[id]->GetLinearVelocity();
@@ -137,6 +167,7 @@ std::vector<core::Vec2> Hopper::positions() const {
 }
 
 void Hopper::place(int id, core::Vec2 p) {
+  p = p + offset_;
   bodies_[id]->SetTransform(b2Vec2(static_cast<float>(p.x * L_), static_cast<float>(p.y * L_)), 0.0f);
   bodies_[id]->SetLinearVelocity(b2Vec2(0, 0));
   bodies_[id]->SetAngularVelocity(0);
@@ -161,15 +192,24 @@ void Hopper::apply_kicks() {
 }
 
 void Hopper::apply_dipoles() {
-  scratch_pos_.resize(added_ids_.size());
-  for (size_t k = 0; k < added_ids_.size(); ++k) scratch_pos_[k] = pos(added_ids_[k]);
-  dipole_forces(scratch_pos_, scene_.mu, scene_.dipole_cutoff, scratch_force_);
+  scratch_pos_.resize(dipole_ids_.size());
+  for (size_t k = 0; k < dipole_ids_.size(); ++k) scratch_pos_[k] = pos(dipole_ids_[k]);
+  dipole_forces(scratch_pos_, dipole_moment_, scene_.dipole_cutoff, scratch_force_, dipole_cells_);
   // Box2D clears forces after every step, so they are applied before each one.
-  for (size_t k = 0; k < added_ids_.size(); ++k) {
+  for (size_t k = 0; k < dipole_ids_.size(); ++k) {
     const core::Vec2& f = scratch_force_[k];
-    bodies_[added_ids_[k]]->ApplyForceToCenter(
+    bodies_[dipole_ids_[k]]->ApplyForceToCenter(
         b2Vec2(static_cast<float>(f.x * L_), static_cast<float>(f.y * L_)), true);
   }
+}
+
+void Hopper::drive_container() {
+  // The container follows A sin(omega t) exactly: each step it gets the velocity that takes it from where it
+  // is to where it must be at the end of the step (so float rounding never accumulates).
+  const core::Vec2 target = core::container_offset(setup_, t_ + scene_.dt);
+  const b2Vec2& at = walls_->GetPosition();
+  walls_->SetLinearVelocity(b2Vec2(static_cast<float>((target.x * L_ - at.x) / scene_.dt),
+                                   static_cast<float>((target.y * L_ - at.y) / scene_.dt)));
 }
 
 void Hopper::step() {
@@ -190,7 +230,8 @@ void Hopper::step() {
   }
   Clock::time_point t1;
   if (profiling_) t1 = Clock::now(), times_.kicks += std::chrono::duration<double>(t1 - t0).count();
-  if (scene_.mu > 0 && added_ids_.size() >= 2) apply_dipoles();
+  if (open_ && setup_.drive.vibrating()) drive_container();
+  if (dipole_ids_.size() >= 2) apply_dipoles();
   Clock::time_point t2;
   if (profiling_) t2 = Clock::now(), times_.dipoles += std::chrono::duration<double>(t2 - t1).count();
 
@@ -199,6 +240,7 @@ void Hopper::step() {
   ++step_;
   // Time from the integer step count: no drift over millions of steps.
   t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
+  if (setup_.drive.vibrating()) offset_ = {walls_->GetPosition().x / L_, walls_->GetPosition().y / L_};
   Clock::time_point t3;
   if (profiling_) t3 = Clock::now(), times_.box2d += std::chrono::duration<double>(t3 - t2).count();
 
@@ -216,11 +258,12 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   const char* cause = nullptr;
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) || !std::isfinite(v.y))
     cause = "a non-finite position or velocity";
-  else if (p.y > (open_ ? geo_.total_height : deposit_height_) + radius_[id] ||
-           (p.y > 0 && std::abs(p.x) > geo_.half_width_at(p.y) + radius_[id]))
-    cause = "a disk outside the container";
-  else if (core::length(v) > 10.0 * (std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0))
-    cause = "a disk faster than 10x (the free-fall speed from the top + 1 m/s)";
+  else if (p.y > (open_ ? geo_.total_height : deposit_height_) + extent_[id] ||
+           (p.y > 0 && (p.x < geo_.left_at(p.y) - extent_[id] || p.x > geo_.right_at(p.y) + extent_[id])))
+    cause = "a grain outside the container";
+  else if (core::length(v) > 10.0 * (std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0 +
+                                     setup_.drive.amplitude * setup_.drive.omega))
+    cause = "a grain faster than 10x (the free-fall speed from the top + 1 m/s)";
   if (!cause) return;
   std::ostringstream o;
   o << "unstable integration at t = " << fmt4(t_) << " s: " << cause << " (particle " << id
@@ -241,9 +284,19 @@ void Hopper::check_overlaps() {
     if (!c->IsTouching()) continue;
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
     if (a < 0 || b < 0) continue;
-    core::Vec2 d = pos(a) - pos(b);
-    double overlap =
-        std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
+    double overlap;
+    if (sides_[a] == 0 && sides_[b] == 0) {
+      core::Vec2 d = pos(a) - pos(b);
+      overlap = std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
+    } else {
+      // Polygons: the deepest penetration of the contact's manifold (Box2D's separations, internal units).
+      b2WorldManifold wm;
+      c->GetWorldManifold(&wm);
+      double deepest = 0;
+      for (int k = 0; k < c->GetManifold()->pointCount; ++k)
+        deepest = std::min(deepest, static_cast<double>(wm.separations[k]));
+      overlap = -deepest / L_ / std::min(radius_[a], radius_[b]);
+    }
     overlaps_.sum += overlap;
     ++overlaps_.samples;
     if (overlap > worst) worst = overlap, wa = a, wb = b;
@@ -271,9 +324,9 @@ void Hopper::handle_exits() {
     core::Vec2 p = pos(i);
     check_health_fast(i, p, vel(i));
     // A disk wholly below the aperture line has fallen clear of it: one exit, then back to the top.
-    if (open_ && p.y < -radius_[i]) {
+    if (open_ && p.y < -extent_[i]) {
       events_.exits.push_back({t_, i, species_[i]});
-      ++(species_[i] == core::Species::Original ? exits_original_ : exits_added_);
+      ++(species_[i] == core::Species::Original ? exits_original_ : exits_added_);  // first species or others
       clogs_.on_exit(t_);
       reinject(i);
     }
@@ -314,7 +367,7 @@ void Hopper::apply_clog_rule() {
 }
 
 void Hopper::reinject(int id) {
-  const double r = radius_[id];
+  const double r = extent_[id];
   // Just above the packed column (disks in flight do not raise it; the free-space test below avoids them).
   const double top = column_top(id);
   const double ceiling = geo_.total_height - r - 1e-4;
@@ -325,19 +378,23 @@ void Hopper::reinject(int id) {
   for (double y = y0; y <= ceiling; y += 2 * r) bands.push_back(y);
   for (double y = y0 - 2 * r; y >= r; y -= 2 * r) bands.push_back(y);
   for (double y : bands) {
-    const double hw = geo_.half_width_at(y) - r - 1e-4;
-    if (hw <= 0) continue;
+    const double lo = geo_.left_at(y) + r + 1e-4, hi = geo_.right_at(y) - r - 1e-4;
+    if (hi <= lo) continue;
     for (int attempt = 0; attempt < 40; ++attempt) {
-      core::Vec2 p{rng_reinject_.uniform(-hw, hw), y};
-      bool free = true;
+      core::Vec2 p{rng_reinject_.uniform(lo, hi), y};
+      bool free = !geo_.obstacle.present() || geo_.obstacle.gap(p) >= r;
       for (int j = 0; j < particle_count() && free; ++j) {
         if (j == id) continue;
         core::Vec2 d = p - pos(j);
-        double rr = r + radius_[j];
+        double rr = r + extent_[j];
         free = core::dot(d, d) >= rr * rr;
       }
       if (!free) continue;
       place(id, p);
+      // A polygon comes back at a random orientation (its own stream: disks draw nothing).
+      if (sides_[id] > 0)
+        bodies_[id]->SetTransform(bodies_[id]->GetPosition(),
+                                  static_cast<float>(rng_orient_.uniform(0.0, 2.0 * core::kPi)));
       return;
     }
   }
@@ -356,6 +413,7 @@ core::ContactGraph Hopper::contact_graph() const {
     }
     int particle = a >= 0 ? a : b, wall = -1 - (a >= 0 ? b : a);
     if (particle < 0) continue;
+    // The walls the outlet opens between anchor arches (the hopper's, or a flat floor's two halves).
     if (wall == static_cast<int>(core::Wall::HopperLeft)) g.touches_left[particle] = true;
     if (wall == static_cast<int>(core::Wall::HopperRight)) g.touches_right[particle] = true;
   }
@@ -382,7 +440,10 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
     p.radius = static_cast<float>(radius_[i]);
     p.force = 0;
     p.species = species_[i];
+    p.sides = sides_[i];
   }
+  f.container_x = offset_.x;
+  f.container_y = offset_.y;
   // Contact forces from the last step's normal impulses (internal units: impulse * L).
   const double to_newton = 1.0 / (L_ * scene_.dt);
   for (const b2Contact* c = with_forces ? world_->GetContactList() : nullptr; c; c = c->GetNext()) {

@@ -1,10 +1,16 @@
-// The vibrated hopper of Carlevaro et al. (2022) in Box2D 2.4.
+// A two-dimensional silo in Box2D 2.4: the vibrated hopper of Carlevaro et al. (2022) and any other clogging
+// experiment a scene describes (core/setup.h: species of disks or polygons, a hopper or a flat floor, an
+// obstacle, a tilt, kicks and/or a harmonically vibrated container).
 //
-// Construction deposits the disks at random with the aperture closed, lets them settle for settle_time and
-// opens the aperture: time() is 0 afterwards. Each step() applies the kicks (when due) and the dipole forces,
-// steps Box2D by dt, re-injects the disks that fell through the aperture (one exit event each) and applies
-// the clog_timeout rule. Everything is SI outside this class; inside, Box2D runs with lengths multiplied by
-// scene.length_scale so its absolute tolerances (linear slop 0.005) suit disks of a few centimetres.
+// Construction deposits the grains at random with the aperture closed, lets them settle for settle_time and
+// opens the aperture: time() is 0 afterwards. Each step() applies the kicks (when due), moves a vibrating
+// container, applies the dipole forces, steps Box2D by dt, re-injects the grains that fell through the
+// aperture (one exit event each) and applies the clog_timeout rule. A scene pays only for what it uses: no
+// dipole work without dipoles, circles without polygons, a static container without vibration. Everything is
+// SI outside this class; inside, Box2D runs with lengths multiplied by scene.length_scale so its absolute
+// tolerances (linear slop 0.005) suit grains of a few centimetres. Positions used for the rules (exits,
+// arches, re-injection, health) are in the container's frame; Frames carry world positions and the
+// container's displacement.
 #pragma once
 
 #include <chrono>
@@ -16,7 +22,9 @@
 #include "core/geometry.h"
 #include "core/rng.h"
 #include "core/scene.h"
+#include "core/setup.h"
 #include "sim/clog.h"
+#include "sim/dipole.h"
 
 class b2World;
 class b2Body;
@@ -55,11 +63,18 @@ class Hopper {
   void finish();
 
   const core::Scene& scene() const { return scene_; }
+  const core::Setup& setup() const { return setup_; }
   const core::Geometry& geometry() const { return geo_; }
   int particle_count() const { return static_cast<int>(bodies_.size()); }
+  // Centres in the container's frame, m.
   std::vector<core::Vec2> positions() const;
+  // Radii of the disks of equal area, m (a disk's own radius).
   std::vector<double> radii() const { return radius_; }
   const std::vector<core::Species>& species() const { return species_; }
+  // Sides of each grain: 0 for a disk, 3-8 for a regular polygon.
+  const std::vector<std::uint8_t>& sides() const { return sides_; }
+  // The container's displacement now (a vibrating container), m.
+  core::Vec2 container_offset() const { return offset_; }
 
   // Number of arch fallbacks (the primary arch method found nothing when the rule fired).
   long arch_fallbacks() const { return arch_fallbacks_; }
@@ -110,11 +125,15 @@ class Hopper {
   void build_walls();
   b2Fixture* add_wall(int wall);
   double deposit_height() const;
+  void make_grains();
   void deposit();
   void settle();
   void open_aperture();
   void apply_kicks();
   void apply_dipoles();
+  void drive_container();
+  void add_grain(int id, core::Vec2 p, double angle);
+  double draw_radius(const core::SpeciesDef& d);
   void handle_exits();
   void apply_clog_rule();
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
@@ -126,6 +145,7 @@ class Hopper {
   core::Vec2 vel(int id) const;
 
   core::Scene scene_;
+  core::Setup setup_;
   core::Geometry geo_;
   double L_;                   // Box2D length units per metre
   double deposit_height_ = 0;  // m, top of the deposition column
@@ -134,11 +154,17 @@ class Hopper {
   b2Fixture* lid_ = nullptr;
   b2Fixture* ceiling_ = nullptr;  // closes the deposition column while settling
   std::vector<b2Body*> bodies_;
-  std::vector<double> radius_;
+  std::vector<double> radius_;  // equal-area radius
+  std::vector<double> extent_;  // circumradius (= radius_ for disks): the reach of a grain
+  std::vector<std::uint8_t> sides_;
+  std::vector<double> angle_;  // initial orientations, between make_grains() and deposit()
   std::vector<core::Species> species_;
-  std::vector<int> added_ids_;
-  core::Rng rng_deposit_, rng_kick_, rng_reinject_;
+  std::vector<int> dipole_ids_;        // grains with a dipole moment, in id order
+  std::vector<double> dipole_moment_;  // their moments, A*m^2
+  DipoleCells dipole_cells_;
+  core::Rng rng_deposit_, rng_kick_, rng_reinject_, rng_shape_, rng_orient_;
   std::vector<core::Vec2> scratch_pos_, scratch_force_, scratch_kick_;
+  core::Vec2 offset_;  // the container's displacement, m
 
   double t_ = 0;
   std::uint64_t step_ = 0;

@@ -16,7 +16,7 @@ bool Hopper::outlet_arrested() const {
   const std::vector<int> arch = current_arch();
   if (arch.empty()) return false;
   double reach = 0;
-  for (int id : arch) reach = std::max(reach, core::length(pos(id)) + radius_[id]);
+  for (int id : arch) reach = std::max(reach, core::length(pos(id)) + extent_[id]);
   for (int i = 0; i < particle_count(); ++i) {
     core::Vec2 p = pos(i);
     if (core::length(p) > reach) continue;
@@ -28,7 +28,7 @@ bool Hopper::outlet_arrested() const {
 }
 
 double Hopper::column_top(int except) const {
-  const double slab = 2.0 * scene_.radius_original;
+  const double slab = geo_.grain_diameter;  // the largest species' mean diameter (the shorthand: 2 r_o)
   const int n_slabs = static_cast<int>(std::ceil(geo_.total_height / slab)) + 1;
   std::vector<double> covered(static_cast<size_t>(n_slabs), 0.0), top_edge(static_cast<size_t>(n_slabs), 0.0);
   for (int j = 0; j < particle_count(); ++j) {
@@ -37,22 +37,22 @@ double Hopper::column_top(int except) const {
     if (p.y < 0) continue;
     const int k = std::min(n_slabs - 1, static_cast<int>(p.y / slab));
     covered[k] += core::kPi * radius_[j] * radius_[j];
-    top_edge[k] = std::max(top_edge[k], p.y + radius_[j]);
+    top_edge[k] = std::max(top_edge[k], p.y + extent_[j]);
   }
   double top = 0;
   for (int k = 0; k < n_slabs; ++k) {
     const double mid = std::min((k + 0.5) * slab, geo_.total_height);
-    const double area = 2.0 * geo_.half_width_at(mid) * slab;
+    const double area = geo_.width_at(mid) * slab;
     if (area > 0 && covered[k] >= 0.35 * area) top = std::max(top, top_edge[k]);
   }
   return top;
 }
 
 void Hopper::sample_airborne() {
-  const double top = column_top() + 4.0 * scene_.radius_original;
+  const double top = column_top() + 2.0 * geo_.grain_diameter;
   int n = 0;
   for (int i = 0; i < particle_count(); ++i)
-    if (pos(i).y - radius_[i] > top) ++n;
+    if (pos(i).y - extent_[i] > top) ++n;
   const double f = static_cast<double>(n) / std::max(1, particle_count());
   airborne_.sum += f;
   airborne_.max = std::max(airborne_.max, f);

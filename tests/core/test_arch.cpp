@@ -112,7 +112,7 @@ TEST_CASE("contacts rebuilt from positions match the geometry", "[arch]") {
   core::Geometry geo = core::make_geometry(s);
   const double r = 0.065;
   // A disk touching the left hopper wall at y = 0.12, one touching it, one apart.
-  double x0 = -(geo.half_width_at(0.12) - r / std::cos(geo.wall_angle_from_vertical()));
+  double x0 = -(geo.right_at(0.12) - r / std::cos(geo.wall_angle_from_vertical()));
   std::vector<core::Vec2> pos = {{x0, 0.12}, {x0 + 2 * r, 0.12}, {x0 + 4 * r + 0.01, 0.12}};
   std::vector<double> radius(3, r);
   auto g = core::contacts_from_positions(pos, radius, geo, 1e-3, 1.0);
@@ -134,7 +134,7 @@ struct StagedArch {
     hopper = std::make_unique<sim::Hopper>(scene);
     const auto& g = hopper->geometry();
     const double r = scene.radius_original, ya = 0.12;
-    const double x0 = g.half_width_at(ya) - r / std::cos(g.wall_angle_from_vertical());
+    const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());
     core::Vec2 a{-x0, ya}, b{0, ya + std::sqrt(4 * r * r - x0 * x0) + 1e-4}, c{x0, ya};
     y_top = b.y;
     auto above = [r](core::Vec2 p, core::Vec2 q) {

@@ -21,7 +21,8 @@ TEST_CASE("hopper geometry matches model.md", "[sim][geometry]") {
   // Each wall 14.45 deg from the vertical; the two make 28.9 deg (~ pi/6) with each other.
   CHECK(g.wall_angle_from_vertical() * 180 / M_PI == Approx(14.45).margin(0.01));
   CHECK(2 * g.wall_angle_from_vertical() == Approx(M_PI / 6).epsilon(0.04));
-  CHECK(g.half_width_at(0.68) == Approx(0.5 * (0.1495 + 0.5)));
+  CHECK(g.right_at(0.68) == Approx(0.5 * (0.1495 + 0.5)));
+  CHECK(g.left_at(0.68) == Approx(-0.5 * (0.1495 + 0.5)));
   CHECK(g.contains({0, 1.0}, 0.065));
   CHECK_FALSE(g.contains({0.45, 0.1}, 0.065));  // through the hopper wall
   CHECK_FALSE(g.contains({0, 6.34}, 0.065));    // through the top

@@ -70,7 +70,8 @@ TEST_CASE("validation names the key, the value and the allowed range", "[sim][sc
   CHECK_THAT(error_of([&] { core::validate(s); }), Contains("duration") && Contains("-1"));
   s = {};
   s.aperture = 0.04;  // narrower than an added disk (diameter 0.052 m)
-  CHECK_THAT(error_of([&] { core::validate(s); }), Contains("aperture") && Contains("smallest disk"));
+  CHECK_THAT(error_of([&] { core::validate(s); }),
+             Contains("aperture") && Contains("wider than every grain"));
   s = {};
   s.kick_period = 0.1005;  // not a whole number of 1 ms steps
   CHECK_THAT(error_of([&] { core::validate(s); }), Contains("kick_period"));

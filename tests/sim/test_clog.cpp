@@ -22,7 +22,7 @@ struct KickedArch {
     hopper = std::make_unique<sim::Hopper>(scene);
     const auto& g = hopper->geometry();
     const double r = scene.radius_original, ya = 0.12;
-    const double x0 = g.half_width_at(ya) - r / std::cos(g.wall_angle_from_vertical());
+    const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());
     core::Vec2 a{-x0, ya}, b{0, ya + std::sqrt(4 * r * r - x0 * x0) + 1e-4}, c{x0, ya};
     auto above = [r](core::Vec2 p, core::Vec2 q) {
       core::Vec2 m = 0.5 * (p + q), d = q - p;

@@ -3,6 +3,7 @@
 #include <box2d/box2d.h>
 
 #include "core/physics.h"
+#include "core/setup.h"
 #include "sim/dipole.h"
 #include "sim/hopper.h"
 
@@ -63,7 +64,7 @@ TEST_CASE("the dipole's safe time step refuses a stiff scene and names the large
           "[sim][dipole][health]") {
   core::Scene s;
   core::apply_overrides(s, {"size_ratio=0.2", "mu=2.0", "dt=0.002", "kick_period=0.1", "settle_time=0"});
-  const double safe = core::dipole_safe_dt(s);
+  const double safe = core::dipole_safe_dt(core::resolve(s));
   REQUIRE(safe < s.dt);
   try {
     sim::Hopper h(s);
