@@ -10,22 +10,51 @@
 #include "analysis/tidy.h"
 #include "core/error.h"
 #include "core/physics.h"
+#include "core/setup.h"
 
 namespace analysis {
 
 namespace {
 const std::vector<std::string> kVaried = {"size_ratio", "chi", "mu", "kick_impulse_max"};
 
-bool is_point_key(const std::string& k) {
+bool is_point_key(const std::string& k, const std::vector<std::string>& by) {
   for (const auto& v : kVaried)
+    if (k == v) return true;
+  for (const auto& v : by)
     if (k == v) return true;
   return k == "seed";
 }
 
-std::string point_label(const core::Scene& s) {
+std::string point_label(const core::Scene& s, const std::vector<std::string>& by) {
   std::string out;
   for (const auto& k : kVaried) out += (out.empty() ? "" : ",") + core::field_text(s, *core::find_field(k));
+  if (!by.empty()) {
+    const auto values = core::scene_values(s);
+    for (const auto& k : by) {
+      auto it = values.find(k);
+      out += "," + (it == values.end() ? std::string("-") : it->second);
+    }
+  }
   return out;
+}
+
+// The columns in front of every per-point row: the paper's keys, then the --by keys.
+std::string key_header(const std::vector<Point>& points) {
+  std::string s;
+  for (const auto& k : kVaried) s += k + ",";
+  if (!points.empty())
+    for (const auto& [k, v] : points.front().extra) s += k + ",";
+  return s;
+}
+std::string key_values(const Point& p) {
+  std::string s;
+  for (const auto& k : kVaried) s += core::field_text(p.scene, *core::find_field(k)) + ",";
+  for (const auto& [k, v] : p.extra) {
+    std::string t = v;
+    if (t.size() >= 2 && t.front() == '"') t = t.substr(1, t.size() - 2);
+    s += t + ",";
+  }
+  return s;
 }
 
 Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*field) {
@@ -35,18 +64,33 @@ Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*
 }
 }  // namespace
 
-std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused) {
+std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused,
+                             const std::vector<std::string>& by) {
   if (runs.empty()) throw core::InputError("analyze: no runs to aggregate");
+  for (const auto& k : by) {
+    const auto values = core::scene_values(runs.front().scene);
+    if (!values.count(k))
+      throw core::InputError("analyze: --by " + k + ": not a key of " + runs.front().source +
+                             "'s scene (scene keys, or species.NAME.KEY)");
+  }
   // Every key a campaign does not vary must agree with the first run's.
   const Run& first = runs.front();
+  const auto first_values = core::scene_values(first.scene);
   auto same_campaign = [&](const core::Scene& s, const std::string& source) {
-    for (const auto& f : core::scene_fields()) {
-      if (is_point_key(f.key)) continue;
-      std::string a = core::field_text(first.scene, f), b = core::field_text(s, f);
+    const auto values = core::scene_values(s);
+    for (const auto& [k, a] : first_values) {
+      if (is_point_key(k, by)) continue;
+      auto it = values.find(k);
+      const std::string b = it == values.end() ? "(absent)" : it->second;
       if (a != b)
-        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " +
-                               f.key + " = " + a + " but " + source + " has " + f.key + " = " + b);
+        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " + k +
+                               " = " + a + " but " + source + " has " + k + " = " + b +
+                               " (if your campaign varies " + k + ", analyze with --by " + k + ")");
     }
+    for (const auto& [k, b] : values)
+      if (!first_values.count(k) && !is_point_key(k, by))
+        throw core::InputError("analyze: runs of different scenes are mixed: " + source + " has " + k + " = " + b +
+                               " but " + first.source + " has no such key");
   };
   for (const Run& r : runs) same_campaign(r.scene, r.source);
   for (const Refused& r : refused) same_campaign(r.scene, r.source);
@@ -54,10 +98,12 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
   std::vector<std::string> order;
   std::map<std::string, std::set<std::uint64_t>> seeds;
   for (const Run& r : runs) {
-    std::string label = point_label(r.scene);
+    std::string label = point_label(r.scene, by);
     if (!by_label.count(label)) {
       order.push_back(label);
       by_label[label].scene = r.scene;
+      const auto values = core::scene_values(r.scene);
+      for (const auto& k : by) by_label[label].extra.push_back({k, values.at(k)});
     }
     if (!seeds[label].insert(r.scene.seed).second)
       throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) +
@@ -66,7 +112,7 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
     by_label[label].runs.push_back(&r);
   }
   for (const Refused& r : refused) {
-    const std::string label = point_label(r.scene);
+    const std::string label = point_label(r.scene, by);
     if (!by_label.count(label)) continue;  // a point with no finished run has no row
     if (!seeds[label].insert(r.scene.seed).second)
       throw core::InputError("analyze: seed " + std::to_string(r.scene.seed) +
@@ -76,22 +122,52 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
   }
   // Q_p: the mean Q of the pure system (chi = 0) at the same kick strength; a campaign over kicks has one
   // pure point per kick.
+  std::vector<std::pair<std::string, std::string>> s_extra;
   auto pure_for = [&](const core::Scene& s) -> const Point* {
     const Point* found = nullptr;
+    if (!s.shorthand()) return found;  // Q_p is the paper's: a scene of its own species has none
     for (auto& [label, p] : by_label)
-      if (p.scene.n_added() == 0 && p.scene.kick_impulse_max == s.kick_impulse_max) found = &p;
+      if (p.scene.shorthand() && p.scene.n_added() == 0 && p.scene.kick_impulse_max == s.kick_impulse_max &&
+          p.extra == s_extra)
+        found = &p;
     return found;
   };
 
   std::vector<Point> out;
   for (const auto& label : order) {
     Point p = by_label[label];
+    s_extra = p.extra;
     const Point* pure = pure_for(p.scene);
     Estimate qp;
     if (pure) qp = estimate_of(pure->runs, &Measurements::q);
     p.q_p = qp;
     p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
     p.avalanche_mean = estimate_of(p.runs, &Measurements::avalanche_mean);
+    // Each species' flow, and the survival of clogs (durations; the rule and the run's end censor them).
+    const core::Setup st = core::resolve(p.scene);
+    for (size_t k = 0; k < st.species.size(); ++k) {
+      SpeciesEstimate e;
+      e.name = st.species[k].name;
+      e.count = st.species[k].count;
+      std::vector<double> q, frac;
+      for (const Run* r : p.runs) {
+        const long n = k < r->m.exits_by_species.size() ? r->m.exits_by_species[k] : 0;
+        q.push_back(r->m.duration > 0 ? n / r->m.duration : NAN);
+        frac.push_back(r->m.exits > 0 ? static_cast<double>(n) / r->m.exits : NAN);
+      }
+      e.q = estimate(q);
+      e.exit_fraction = estimate(frac);
+      p.species.push_back(e);
+    }
+    std::vector<Duration> durations;
+    for (const Run* r : p.runs)
+      for (const auto& c : r->events.clogs) {
+        if (c.start > r->m.duration) continue;
+        const bool broke = c.ended_by == core::ClogEnd::Spontaneous || c.ended_by == core::ClogEnd::Vibration;
+        durations.push_back({c.end - c.start, broke});
+        p.clogs_run_end += c.ended_by == core::ClogEnd::RunEnd;
+      }
+    p.clog_survival = kaplan_meier(durations);
     for (const Run* r : p.runs) {
       p.clogs += r->m.clogs;
       p.clogs_vibration += r->m.clogs_vibration;
@@ -127,8 +203,7 @@ std::string realizations_csv(const std::vector<Run>& runs) {
 }
 
 std::string points_csv(const std::vector<Point>& points) {
-  std::string s;
-  for (const auto& k : kVaried) s += k + ",";
+  std::string s = key_header(points);
   s += "dipole_force_ratio,kick_dv_over_sqrt_g_ro,n_runs,n_runs_pure,clogs,clogs_vibration,clogs_rule,"
        "clogs_spontaneous,ballistic_runs,n_refused";
   const char* names[] = {"q_per_s",
@@ -144,18 +219,21 @@ std::string points_csv(const std::vector<Point>& points) {
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
   s += "\n";
   for (const auto& p : points) {
-    for (const auto& k : kVaried) {
-      std::string v = core::field_text(p.scene, *core::find_field(k));
-      s += v + ",";
-    }
-    s += core::format_g(core::dipole_contact_force(p.scene) /
-                        (core::mass_of(p.scene.radius_added(), p.scene.density) * p.scene.gravity)) +
-         ",";
-    // The kick's largest velocity change for an original disk, in units of sqrt(g r_o).
+    s += key_values(p);
+    // The shorthand's dipole strength and kick; a scene of its own species has neither (its species.csv
+    // holds each species' flow).
     const core::Scene& sc = p.scene;
-    s += core::format_g(sc.kick_impulse_max / core::mass_of(sc.radius_original, sc.density) /
-                        std::sqrt(sc.gravity * sc.radius_original)) +
-         ",";
+    if (sc.shorthand()) {
+      s += core::format_g(core::dipole_contact_force(sc) /
+                          (core::mass_of(sc.radius_added(), sc.density) * sc.gravity)) +
+           ",";
+      // The kick's largest velocity change for an original disk, in units of sqrt(g r_o).
+      s += core::format_g(sc.kick_impulse_max / core::mass_of(sc.radius_original, sc.density) /
+                          std::sqrt(sc.gravity * sc.radius_original)) +
+           ",";
+    } else {
+      s += "nan,nan,";
+    }
     s += std::to_string(p.runs.size()) + "," + std::to_string(p.q_p.n) + "," + std::to_string(p.clogs) + "," +
          std::to_string(p.clogs_vibration) + "," + std::to_string(p.clogs_rule) + "," +
          std::to_string(p.clogs_spontaneous) + "," + std::to_string(p.ballistic_runs) + "," +
@@ -170,8 +248,7 @@ std::string points_csv(const std::vector<Point>& points) {
 }
 
 std::string pooled_survival_csv(const std::vector<Point>& points) {
-  std::string s;
-  for (const auto& k : kVaried) s += k + ",";
+  std::string s = key_header(points);
   s += "tau_s,survival,gaps\n";
   for (const auto& p : points) {
     std::vector<double> gaps;
@@ -181,8 +258,7 @@ std::string pooled_survival_csv(const std::vector<Point>& points) {
     }
     auto taus = survival_taus(p.scene);
     auto surv = survival(gaps, taus);
-    std::string prefix;
-    for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
+    const std::string prefix = key_values(p);
     for (size_t i = 0; i < taus.size(); ++i)
       s += prefix + core::format_g(taus[i]) + "," + core::format_g(surv[i]) + "," +
            std::to_string(gaps.size()) + "\n";
@@ -191,8 +267,7 @@ std::string pooled_survival_csv(const std::vector<Point>& points) {
 }
 
 std::string pooled_avalanches_csv(const std::vector<Point>& points) {
-  std::string s;
-  for (const auto& k : kVaried) s += k + ",";
+  std::string s = key_header(points);
   s += "size,survival,avalanches\n";
   for (const auto& p : points) {
     std::vector<double> sizes;
@@ -203,8 +278,7 @@ std::string pooled_avalanches_csv(const std::vector<Point>& points) {
       auto a = avalanche_sizes(within, p.scene.clog_min_gap);
       sizes.insert(sizes.end(), a.begin(), a.end());
     }
-    std::string prefix;
-    for (const auto& k : kVaried) prefix += core::field_text(p.scene, *core::find_field(k)) + ",";
+    const std::string prefix = key_values(p);
     if (sizes.empty()) continue;
     const double largest = *std::max_element(sizes.begin(), sizes.end());
     std::vector<double> at;
@@ -218,6 +292,29 @@ std::string pooled_avalanches_csv(const std::vector<Point>& points) {
     for (size_t i = 0; i < at.size(); ++i)
       s += prefix + core::format_g(at[i]) + "," + core::format_g(surv[i]) + "," +
            std::to_string(sizes.size()) + "\n";
+  }
+  return s;
+}
+
+std::string species_points_csv(const std::vector<Point>& points) {
+  std::string s = key_header(points) + "species,count,n_runs,q_per_s,q_per_s_ci95,exit_fraction,exit_fraction_ci95\n";
+  for (const auto& p : points)
+    for (const auto& e : p.species)
+      s += key_values(p) + e.name + "," + std::to_string(e.count) + "," + std::to_string(p.runs.size()) + "," +
+           core::format_g(e.q.mean) + "," + core::format_g(e.q.half_width) + "," + core::format_g(e.exit_fraction.mean) +
+           "," + core::format_g(e.exit_fraction.half_width) + "\n";
+  return s;
+}
+
+std::string clog_survival_csv(const std::vector<Point>& points) {
+  std::string s = key_header(points) +
+                  "t_s,survival,survival_lo95,survival_hi95,at_risk,clogs,clogs_broken,clogs_rule,clogs_run_end\n";
+  for (const auto& p : points) {
+    const long broken = p.clogs_spontaneous + p.clogs_vibration;
+    for (const auto& step : p.clog_survival)
+      s += key_values(p) + core::format_g(step.t) + "," + core::format_g(step.s) + "," + core::format_g(step.lo) + "," +
+           core::format_g(step.hi) + "," + std::to_string(step.at_risk) + "," + std::to_string(p.clogs) + "," +
+           std::to_string(broken) + "," + std::to_string(p.clogs_rule) + "," + std::to_string(p.clogs_run_end) + "\n";
   }
   return s;
 }

@@ -27,8 +27,20 @@ struct Refused {
   core::Scene scene;
 };
 
+struct SpeciesEstimate {
+  std::string name;
+  long count = 0;       // grains of the species in the scene
+  Estimate q;           // its exits per second
+  Estimate exit_fraction;  // its share of all exits
+};
+
 struct Point {
   core::Scene scene;  // seed of the first run
+  // Keys the analysis was told to tell points apart by beyond the paper's (analyze --by), with their values.
+  std::vector<std::pair<std::string, std::string>> extra;
+  std::vector<SpeciesEstimate> species;
+  std::vector<SurvivalStep> clog_survival;  // Kaplan-Meier, over every clog of the point's realizations
+  long clogs_run_end = 0;                   // clogs still open when a run ended (censored)
   std::vector<const Run*> runs;
   Estimate q, q_tilde, chi_eff, long_arches_per_min, added_per_long_arch, fraction_broken_by_vibration;
   Estimate q_tilde_over_qp;  // NaN mean when no pure point exists
@@ -40,13 +52,21 @@ struct Point {
                      // estimate is of the realizations that finished (a selection when this is not 0)
 };
 
-// Throws core::InputError when runs (or refused realizations) of different scenes are mixed or a seed repeats
-// within a point.
-std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused = {});
+// Runs are told apart by the paper's keys (size_ratio, chi, mu, kick_impulse_max) and the keys in `by` (any
+// scene key, species.NAME.KEY included: what a campaign of one's own varies). Throws core::InputError when
+// runs (or refused realizations) differ in any other key, naming it (and --by), or a seed repeats within a
+// point.
+std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused = {},
+                             const std::vector<std::string>& by = {});
 
 std::string realizations_csv(const std::vector<Run>& runs);
 std::string points_csv(const std::vector<Point>& points);
 std::string pooled_survival_csv(const std::vector<Point>& points);
+// Per point and species: exits per second and share of the exits, with 95% intervals.
+std::string species_points_csv(const std::vector<Point>& points);
+// Per point, the Kaplan-Meier survival S(t) of the clogs' durations with its 95% band; clogs the rule removed or
+// the run's end cut short are censored (clog_survival.csv). With the rule on, S stops at clog_timeout.
+std::string clog_survival_csv(const std::vector<Point>& points);
 // P(S >= s) of the avalanche sizes S (disks between two clogs) pooled over each point's realizations, at
 // s = 1..10 and then about 20 sizes per decade up to the largest; `avalanches` is the number pooled.
 std::string pooled_avalanches_csv(const std::vector<Point>& points);

@@ -5,15 +5,19 @@
 
 namespace analysis {
 
-Measurements measure(const core::Events& ev, double duration, double clog_min_gap) {
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species) {
   Measurements m;
   m.duration = duration;
+  m.exits_by_species.assign(static_cast<size_t>(std::max(1, n_species)), 0);
   std::vector<core::ExitEvent> within;
   for (const auto& e : ev.exits) {
     if (e.t > duration) continue;
     within.push_back(e);
     ++m.exits;
     ++(e.species == core::Species::Original ? m.exits_original : m.exits_added);
+    const size_t k = static_cast<size_t>(core::species_index(e.species));
+    if (k >= m.exits_by_species.size()) m.exits_by_species.resize(k + 1, 0);
+    ++m.exits_by_species[k];
   }
   m.q = duration > 0 ? m.exits / duration : NAN;
   m.q_tilde = duration > 0 ? m.exits_original / duration : NAN;
@@ -23,7 +27,7 @@ Measurements measure(const core::Events& ev, double duration, double clog_min_ga
     if (a.t > duration) continue;
     ++m.long_arches;
     members += static_cast<long>(a.ids.size());
-    added += std::count(a.species.begin(), a.species.end(), core::Species::Added);
+    added += static_cast<long>(a.species.size()) - std::count(a.species.begin(), a.species.end(), core::Species::Original);
   }
   m.long_arches_per_minute = duration > 0 ? 60.0 * m.long_arches / duration : NAN;
   m.added_per_long_arch = m.long_arches > 0 ? static_cast<double>(added) / m.long_arches : NAN;

@@ -7,9 +7,12 @@
 
 namespace analysis {
 
+// For a scene with its own species list, "original" means the first species and "added" every other one
+// (Q~ is the first species' flow); exits_by_species has each species' own count.
 struct Measurements {
   double duration = 0;  // s of discharge analysed
   long exits = 0, exits_original = 0, exits_added = 0;
+  std::vector<long> exits_by_species;  // per species index
   double q = 0;          // exits per second (all species)
   double q_tilde = 0;    // exits of original disks per second
   double chi_eff = 0;    // fraction of added disks among the exits (NaN without exits)
@@ -28,8 +31,9 @@ struct Measurements {
   bool ballistic = false;        // airborne_fraction above the ballistic threshold
 };
 
-// `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches.
-Measurements measure(const core::Events& ev, double duration, double clog_min_gap);
+// `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches;
+// `n_species`: how many species the scene has.
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species = 2);
 
 // Gaps between consecutive exits of original disks, s (added disks may exit in between).
 std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);

@@ -89,3 +89,48 @@ Estimate estimate(const std::vector<double>& samples, double confidence) {
 }
 
 }  // namespace analysis
+
+namespace analysis {
+
+std::vector<SurvivalStep> kaplan_meier(std::vector<Duration> samples) {
+  // Events before censorings at equal times (the usual convention: a sample censored at t was at risk at t).
+  std::sort(samples.begin(), samples.end(), [](const Duration& a, const Duration& b) {
+    return a.t < b.t || (a.t == b.t && a.observed && !b.observed);
+  });
+  std::vector<SurvivalStep> out;
+  double s = 1.0, greenwood = 0.0;
+  long at_risk = static_cast<long>(samples.size());
+  out.push_back({0.0, 1.0, 1.0, 1.0, at_risk});
+  for (size_t i = 0; i < samples.size();) {
+    const double t = samples[i].t;
+    long events = 0, removed = 0;
+    for (; i < samples.size() && samples[i].t == t; ++i) {
+      events += samples[i].observed;
+      ++removed;
+    }
+    if (events > 0) {
+      s *= 1.0 - static_cast<double>(events) / static_cast<double>(at_risk);
+      if (at_risk > events)
+        greenwood += static_cast<double>(events) / (static_cast<double>(at_risk) * (at_risk - events));
+      // Greenwood's variance on the log-log scale keeps the band within [0, 1].
+      double lo = s, hi = s;
+      if (s > 0 && s < 1) {
+        const double se = std::sqrt(greenwood) / std::abs(std::log(s));
+        lo = std::pow(s, std::exp(1.959963984540054 * se));
+        hi = std::pow(s, std::exp(-1.959963984540054 * se));
+      }
+      out.push_back({t, s, lo, hi, at_risk});
+    }
+    at_risk -= removed;
+  }
+  return out;
+}
+
+double survival_at(const std::vector<SurvivalStep>& km, double t) {
+  double s = 1.0;
+  for (const auto& step : km)
+    if (step.t <= t) s = step.s;
+  return s;
+}
+
+}  // namespace analysis

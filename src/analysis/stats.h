@@ -25,4 +25,21 @@ struct Estimate {
 // Mean and confidence interval (Student t, default 95%) of independent samples; NaN samples are skipped.
 Estimate estimate(const std::vector<double>& samples, double confidence = 0.95);
 
+// A duration that ended (observed) or was cut short (censored: by the clog rule or the run's end).
+struct Duration {
+  double t;
+  bool observed;
+};
+// One step of a Kaplan-Meier estimate: S(t) = P(T > t) just after t, its 95% band (Greenwood, log-log), and
+// the samples at risk just before t. The first step is (0, 1).
+struct SurvivalStep {
+  double t, s, lo, hi;
+  long at_risk;
+};
+// The Kaplan-Meier estimate of the survival of `samples`: the survival function of durations when some were
+// censored (the 5 s rule censors every clog at 5 s; the run's end censors the last one).
+std::vector<SurvivalStep> kaplan_meier(std::vector<Duration> samples);
+// S(t) of an estimate (a step function, right-continuous).
+double survival_at(const std::vector<SurvivalStep>& km, double t);
+
 }  // namespace analysis

@@ -48,9 +48,22 @@ std::string summary_row(const core::Scene& s, const Measurements& m) {
          core::format_g(m.avalanche_mean);
 }
 
+std::string species_csv(const core::Setup& st, const Measurements& m) {
+  std::string out = "species,count,number_fraction,exits,q_per_s,exit_fraction\n";
+  for (size_t k = 0; k < st.species.size(); ++k) {
+    const long exits = k < m.exits_by_species.size() ? m.exits_by_species[k] : 0;
+    out += st.species[k].name + "," + std::to_string(st.species[k].count) + "," +
+           core::format_g(static_cast<double>(st.species[k].count) / st.n_total) + "," + std::to_string(exits) +
+           "," + core::format_g(m.duration > 0 ? exits / m.duration : NAN) + "," +
+           core::format_g(m.exits > 0 ? static_cast<double>(exits) / m.exits : NAN) + "\n";
+  }
+  return out;
+}
+
 std::vector<double> survival_taus(const core::Scene& s) {
   std::vector<double> taus;
-  const int n = static_cast<int>(std::ceil((s.clog_timeout + 1.0) / 0.05));
+  const double top = s.clog_timeout > 0 ? s.clog_timeout + 1.0 : 30.0;
+  const int n = static_cast<int>(std::ceil(top / 0.05));
   for (int i = 0; i <= n; ++i) taus.push_back(0.05 * i);
   return taus;
 }
@@ -69,22 +82,42 @@ std::string survival_csv(const core::Scene& s, const std::vector<core::ExitEvent
   return out;
 }
 
-std::string summary_text(const Measurements& m) {
-  char b[1024];
-  std::snprintf(b, sizeof b,
-                "discharge   %.1f s: %ld exits (%ld original, %ld added)\n"
-                "Q           %.3f /s   Q~ (originals) %.3f /s   chi_eff %.3f\n"
-                "long arches %ld (%.2f per minute), %.2f added disks per arch, %.2f members per arch\n"
-                "clogs       %ld >= clog_min_gap: %ld spontaneous, %ld broken by vibration, %ld by the rule, "
-                "%ld open at the end\n",
-                m.duration, m.exits, m.exits_original, m.exits_added, m.q, m.q_tilde, m.chi_eff,
-                m.long_arches, m.long_arches_per_minute, m.added_per_long_arch, m.members_per_long_arch,
-                m.clogs, m.clogs_spontaneous, m.clogs_vibration, m.clogs_rule, m.clogs_run_end);
-  std::string out = b;
+std::string summary_text(const Measurements& m, const std::vector<std::string>& names, bool clog_rule) {
+  const bool shorthand = names.size() == 2 && names[0] == "original" && names[1] == "added";
+  std::string exits;
+  if (shorthand) {
+    exits = std::to_string(m.exits_original) + " original, " + std::to_string(m.exits_added) + " added";
+  } else {
+    for (size_t k = 0; k < names.size(); ++k)
+      exits += (k ? ", " : "") + std::to_string(k < m.exits_by_species.size() ? m.exits_by_species[k] : 0) + " " +
+               names[k];
+  }
+  auto num = [](double v, const char* fmt) {
+    if (std::isnan(v)) return std::string("-");
+    char b[32];
+    std::snprintf(b, sizeof b, fmt, v);
+    return std::string(b);
+  };
+  const std::string first = shorthand ? "originals" : names.empty() ? "first species" : names[0];
+  std::string out = "discharge   " + num(m.duration, "%.1f") + " s: " + std::to_string(m.exits) + " exits (" + exits +
+                    ")\n";
+  out += "Q           " + num(m.q, "%.3f") + " /s   Q~ (" + first + ") " + num(m.q_tilde, "%.3f") + " /s   chi_eff " +
+         (m.exits > 0 ? num(m.chi_eff, "%.3f") : std::string("- (no exits)")) + "\n";
+  if (!clog_rule)
+    out += "long arches none: the clog rule is off (clogs end only by the drive or the end of the run)\n";
+  else if (m.long_arches == 0)
+    out += "long arches none (the clog rule never fired)\n";
+  else
+    out += "long arches " + std::to_string(m.long_arches) + " (" + num(m.long_arches_per_minute, "%.2f") + " per minute), " +
+           num(m.added_per_long_arch, "%.2f") + (shorthand ? " added disks" : " grains not " + first) + " per arch, " +
+           num(m.members_per_long_arch, "%.2f") + " members per arch\n";
+  out += "clogs       " + std::to_string(m.clogs) + " >= clog_min_gap: " + std::to_string(m.clogs_spontaneous) +
+         " spontaneous, " + std::to_string(m.clogs_vibration) + " broken by vibration, " + std::to_string(m.clogs_rule) +
+         " by the rule, " + std::to_string(m.clogs_run_end) + " open at the end\n";
   char h[256];
-  std::snprintf(h, sizeof h, "health      %s: %.2f%% of disks in flight on average, %ld warnings\n",
+  std::snprintf(h, sizeof h, "health      %s: %.2f%% of grains in flight on average, %ld warnings\n",
                 m.health_warnings > 0 ? "UNHEALTHY (--unsafe warnings)"
-                : m.ballistic         ? "WARNING ballistic (the kicks throw disks above the column)"
+                : m.ballistic         ? "WARNING ballistic (the kicks throw grains above the column)"
                                       : "ok",
                 100.0 * m.airborne_fraction, m.health_warnings);
   return out + h;

@@ -1,5 +1,7 @@
 #include "app/campaign.h"
 
+#include <algorithm>
+
 #include <toml++/toml.h>
 
 #include <cctype>
@@ -49,6 +51,9 @@ core::Scene apply(const core::Scene& base, const std::vector<Assignment>& set, c
       core::set_field(s, k, v, where);
   }
   if (ratio) {
+    if (!s.shorthand())
+      throw core::InputError(where + ": dipole_force_ratio applies to the paper's two-species shorthand; with "
+                                     "[[species]] set species.NAME.dipole (A*m^2)");
     char* end = nullptr;
     double r = std::strtod(ratio->c_str(), &end);
     if (ratio->empty() || *end || !(r >= 0) || !std::isfinite(r))
@@ -136,7 +141,8 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
   if (auto* grid = t["grid"].as_table()) {
     for (auto&& [k, v] : *grid) {
       std::string key(k.str()), where = path + ": grid." + key;
-      if (key != kForceRatio && !core::find_field(key)) {
+      // Species keys (species.NAME.KEY, quoted in TOML) are checked when the points are applied.
+      if (key != kForceRatio && !core::find_field(key) && key.rfind("species.", 0) != 0) {
         core::Scene probe;
         core::set_field(probe, key, "", where);  // throws "unknown key" with the list of keys
       }
@@ -194,6 +200,16 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
     c.points.push_back(std::move(p));
   }
   return c;
+}
+
+std::vector<std::string> Campaign::extra_point_keys() const {
+  std::vector<std::string> keys;
+  for (const auto& p : points)
+    for (const auto& [k, v] : p.set) {
+      if (k == "size_ratio" || k == "chi" || k == "mu" || k == "kick_impulse_max" || k == kForceRatio) continue;
+      if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    }
+  return keys;
 }
 
 }  // namespace app

@@ -43,6 +43,9 @@ struct Campaign {
   std::uint64_t realization_seed(size_t p, int k) const;
   // Where realization k of point p lives under a results directory.
   std::string run_dir(size_t p, int k) const;
+  // The keys the points set beyond the paper's (size_ratio, chi, mu, kick_impulse_max; dipole_force_ratio
+  // sets mu): what `analyze --by` must tell the points apart by.
+  std::vector<std::string> extra_point_keys() const;
 };
 
 // Throws core::InputError naming the file, the key and the problem (empty grid, unknown key, duplicate

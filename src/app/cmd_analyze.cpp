@@ -7,6 +7,7 @@
 #include "app/common.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/setup.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -18,6 +19,7 @@ namespace fs = std::filesystem;
 
 struct AnalyzeOptions {
   std::vector<std::string> inputs;
+  std::vector<std::string> by;
   std::string out;
   bool force = false;
   bool include_interrupted = false, include_unhealthy = false;
@@ -49,8 +51,8 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs:
 }  // namespace
 
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
-                 bool include_interrupted, bool include_unhealthy) {
-  AnalyzeOptions o{inputs, out_dir, force, include_interrupted, include_unhealthy};
+                 bool include_interrupted, bool include_unhealthy, const std::vector<std::string>& by) {
+  AnalyzeOptions o{inputs, by, out_dir, force, include_interrupted, include_unhealthy};
   std::vector<fs::path> dirs, refused_files;
   for (const auto& in : o.inputs) {
     size_t before = dirs.size();
@@ -69,8 +71,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     const std::string meta = (d / "metadata.toml").string();
     r.scene = core::load_scene(meta);
     core::validate(r.scene);
+    const core::Setup setup = core::resolve(r.scene);
     const io::RunRecord rec = io::read_run_record(meta);
-    r.events = io::read_events(d);
+    r.events = io::read_events(d, setup.species_names());
     // A run counts for the discharge time it covered, not the time it planned.
     double covered = rec.covered_s >= 0 ? std::min(rec.covered_s, r.scene.duration) : r.scene.duration;
     if (covered <= 0)
@@ -87,7 +90,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                          " --unsafe warnings (--include-unhealthy counts it)");
       continue;
     }
-    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap);
+    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap, static_cast<int>(setup.species.size()));
     r.m.health_warnings = rec.health_warnings;
     r.m.ballistic = rec.ballistic;
     r.m.airborne_fraction = rec.airborne_fraction;
@@ -103,7 +106,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     core::validate(s);
     refused.push_back({f.string(), s});
   }
-  auto points = analysis::aggregate(runs, refused);
+  auto points = analysis::aggregate(runs, refused, o.by);
   long refused_counted = 0;
   for (const auto& p : points) refused_counted += p.refused;
   if (refused_counted < static_cast<long>(refused.size()))
@@ -115,8 +118,11 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("points.csv"), analysis::points_csv(points));
   io::write_file_atomic(out.file("survival.csv"), analysis::pooled_survival_csv(points));
   io::write_file_atomic(out.file("avalanches.csv"), analysis::pooled_avalanches_csv(points));
+  io::write_file_atomic(out.file("species.csv"), analysis::species_points_csv(points));
+  io::write_file_atomic(out.file("clog_survival.csv"), analysis::clog_survival_csv(points));
   io::RunInfo info{command_line(),
                    {{"runs", runs.size()},
+                    {"by", o.by},
                     {"points", points.size()},
                     {"runs_left_out", left_out.size()},
                     {"runs_refused", refused.size()},
@@ -126,8 +132,22 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
   if (quiet) return 0;
-  std::printf("%zu runs, %zu points -> %s/{points,realizations,survival,avalanches}.csv\n", runs.size(),
-              points.size(), o.out.c_str());
+  std::printf("%zu runs, %zu points -> %s/{points,realizations,survival,avalanches,species,clog_survival}.csv\n",
+              runs.size(), points.size(), o.out.c_str());
+  if (!runs.front().scene.shorthand()) {
+    // A scene of its own species: the --by keys, Q and each species' flow.
+    std::printf("%-32s %4s %18s   %s\n", "point", "runs", "Q [1/s]", "per species [1/s]");
+    for (const auto& p : points) {
+      std::string label;
+      for (const auto& [k, v] : p.extra) label += (label.empty() ? "" : ", ") + k + " = " + v;
+      if (label.empty()) label = "(one point)";
+      std::string per;
+      for (const auto& e : p.species) per += e.name + " " + core::format_g(e.q.mean, 4) + "  ";
+      std::printf("%-32s %4zu %9.3f +- %5.3f   %s\n", label.c_str(), p.runs.size(), p.q.mean, p.q.half_width,
+                  per.c_str());
+    }
+    return 0;
+  }
   std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
               "chi_eff");
   for (const auto& p : points) {
@@ -147,6 +167,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("dirs", opts->inputs, "run directories, or directories holding them")->required();
   cmd->add_option("--out", opts->out, "output directory")->required();
+  cmd->add_option("--by", opts->by,
+                  "also tell points apart by this scene key (repeatable; e.g. aperture, obstacle_height, "
+                  "species.grains.sides): what a campaign of your own varies");
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--include-interrupted", opts->include_interrupted,
                 "count interrupted recordings, for the discharge time each covered");
@@ -155,7 +178,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->callback([opts, &action] {
     action = [opts] {
       return analyze_runs(opts->inputs, opts->out, opts->force, false, opts->include_interrupted,
-                          opts->include_unhealthy);
+                          opts->include_unhealthy, opts->by);
     };
   });
 }

@@ -384,7 +384,7 @@ int record_movie(const RecordOptions& o) {
         st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
     for (size_t k = 0; k < n_panels; ++k) {
       if (n_panels > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
-      std::printf("%s", analysis::summary_text(ms[k]).c_str());
+      std::printf("%s", analysis::summary_text(ms[k], panels[k].hopper->setup().species_names(), panels[k].hopper->setup().clog_rule).c_str());
     }
     if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
     std::printf("run data    %s/\n", base.c_str());

@@ -111,10 +111,10 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
   dir.commit();
 
   if (!o.quiet) {
-    std::printf("%s", analysis::summary_text(m).c_str());
+    std::printf("%s", analysis::summary_text(m, hopper.setup().species_names(), hopper.setup().clog_rule).c_str());
     std::printf("speed       %.2fx real time (%.1f s wall for %.1f s; settling %.1f s wall)\n",
                 scene.duration / std::max(run_wall, 1e-9), run_wall, scene.duration, settle_wall);
-    std::printf("written     %s/{exits,clogs,arches,summary,survival}.csv, metadata.toml\n", o.out.c_str());
+    std::printf("written     %s/{exits,clogs,arches,summary,species,survival}.csv, metadata.toml\n", o.out.c_str());
   }
   return 0;
 }

@@ -452,7 +452,9 @@ int sweep(const SweepOptions& o) {
     for (const auto& f : failures) std::fprintf(stderr, "  %s\n", f.c_str());
     return 1;
   }
-  if (!o.no_analyze) analyze_runs({(dir / "runs").string()}, (dir / "analysis").string(), true, o.quiet);
+  if (!o.no_analyze)
+    analyze_runs({(dir / "runs").string()}, (dir / "analysis").string(), true, o.quiet, false, false,
+                 c.extra_point_keys());
   return 0;
 }
 }  // namespace

@@ -64,7 +64,8 @@ std::string command_line() {
 }
 
 analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
-  analysis::Measurements m = analysis::measure(h.events(), duration, h.scene().clog_min_gap);
+  analysis::Measurements m = analysis::measure(h.events(), duration, h.scene().clog_min_gap,
+                                               static_cast<int>(h.setup().species.size()));
   m.health_warnings = h.health_warnings();
   m.airborne_fraction = h.airborne().mean();
   m.ballistic = h.ballistic();
@@ -74,7 +75,8 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
 analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
                                          const sim::Hopper& h, double duration, io::RunInfo info) {
   const analysis::Measurements m = measure_run(h, duration);
-  io::write_events(dir, h.events());
+  io::write_events(dir, h.events(), h.setup().species_names());
+  io::write_file_atomic(dir / "species.csv", analysis::species_csv(h.setup(), m));
   io::write_file_atomic(dir / "summary.csv",
                         analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir / "survival.csv", analysis::survival_csv(scene, h.events().exits));
@@ -116,7 +118,7 @@ io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, 
   t.frame_interval = frame_interval;
   t.clog_timeout = h.scene().clog_timeout;
   t.clog_min_gap = h.scene().clog_min_gap;
-  t.radius_original = h.scene().radius_original;
+  t.radius_original = h.setup().reference_radius;
   for (double r : h.radii()) t.radius.push_back(static_cast<float>(r));
   t.species = h.species();
   t.metadata = metadata;

@@ -94,7 +94,8 @@ void add_claims_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 // Interrupted and unhealthy runs are left out (named on stderr) unless included.
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
-                 bool include_interrupted = false, bool include_unhealthy = false);
+                 bool include_interrupted = false, bool include_unhealthy = false,
+                 const std::vector<std::string>& by = {});
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);

@@ -30,7 +30,8 @@ std::vector<std::string> split(const std::string& s, char sep) {
 // Reads a CSV file line by line, checking the header and the number of columns.
 class CsvReader {
  public:
-  CsvReader(const std::filesystem::path& path, const char* header) : path_(path.string()), in_(path) {
+  CsvReader(const std::filesystem::path& path, const char* header, const SpeciesNames& names)
+      : path_(path.string()), in_(path), names_(names) {
     if (!in_) throw core::InputError(path_ + ": missing events file (is this a siloscope run directory?)");
     std::string h;
     if (!std::getline(in_, h) || h != header)
@@ -62,9 +63,11 @@ class CsvReader {
     return v;
   }
   core::Species species(const std::string& s) {
-    if (s == "original") return core::Species::Original;
-    if (s == "added") return core::Species::Added;
-    fail("species = '" + s + "' is not original or added");
+    for (size_t k = 0; k < names_.size(); ++k)
+      if (s == names_[k]) return static_cast<core::Species>(k);
+    std::string all;
+    for (const auto& n : names_) all += (all.empty() ? "" : ", ") + n;
+    fail("species = '" + s + "' is not one of the scene's species (" + all + ")");
   }
   [[noreturn]] void fail(const std::string& msg) {
     throw core::InputError(path_ + ":" + std::to_string(line_ + 1) + ": " + msg);
@@ -75,13 +78,25 @@ class CsvReader {
   std::ifstream in_;
   size_t columns_ = 0;
   long line_ = 0;
+  const SpeciesNames& names_;
 };
+
+const std::string& name_of(const SpeciesNames& names, core::Species s) {
+  static const std::string unknown = "unknown";
+  const size_t k = static_cast<size_t>(core::species_index(s));
+  return k < names.size() ? names[k] : unknown;
+}
 }  // namespace
 
-std::string exits_csv(const core::Events& ev) {
+const SpeciesNames& shorthand_names() {
+  static const SpeciesNames names = {"original", "added"};
+  return names;
+}
+
+std::string exits_csv(const core::Events& ev, const SpeciesNames& names) {
   std::string s = std::string(kExitsHeader) + "\n";
   for (const auto& e : ev.exits)
-    s += core::format_g(e.t) + "," + std::to_string(e.id) + "," + core::species_name(e.species) + "\n";
+    s += core::format_g(e.t) + "," + std::to_string(e.id) + "," + name_of(names, e.species) + "\n";
   return s;
 }
 
@@ -93,15 +108,15 @@ std::string clogs_csv(const core::Events& ev) {
   return s;
 }
 
-std::string arches_csv(const core::Events& ev) {
+std::string arches_csv(const core::Events& ev, const SpeciesNames& names) {
   std::string s = std::string(kArchesHeader) + "\n";
   for (const auto& a : ev.arches) {
     std::string ids, sp;
     long added = 0;
     for (size_t k = 0; k < a.ids.size(); ++k) {
       ids += (k ? ";" : "") + std::to_string(a.ids[k]);
-      sp += (k ? ";" : "") + std::string(core::species_name(a.species[k]));
-      added += a.species[k] == core::Species::Added;
+      sp += (k ? ";" : "") + name_of(names, a.species[k]);
+      added += a.species[k] != core::Species::Original;
     }
     s += core::format_g(a.t) + "," + core::format_g(a.clog_duration) + "," +
          core::arch_method_name(a.method) + "," + std::to_string(a.ids.size()) + "," + std::to_string(added) +
@@ -111,17 +126,17 @@ std::string arches_csv(const core::Events& ev) {
   return s;
 }
 
-void write_events(const std::filesystem::path& dir, const core::Events& ev) {
-  write_file_atomic(dir / "exits.csv", exits_csv(ev));
+void write_events(const std::filesystem::path& dir, const core::Events& ev, const SpeciesNames& names) {
+  write_file_atomic(dir / "exits.csv", exits_csv(ev, names));
   write_file_atomic(dir / "clogs.csv", clogs_csv(ev));
-  write_file_atomic(dir / "arches.csv", arches_csv(ev));
+  write_file_atomic(dir / "arches.csv", arches_csv(ev, names));
 }
 
-core::Events read_events(const std::filesystem::path& dir) {
+core::Events read_events(const std::filesystem::path& dir, const SpeciesNames& names) {
   core::Events ev;
   std::vector<std::string> c;
   {
-    CsvReader r(dir / "exits.csv", kExitsHeader);
+    CsvReader r(dir / "exits.csv", kExitsHeader, names);
     double last = -INFINITY;
     while (r.next(c)) {
       core::ExitEvent e{r.real(c[0], "t_s"), static_cast<int>(r.integer(c[1], "id")), r.species(c[2])};
@@ -131,7 +146,7 @@ core::Events read_events(const std::filesystem::path& dir) {
     }
   }
   {
-    CsvReader r(dir / "clogs.csv", kClogsHeader);
+    CsvReader r(dir / "clogs.csv", kClogsHeader, names);
     while (r.next(c)) {
       core::ClogEvent e{r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous,
                         c[4] == "1"};
@@ -145,7 +160,7 @@ core::Events read_events(const std::filesystem::path& dir) {
     }
   }
   {
-    CsvReader r(dir / "arches.csv", kArchesHeader);
+    CsvReader r(dir / "arches.csv", kArchesHeader, names);
     while (r.next(c)) {
       core::ArchEvent a;
       a.t = r.real(c[0], "t_s");
