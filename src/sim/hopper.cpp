@@ -289,11 +289,16 @@ void Hopper::check_overlaps() {
       core::Vec2 d = pos(a) - pos(b);
       overlap = std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
     } else {
-      // Polygons: the deepest penetration of the contact's manifold (Box2D's separations, internal units).
+      // Polygons: the deepest penetration of the pair now (the contact's own manifold is from the last step,
+      // and a grain re-injected since then would seem to overlap where it was).
+      const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
+      const b2Transform &xa = fa->GetBody()->GetTransform(), &xb = fb->GetBody()->GetTransform();
+      b2Manifold m;
+      const_cast<b2Contact*>(c)->Evaluate(&m, xa, xb);
       b2WorldManifold wm;
-      c->GetWorldManifold(&wm);
+      wm.Initialize(&m, xa, fa->GetShape()->m_radius, xb, fb->GetShape()->m_radius);
       double deepest = 0;
-      for (int k = 0; k < c->GetManifold()->pointCount; ++k)
+      for (int k = 0; k < m.pointCount; ++k)
         deepest = std::min(deepest, static_cast<double>(wm.separations[k]));
       overlap = -deepest / L_ / std::min(radius_[a], radius_[b]);
     }
@@ -304,7 +309,7 @@ void Hopper::check_overlaps() {
   overlaps_.max = std::max(overlaps_.max, worst);
   if (worst <= kMaxOverlapFraction) return;
   std::ostringstream o;
-  o << "unstable integration at t = " << fmt4(t_) << " s: disks " << wa << " and " << wb << " overlap by "
+  o << "unstable integration at t = " << fmt4(t_) << " s: grains " << wa << " and " << wb << " overlap by "
     << fmt4(100 * worst) << "% of the smaller radius (bound " << fmt4(100 * kMaxOverlapFraction)
     << "%); try dt <= " << fmt4(0.5 * scene_.dt) << " s (now " << fmt4(scene_.dt) << " s) or more iterations";
   if (scene_.unsafe) {
