@@ -75,8 +75,10 @@ std::vector<int> trim_arch(const std::vector<int>& path, const std::vector<Vec2>
   return std::vector<int>(path.begin() + lo, path.begin() + hi + 1);
 }
 
-std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach) {
-  return trim_arch(shortest_wall_path(g, pos, wall_reach), pos);
+std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach,
+                           bool trim) {
+  std::vector<int> path = shortest_wall_path(g, pos, wall_reach);
+  return trim ? trim_arch(path, pos) : path;
 }
 
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,

@@ -36,8 +36,12 @@ std::vector<int> shortest_wall_path(const ContactGraph& g, const std::vector<Vec
 // Trim a left-to-right path around the member nearest `centre` (see above).
 std::vector<int> trim_arch(const std::vector<int>& path, const std::vector<Vec2>& pos, Vec2 centre = {0, 0});
 
-// Both steps: the blocking arch, members left to right, or empty.
-std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach);
+// Both steps: the blocking arch, members left to right, or empty. `trim` is the paper's rule for a hopper;
+// over a flat floor the fewest-grains path already runs from a grain resting on the floor left of the outlet
+// to one resting right of it, and trimming around the member nearest the outlet's centre would start at such
+// a floor grain (nearer than the arch's crown) and keep it alone: flat silos use the path as it is.
+std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach,
+                           bool trim = true);
 
 // Span, height and largest angle of an arch (members left to right).
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,

@@ -40,6 +40,7 @@ Geometry make_geometry(const Scene& s) {
   g.hopper_height = g.kind == ContainerKind::Flat ? 0.0 : hopper_height_of(s);
   g.total_height = g.hopper_height + s.silo_height;
   g.grain_diameter = 2 * reference_radius(s);
+  g.tilt = s.tilt * kPi / 180.0;
   const double a = g.half_aperture, h = g.hopper_height, top = g.total_height;
   const double xl = g.x_left, xr = g.x_right;
   g.walls[static_cast<int>(Wall::HopperLeft)] = {{xl, h}, {-a, 0}};

@@ -64,6 +64,7 @@ struct Geometry {
   // `obstacle`).
   std::array<Segment, static_cast<int>(Wall::Count)> walls;
   Obstacle obstacle;
+  double tilt = 0;  // rad: the container stands turned counter-clockwise by this (gravity at an angle)
 
   // Angle of each bottom wall from the vertical, radians (90 degrees for a flat floor).
   double left_wall_angle() const;

@@ -11,21 +11,31 @@
 namespace render {
 
 core::Vec2 View::world_to_pixel(core::Vec2 p) const {
-  const double s = px_per_m();
-  return {rect.x + 0.5 * rect.w + (p.x - cam.cx) * s, rect.y + 0.5 * rect.h - (p.y - cam.cy) * s};
+  const double s = px_per_m(), c = std::cos(cam.angle), n = std::sin(cam.angle);
+  const double dx = p.x - cam.cx, dy = p.y - cam.cy;
+  const double rx = c * dx - n * dy, ry = n * dx + c * dy;  // turned by the camera's angle
+  return {rect.x + 0.5 * rect.w + rx * s, rect.y + 0.5 * rect.h - ry * s};
 }
 
 core::Vec2 View::pixel_to_world(core::Vec2 px) const {
-  const double s = px_per_m();
-  return {cam.cx + (px.x - rect.x - 0.5 * rect.w) / s, cam.cy - (px.y - rect.y - 0.5 * rect.h) / s};
+  const double s = px_per_m(), c = std::cos(cam.angle), n = std::sin(cam.angle);
+  const double rx = (px.x - rect.x - 0.5 * rect.w) / s, ry = -(px.y - rect.y - 0.5 * rect.h) / s;
+  return {cam.cx + c * rx + n * ry, cam.cy - n * rx + c * ry};
 }
 
 std::array<float, 9> View::world_to_clip() const {
   const double sy = 2.0 / cam.height, sx = sy * rect.h / rect.w;
-  // clip = (x - cx) * sx, (y - cy) * sy
-  return {
-      static_cast<float>(sx),           0, 0, 0, static_cast<float>(sy), 0, static_cast<float>(-cam.cx * sx),
-      static_cast<float>(-cam.cy * sy), 1};
+  const double c = std::cos(cam.angle), n = std::sin(cam.angle);
+  // clip = S R (p - c): column-major.
+  return {static_cast<float>(sx * c),
+          static_cast<float>(sy * n),
+          0,
+          static_cast<float>(-sx * n),
+          static_cast<float>(sy * c),
+          0,
+          static_cast<float>(-sx * (c * cam.cx - n * cam.cy)),
+          static_cast<float>(-sy * (n * cam.cx + c * cam.cy)),
+          1};
 }
 
 void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w, int min_h) {
@@ -35,12 +45,16 @@ void parse_size(const std::string& text, const std::string& option, int& w, int&
                            std::to_string(min_w) + "x" + std::to_string(min_h) + ", e.g. 1920x1080");
 }
 
-Camera fit(double x0, double y0, double x1, double y1, int w, int h) {
+Camera fit(double x0, double y0, double x1, double y1, int w, int h, double angle) {
   Camera c;
   c.cx = 0.5 * (x0 + x1);
   c.cy = 0.5 * (y0 + y1);
+  c.angle = angle;
   const double aspect = static_cast<double>(w) / h;
-  c.height = std::max(y1 - y0, (x1 - x0) / aspect);
+  // The window's extent on screen once turned.
+  const double ca = std::abs(std::cos(angle)), sa = std::abs(std::sin(angle));
+  const double ex = ca * (x1 - x0) + sa * (y1 - y0), ey = sa * (x1 - x0) + ca * (y1 - y0);
+  c.height = std::max(ey, ex / aspect);
   return c;
 }
 
@@ -77,17 +91,18 @@ CameraSpec parse_camera(const std::string& spec) {
 
 std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h) {
   const double margin = 0.04 * geo.total_height;
+  const double t = geo.tilt;
   auto hopper = [&](Rect r) {
     return View{
-        fit(-geo.half_width - margin, -margin, geo.half_width + margin, geo.total_height + margin, r.w, r.h),
-        r, "hopper"};
+        fit(geo.x_left - margin, -margin, geo.x_right + margin, geo.total_height + margin, r.w, r.h, t), r,
+        "hopper"};
   };
   auto outlet = [&](Rect r) {
     // Ten original diameters tall: arches form up to ~5 diameters above the aperture; the grains falling out
     // below. Written in the paper's metres times the grain size over its 0.13 m (exactly 1 for the paper).
     const double k = geo.grain_diameter / 0.13;
     const double half = std::min(geo.half_width + 0.05 * k, 0.6 * k);
-    return View{fit(-half, -0.25 * k, half, std::min(1.05 * k, geo.total_height), r.w, r.h), r, "outlet"};
+    return View{fit(-half, -0.25 * k, half, std::min(1.05 * k, geo.total_height), r.w, r.h, t), r, "outlet"};
   };
   switch (camera.kind) {
     case CameraSpec::Kind::Hopper:
@@ -97,7 +112,9 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
     case CameraSpec::Kind::Split: {
       // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the
       // panel).
-      const double aspect = (2 * geo.half_width + 2 * margin) / (geo.total_height + 2 * margin);
+      const double bw = geo.x_right - geo.x_left + 2 * margin, bh = geo.total_height + 2 * margin;
+      const double ca = std::abs(std::cos(t)), sa = std::abs(std::sin(t));
+      const double aspect = (ca * bw + sa * bh) / (sa * bw + ca * bh);
       const int left =
           std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
       View out = outlet({left, 0, w - left, h});
@@ -106,7 +123,7 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
       return {hopper({0, 0, left, h}), out};
     }
     case CameraSpec::Kind::Window:
-      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h), {0, 0, w, h}, "window"}};
+      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h, t), {0, 0, w, h}, "window"}};
   }
   return {};
 }

@@ -13,6 +13,7 @@ namespace render {
 struct Camera {
   double cx = 0, cy = 0;  // m, the world point at the centre of the view
   double height = 1;      // m of world shown from the top to the bottom of the view
+  double angle = 0;       // rad: the world turned counter-clockwise on screen (a tilted container stands so)
 };
 
 struct Rect {
@@ -36,8 +37,9 @@ struct View {
 void parse_size(const std::string& text, const std::string& option, int& w, int& h, int min_w = 1,
                 int min_h = 1);
 
-// A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels.
-Camera fit(double x0, double y0, double x1, double y1, int w, int h);
+// A camera showing the world window [x0, x1] x [y0, y1] whole, centred, in a view of w x h pixels, the world
+// turned by `angle` (rad, counter-clockwise).
+Camera fit(double x0, double y0, double x1, double y1, int w, int h, double angle = 0);
 
 // What a camera shows, parsed once from its text:
 //   hopper          the whole container

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
+#include "core/setup.h"
 #include "render/gl.h"
 #include "siloscope_version.h"
 
@@ -71,12 +73,29 @@ OverlayOptions parse_overlay(const std::string& spec) {
 
 OverlayData overlay_data_for(const core::Scene& scene) {
   OverlayData d;
+  const core::Setup st = core::resolve(scene);
   d.clog_timeout = scene.clog_timeout;
   d.clog_min_gap = scene.clog_min_gap;
-  d.diameter = 2 * scene.radius_original;
-  char title[160];
-  std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio,
-                scene.chi, scene.mu, static_cast<unsigned long long>(scene.seed));
+  d.clog_rule = st.clog_rule;
+  d.diameter = 2 * st.reference_radius;
+  d.species_names = st.species_names();
+  for (const auto& sp : st.species)
+    d.species_colors.push_back(sp.has_color ? Rgba{sp.color[0], sp.color[1], sp.color[2], 1}
+                                            : Rgba{0, 0, 0, 0});
+  char title[200];
+  if (st.shorthand) {
+    std::snprintf(title, sizeof title, "r = %g, chi = %g, mu = %g A m^2, seed %llu", scene.size_ratio,
+                  scene.chi, scene.mu, static_cast<unsigned long long>(scene.seed));
+  } else {
+    std::string what = scene.container == "flat" ? "flat silo" : "hopper";
+    if (st.geo.obstacle.present()) what += " + obstacle";
+    if (st.drive.vibrating())
+      what += ", Gamma " +
+              core::format_g(st.drive.amplitude * st.drive.omega * st.drive.omega / scene.gravity, 3);
+    if (scene.tilt != 0) what += ", tilt " + core::format_g(scene.tilt, 3) + " deg";
+    std::snprintf(title, sizeof title, "%s, D = %g m, %d grains, seed %llu", what.c_str(), scene.aperture,
+                  st.n_total, static_cast<unsigned long long>(scene.seed));
+  }
   d.title = title;
   return d;
 }
@@ -208,7 +227,9 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
                         IM_COL32(200, 200, 200, 255));
   for (int sp = 0; sp < 2; ++sp) {
     const ImU32 ink =
-        to_u32(species_color(style.palette, sp == 0 ? core::Species::Original : core::Species::Added));
+        to_u32(sp == 0 ? species_color(style, core::Species::Original)
+                       : (d.species_names.size() == 2 ? species_color(style, core::Species::Added)
+                                                      : Rgba{0.35f, 0.35f, 0.35f, 1}));
     for (size_t k = 1; k < history_.size(); ++k) {
       const long a = sp == 0 ? history_[k - 1].original : history_[k - 1].added;
       const long b = sp == 0 ? history_[k].original : history_[k].added;
@@ -246,35 +267,53 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
                    float em) {
   if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
   if (o.time) ImGui::Text("t = %.2f s", f.t);
+  const bool shorthand = d.species_names.size() == 2 && d.species_names[0] == "original";
+  auto colored = [&](core::Species sp, const std::string& text) {
+    const Rgba c = species_color(style, sp);
+    ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s", text.c_str());
+  };
   if (o.counts) {
-    ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Original).r,
-                              species_color(style.palette, core::Species::Original).g,
-                              species_color(style.palette, core::Species::Original).b, 1),
-                       "%lld original", static_cast<long long>(f.exits_original));
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(species_color(style.palette, core::Species::Added).r,
-                              species_color(style.palette, core::Species::Added).g,
-                              species_color(style.palette, core::Species::Added).b, 1),
-                       "%lld added", static_cast<long long>(f.exits_added));
-    ImGui::SameLine();
-    ImGui::TextUnformatted("exits");
+    if (shorthand) {
+      colored(core::Species::Original, std::to_string(f.exits_original) + " original");
+      ImGui::SameLine();
+      colored(core::Species::Added, std::to_string(f.exits_added) + " added");
+      ImGui::SameLine();
+      ImGui::TextUnformatted("exits");
+    } else {
+      ImGui::Text("%lld exits", static_cast<long long>(f.exits_original + f.exits_added));
+      if (d.species_names.size() > 1) {
+        ImGui::SameLine();
+        colored(core::Species::Original,
+                "(" + std::to_string(f.exits_original) + " " + d.species_names.front() + ")");
+      }
+    }
   }
-  if (o.rate) ImGui::Text("Q~ = %.2f /s (originals, so far)", f.t > 0 ? f.exits_original / f.t : 0.0);
+  if (o.rate)
+    ImGui::Text("%s = %.2f /s (%s, so far)", shorthand || d.species_names.size() > 1 ? "Q~" : "Q",
+                f.t > 0 ? f.exits_original / f.t : 0.0,
+                shorthand ? "originals" : d.species_names.front().c_str());
   if (o.timer) {
-    const double frac = std::min(1.0, f.since_last_exit / d.clog_timeout);
     const bool clogged = f.since_last_exit >= d.clog_min_gap;
+    const double frac = d.clog_rule ? std::min(1.0, f.since_last_exit / d.clog_timeout) : clogged ? 1.0 : 0.0;
     ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
                           clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
     char label[64];
-    std::snprintf(label, sizeof label, clogged ? "clogged %.1f s / %.0f s" : "flowing", f.since_last_exit,
-                  d.clog_timeout);
+    if (!clogged)
+      std::snprintf(label, sizeof label, "flowing");
+    else if (d.clog_rule)
+      std::snprintf(label, sizeof label, "clogged %.1f s / %.0f s", f.since_last_exit, d.clog_timeout);
+    else
+      std::snprintf(label, sizeof label, "clogged %.1f s (no rule)", f.since_last_exit);
     ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
     ImGui::PopStyleColor();
   }
   if (o.arch && !f.arch.empty()) {
     int added = 0;
-    for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
-    ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
+    for (int id : f.arch) added += f.particles[id].species != core::Species::Original;
+    if (shorthand)
+      ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
+    else
+      ImGui::Text("arch: %zu grains", f.arch.size());
   }
   if (o.legend) {
     ImGui::Separator();
@@ -289,10 +328,10 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       ImGui::TextUnformatted(text);
     };
     if (style.color == ColorMode::Species) {
-      swatch(species_color(style.palette, core::Species::Original), {0, 0, 0, 0}, "original");
-      ImGui::SameLine();
-      swatch(species_color(style.palette, core::Species::Added), {0, 0, 0, 0}, "added");
-      ImGui::SameLine();
+      for (size_t k = 0; k < d.species_names.size(); ++k) {
+        swatch(species_color(style, static_cast<core::Species>(k)), {0, 0, 0, 0}, d.species_names[k].c_str());
+        ImGui::SameLine();
+      }
     } else {
       colour_bar(style, em);
     }

@@ -50,6 +50,10 @@ struct OverlayData {
   double diameter = 0.13;        // m, of an original disk (the scale bar's unit)
   std::string title;             // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
   int panel_x = 0, panel_w = 0;  // the panel this overlay belongs to, pixels (panel_w = 0: the whole image)
+  // The scene's species, by index: names for the legend, and their own colours (alpha 0: the palette's).
+  std::vector<std::string> species_names = {"original", "added"};
+  std::vector<Rgba> species_colors;
+  bool clog_rule = true;  // false: the clog timer has no limit to count towards
 };
 
 // The information box's lines (title, time, exits, Q~, clog timer, arch, legend or colour bar as `o` asks)

@@ -23,10 +23,11 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     const PanelInput& p = panels[k];
     Style panel_style = style;
     panel_style.clear = style.clear && k == 0;
+    if (p.data) panel_style.species_colors = p.data->species_colors;
     renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
     if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
     while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
-    overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, style, overlay_w < 0 ? w : overlay_w, h,
+    overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, panel_style, overlay_w < 0 ? w : overlay_w, h,
                        p.geometry);
     if (k == 0) info_left_ = overlays_[k]->info_left();
   }

@@ -21,10 +21,24 @@ ColorMode parse_color_mode(const std::string& s) {
 }
 
 Rgba species_color(Palette p, core::Species s) {
-  const bool original = s == core::Species::Original;
+  // Beyond the first two: Okabe-Ito bluish green, orange, reddish purple, sky blue, yellow, then grey.
+  static const Rgba more[] = {{0.0f, 0.62f, 0.451f, 1},
+                              {0.902f, 0.624f, 0.0f, 1},
+                              {0.8f, 0.475f, 0.655f, 1},
+                              {0.337f, 0.706f, 0.914f, 1},
+                              {0.941f, 0.894f, 0.259f, 1}};
+  const int k = core::species_index(s);
+  if (k >= 2) return k - 2 < 5 ? more[k - 2] : Rgba{0.55f, 0.55f, 0.55f, 1};
+  const bool original = k == 0;
   if (p == Palette::ColorBlind)
     return original ? Rgba{0.835f, 0.369f, 0.0f, 1} : Rgba{0.0f, 0.447f, 0.698f, 1};
   return original ? Rgba{0.85f, 0.16f, 0.14f, 1} : Rgba{0.16f, 0.38f, 0.85f, 1};
+}
+
+Rgba species_color(const Style& style, core::Species s) {
+  const size_t k = static_cast<size_t>(core::species_index(s));
+  if (k < style.species_colors.size() && style.species_colors[k].a > 0) return style.species_colors[k];
+  return species_color(style.palette, s);
 }
 
 Rgba background_color(const Style& s) {
@@ -67,7 +81,7 @@ Rgba particle_color(const Style& s, const core::Particle& p) {
     case ColorMode::Species:
       break;
   }
-  return species_color(s.palette, p.species);
+  return species_color(s, p.species);
 }
 
 }  // namespace render

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/frame.h"
 
@@ -22,15 +23,20 @@ struct Style {
   bool transparent = false;  // transparent background (PNG)
   bool show_arch = true;
   bool clear = true;  // clear the image first (false: draw another panel into the same image)
+  // A scene's own species colours by species index (alpha 0: the palette's colour for that index); set per
+  // panel from its OverlayData.
+  std::vector<Rgba> species_colors;
 };
 
 // Parse "paper"/"colorblind" and "species"/"speed"/"force"; throw core::InputError naming the option.
 Palette parse_palette(const std::string& s);
 ColorMode parse_color_mode(const std::string& s);
 
-// Original disks red and added disks blue, as in the paper; the colour-blind-safe palette uses Okabe-Ito
-// vermillion and blue.
+// The palette's colour of a species by its index: the paper's original disks red and added disks blue, then
+// Okabe-Ito green, orange, purple, sky blue, yellow, grey; the colour-blind-safe palette starts with
+// Okabe-Ito vermillion and blue. A style's own species_colors win where set.
 Rgba species_color(Palette p, core::Species s);
+Rgba species_color(const Style& style, core::Species s);
 Rgba background_color(const Style& s);
 Rgba wall_color(Palette p);
 Rgba arch_color(Palette p);  // halo and bonds of arch members

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/error.h"
@@ -75,6 +76,7 @@ Renderer::Renderer() {
   instance_attrib(1, 3, sizeof(DiskInstance), offsetof(DiskInstance, x));
   instance_attrib(2, 4, sizeof(DiskInstance), offsetof(DiskInstance, fill));
   instance_attrib(3, 4, sizeof(DiskInstance), offsetof(DiskInstance, halo));
+  instance_attrib(4, 4, sizeof(DiskInstance), offsetof(DiskInstance, shape));
 
   glGenVertexArrays(1, &segment_vao_);
   glGenBuffers(1, &segment_vbo_);
@@ -111,26 +113,44 @@ void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const s
   if (show_arch)
     for (int id : frame.arch) member[id] = true;
   Rgba halo = arch_color(style.palette);
+  // Circumradius over equal-area radius of each polygon (0-2: a disk).
+  float extent[9];
+  for (int k = 0; k < 9; ++k) extent[k] = static_cast<float>(core::polygon_extent(k));
   for (size_t i = 0; i < frame.particles.size(); ++i) {
     const auto& p = frame.particles[i];
-    DiskInstance d{p.x, p.y, p.radius, {}, {}};
+    const int sides = p.sides <= 8 ? p.sides : 0;
+    DiskInstance d{p.x, p.y, p.radius * extent[sides], {}, {}, {p.angle, static_cast<float>(sides), 0, 0}};
     copy(d.fill, particle_color(style, p));
     copy(d.halo, member[i] ? Rgba{halo.r, halo.g, halo.b, arch_alpha} : Rgba{0, 0, 0, 0});
     disks_.push_back(d);
   }
+  // The container where it is now: a vibrating container carries its walls and obstacle along.
+  const float ox = static_cast<float>(frame.container_x), oy = static_cast<float>(frame.container_y);
   walls_.clear();
   const Rgba wc = wall_color(style.palette);
   for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft,
                        core::Wall::SiloRight, core::Wall::Top}) {
     const auto& s = geo.walls[static_cast<int>(k)];
-    SegmentInstance seg{static_cast<float>(s.a.x),
-                        static_cast<float>(s.a.y),
-                        static_cast<float>(s.b.x),
-                        static_cast<float>(s.b.y),
+    SegmentInstance seg{static_cast<float>(s.a.x) + ox,
+                        static_cast<float>(s.a.y) + oy,
+                        static_cast<float>(s.b.x) + ox,
+                        static_cast<float>(s.b.y) + oy,
                         {},
                         0};
     copy(seg.color, wc);
     walls_.push_back(seg);
+  }
+  if (geo.obstacle.present()) {
+    const core::Obstacle& ob = geo.obstacle;
+    const float cx = static_cast<float>(ob.centre.x) + ox, cy = static_cast<float>(ob.centre.y) + oy;
+    const float hw = static_cast<float>(0.5 * ob.width), hh = static_cast<float>(0.5 * ob.height);
+    DiskInstance d{cx, cy, std::hypot(hw, hh), {}, {}, {0, 0, 0, 0}};
+    if (ob.kind == core::Obstacle::Kind::Disk)
+      d.r = hw;
+    else
+      d.shape[1] = 100, d.shape[2] = hw, d.shape[3] = hh;
+    copy(d.fill, wc);
+    disks_.push_back(d);
   }
   bonds_.clear();
   if (show_arch) {

@@ -1,5 +1,7 @@
-// Draws a Frame (never the Box2D world) with OpenGL 3.3 core into the bound framebuffer: background, walls,
-// instanced signed-distance disks, and the arch highlight (a halo on members, bonds between neighbours).
+// Draws a Frame (never the Box2D world) with OpenGL 3.3 core into the bound framebuffer: background, walls
+// and the obstacle where the container is now (a vibrating one moves), instanced signed-distance grains
+// (disks and regular polygons at their orientation), and the arch highlight (a halo on members, bonds between
+// neighbours). A tilted container is drawn as it stands (the views turn the picture, render/camera.h).
 #pragma once
 
 #include <vector>
@@ -30,9 +32,10 @@ class Renderer {
 
  private:
   struct DiskInstance {
-    float x, y, r;
+    float x, y, r;  // m: centre, bounding radius
     float fill[4];
     float halo[4];
+    float shape[4];  // angle (rad), sides (0 disk, 3-8 polygon, 100 box), box half width and height (m)
   };
   struct SegmentInstance {
     float ax, ay, bx, by;

@@ -426,7 +426,8 @@ core::ContactGraph Hopper::contact_graph() const {
 }
 
 std::vector<int> Hopper::current_arch() const {
-  return core::find_arch(contact_graph(), positions(), scene_.arch_wall_reach);
+  return core::find_arch(contact_graph(), positions(), scene_.arch_wall_reach,
+                         geo_.kind == core::ContainerKind::Hopper);
 }
 
 core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
