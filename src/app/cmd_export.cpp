@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/geometry.h"
+#include "core/setup.h"
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/trajectory.h"
@@ -24,7 +25,12 @@ struct ExportOptions {
   bool force = false;
 };
 
-const char* kCsvHeader = "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch";
+const char* kCsvHeader =
+    "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch,angle_rad,sides";
+// Species as chemical symbols by species index, which ASE requires (docs/export.md): H = the first species
+// (the paper's original disks), He = the second (added disks), then Li, Be, ...
+const char* kSymbols[] = {"H", "He", "Li", "Be", "B",  "C",  "N", "O",
+                          "F", "Ne", "Na", "Mg", "Al", "Si", "P", "S"};
 
 // "K" or "A:B" (inclusive; either end may be left out) -> [first, last]; the whole trajectory when empty.
 void frame_range(const std::string& spec, long count, long& first, long& last) {
@@ -66,7 +72,11 @@ int export_run(const ExportOptions& o) {
   long first = 0, last = 0;
   frame_range(o.frames, t.size(), first, last);
   const core::Scene scene = core::parse_scene(t.info().metadata, traj.string() + " (its metadata)");
-  const core::Geometry geo = core::make_geometry(scene);
+  const core::Setup setup = core::resolve(scene);
+  const core::Geometry& geo = setup.geo;
+  const std::vector<std::string> names = setup.species_names();
+  std::string names_text;
+  for (const auto& nm : names) names_text += (names_text.empty() ? "" : " ") + nm;
 
   fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
@@ -77,8 +87,9 @@ int export_run(const ExportOptions& o) {
   const size_t n = t.info().n_particles;
   std::string text;
   if (o.format == "csv") text = std::string(kCsvHeader) + "\n";
-  // The lattice is the container's bounding box (x from -W/2, y from the aperture line), z a unit thickness.
-  const double w = 2 * geo.half_width, h = geo.total_height;
+  // The lattice is the container's bounding box at rest (x from its left wall, y from the aperture line), z a
+  // unit thickness; a vibrating container's displacement is in each frame's `container`.
+  const double w = geo.x_right - geo.x_left, h = geo.total_height;
   for (long k = first; k <= last; ++k) {
     const core::Frame f = t.frame(k);
     std::vector<char> in_arch(n, 0);
@@ -86,29 +97,32 @@ int export_run(const ExportOptions& o) {
     if (o.format == "xyz") {
       text += std::to_string(n) + "\n";
       text +=
-          "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(-0.5 * w) + " 0 0\" " +
-          "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1 Time=" + num(f.t) +
-          " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
-          " exits_added=" + std::to_string(f.exits_added) + " units=SI pbc=\"F F F\" siloscope=\"" +
-          io::version_string() + "\"\n";
+          "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(geo.x_left) + " 0 0\" " +
+          "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1:angle:R:1:sides:I:1:"
+          "kind:S:1 Time=" +
+          num(f.t) + " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
+          " exits_added=" + std::to_string(f.exits_added) + " species_names=\"" + names_text +
+          "\" container=\"" + num(f.container_x) + " " + num(f.container_y) +
+          "\" units=SI pbc=\"F F F\" siloscope=\"" + io::version_string() + "\"\n";
     }
     for (size_t i = 0; i < n; ++i) {
       const core::Particle& p = f.particles[i];
-      // Species as chemical symbols, which ASE requires: H = original disk, He = added disk (docs/export.md).
-      const bool original = p.species == core::Species::Original;
+      const size_t sp = static_cast<size_t>(core::species_index(p.species));
+      const std::string& name = sp < names.size() ? names[sp] : names.back();
       if (o.format == "xyz")
-        text += std::string(original ? "H" : "He") + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) +
+        text += std::string(kSymbols[sp % 16]) + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) +
                 " " + num(p.vx) + " " + num(p.vy) + " 0 " + num(p.force) + " " + (in_arch[i] ? "1" : "0") +
-                " " + std::to_string(i) + "\n";
-      else
-        text += std::to_string(k) + "," + num(f.t) + "," + std::to_string(i) + "," +
-                (original ? "original" : "added") + "," + num(p.x) + "," + num(p.y) + "," + num(p.radius) +
-                "," + num(p.vx) + "," + num(p.vy) + "," + num(p.force) + "," + (in_arch[i] ? "1" : "0") +
+                " " + std::to_string(i) + " " + num(p.angle) + " " + std::to_string(p.sides) + " " + name +
                 "\n";
+      else
+        text += std::to_string(k) + "," + num(f.t) + "," + std::to_string(i) + "," + name + "," + num(p.x) +
+                "," + num(p.y) + "," + num(p.radius) + "," + num(p.vx) + "," + num(p.vy) + "," +
+                num(p.force) + "," + (in_arch[i] ? "1" : "0") + "," + num(p.angle) + "," +
+                std::to_string(p.sides) + "\n";
     }
   }
   io::write_file_atomic(out, text);
-  std::printf("%ld frames of %zu disks -> %s\n", last - first + 1, n, out.c_str());
+  std::printf("%ld frames of %zu grains -> %s\n", last - first + 1, n, out.c_str());
   return 0;
 }
 }  // namespace

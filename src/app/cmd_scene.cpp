@@ -16,28 +16,75 @@ struct SceneCmdOptions {
   bool keys = false;
 };
 
-std::string range_of(const core::Field& f) {
+template <class F, class S>
+std::string range_of(const F& f) {
   return std::visit(
       [&](auto ptr) -> std::string {
-        using T = std::decay_t<decltype(core::Scene{}.*ptr)>;
+        using T = std::decay_t<decltype(S{}.*ptr)>;
         if constexpr (std::is_same_v<T, bool>)
           return "true|false";
         else if constexpr (std::is_same_v<T, std::string>)
-          return f.choices ? f.choices : "";
+          return f.choices ? f.choices : "text";
         else
           return "[" + core::format_g(f.min, 10) + ", " + core::format_g(f.max, 20) + "]";
       },
       f.ptr);
 }
 
+// One key per line, at most 100 columns: key, default, unit, allowed, then the meaning, wrapped under itself
+// when it does not fit.
+void key_line(const std::string& key, const std::string& def, const char* unit, const std::string& allowed,
+              const std::string& doc) {
+  const std::string u = (unit && *unit && std::string(unit) != "1") ? unit : "";
+  const std::string value = u.empty() ? def : def + " " + u;
+  char head[160];
+  std::snprintf(head, sizeof head, "  %-21s %-16s %-16s", key.c_str(), value.c_str(), allowed.c_str());
+  std::string line = head;
+  const size_t width = 100, indent = line.size() + 1;
+  // The meaning in the room left, wrapped at blanks under its own first word.
+  std::string rest = doc;
+  bool first = true;
+  while (!rest.empty()) {
+    const size_t room = width - indent;
+    size_t take = rest.size();
+    if (take > room) {
+      take = rest.rfind(' ', room);
+      if (take == std::string::npos || take == 0) take = room;
+    }
+    std::printf("%s %s\n", first ? line.c_str() : std::string(indent - 1, ' ').c_str(),
+                rest.substr(0, take).c_str());
+    first = false;
+    rest = take < rest.size() ? rest.substr(take + (rest[take] == ' ' ? 1 : 0)) : "";
+  }
+  if (first) std::printf("%s\n", line.c_str());
+}
+
 int scene_cmd(const SceneCmdOptions& o) {
   if (o.keys) {
     const core::Scene defaults;
-    std::printf("%-22s %-8s %-14s %-26s %s\n", "key", "unit", "default", "allowed", "meaning");
-    for (const auto& f : core::scene_fields()) {
-      const std::string unit = (f.unit && *f.unit) ? f.unit : "-";
-      std::printf("%-22s %-8s %-14s %-26s %s\n", f.key, unit.c_str(), core::field_text(defaults, f).c_str(),
-                  range_of(f).c_str(), f.doc);
+    std::printf(
+        "siloscope scene keys by section: key, default, unit, allowed, meaning (SI units, angles in\n"
+        "degrees). A scene file sets them as `key = value`; the command line as --set key=value.\n");
+    const std::pair<const char*, const char*> sections[] = {
+        {"particles", "[[species]] tables replace the paper's radius_original, size_ratio, chi, mu"},
+        {"container", "the outlet is centred at x = 0, y = 0"},
+        {"drive", "random kicks, a harmonically vibrated container, both or none"},
+        {"protocol", "settling, clogs, arches, re-injection"},
+        {"numerics", "chosen by the speed-versus-accuracy study (docs/accuracy)"},
+        {"run", ""}};
+    for (const auto& [name, about] : sections) {
+      std::printf("\n[%s]%s%s\n", name, *about ? "  " : "", about);
+      for (const auto& f : core::scene_fields())
+        if (std::string(f.section) == name)
+          key_line(f.key, core::field_text(defaults, f), f.unit, range_of<core::Field, core::Scene>(f),
+                   f.doc);
+    }
+    std::printf("\n[[species]]  one table per species (a scene file), or --set species.NAME.KEY=VALUE\n");
+    const core::SpeciesSpec sp;
+    for (const auto& f : core::species_fields()) {
+      std::string def = core::species_field_text(sp, f);
+      if (def.empty()) def = "(scene's)";
+      key_line(f.key, def, f.unit, range_of<core::SpeciesField, core::SpeciesSpec>(f), f.doc);
     }
     return 0;
   }
@@ -46,6 +93,8 @@ int scene_cmd(const SceneCmdOptions& o) {
   const core::Scene s = o.scene.load();
   std::printf("# %s is valid. Resolved scene (file, then --set, --seed, --duration):\n%s\n[derived]\n",
               o.scene.path.c_str(), core::scene_toml(s).c_str());
+  if (!o.scene.path.empty() && s.species.empty() && s.origin.empty())
+    std::printf("# (the file sets no key: every key has its default, the paper's scene)\n");
   for (const auto& f : io::derived_facts(s)) std::printf("%s = %s\n", f.key().c_str(), f.toml().c_str());
   return 0;
 }

@@ -54,8 +54,8 @@ void EventMarks::update(const sim::Hopper& h, core::Frame& f) {
     for (size_t k = 0; k < a.ids.size() && k < a.x.size(); ++k)
       rings_.push_back({a.x[k], a.y[k], static_cast<float>(h.radii()[static_cast<size_t>(a.ids[k])])});
     char text[96];
-    std::snprintf(text, sizeof text, "arch removed (%.0f s rule): %zu disks", h.scene().clog_timeout,
-                  a.ids.size());
+    std::snprintf(text, sizeof text, "arch removed (%g s rule): %zu %s", h.scene().clog_timeout, a.ids.size(),
+                  h.setup().any_polygon() ? "grains" : "disks");
     start(text, a.t, true);
     arches_seen_ = arches.size();
   }

@@ -264,7 +264,16 @@ std::string species_field_text(const SpeciesSpec& sp, const SpeciesField& f) {
 
 std::map<std::string, std::string> scene_values(const Scene& s) {
   std::map<std::string, std::string> out;
-  for (const auto& f : scene_fields()) out[f.key] = field_text(s, f);
+  for (const auto& f : scene_fields()) {
+    if (!s.shorthand() && is_shorthand_key(f.key)) continue;  // not part of a scene with [[species]]
+    out[f.key] = field_text(s, f);
+  }
+  // Species that give counts make n_total their sum (as scene_toml writes it).
+  if (!s.species.empty() && s.species.front().count > 0) {
+    std::int64_t n = 0;
+    for (const auto& sp : s.species) n += sp.count;
+    out["n_total"] = std::to_string(n);
+  }
   for (const auto& sp : s.species)
     for (const auto& f : species_fields())
       out["species." + sp.name + "." + f.key] = species_field_text(sp, f);

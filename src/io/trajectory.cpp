@@ -148,12 +148,31 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   const size_t n = info_.n_particles;
   for (size_t i = 0; i < n; ++i) {
     info_.radius.push_back(get<float>(data.data(), kFixedHeader + 4 * i));
-    info_.species.push_back(static_cast<core::Species>(data[kFixedHeader + 4 * n + i] ? 1 : 0));
+    info_.species.push_back(static_cast<core::Species>(data[kFixedHeader + 4 * n + i]));
   }
   const auto meta = get<std::uint32_t>(data.data(), after_arrays);
   if (after_arrays + 4 + size_t(meta) > header)
     throw core::InputError(p + ": corrupted trajectory header (metadata)");
   info_.metadata.assign(reinterpret_cast<const char*>(&data[after_arrays + 4]), meta);
+  // The scene in the metadata gives each grain's shape and a vibrating container's motion; a trajectory whose
+  // metadata holds no valid scene (written by hand, or foreign) shows disks in a still container.
+  try {
+    core::Scene scene = core::parse_scene(info_.metadata, p + " (its metadata)");
+    core::validate(scene);
+    setup_ = std::make_unique<core::Setup>(core::resolve(scene));
+  } catch (const core::InputError&) {
+    setup_.reset();
+  }
+  sides_.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const int sp = core::species_index(info_.species[i]);
+    if (setup_ && static_cast<size_t>(sp) >= setup_->species.size())
+      throw core::InputError(p + ": corrupted trajectory header (particle " + std::to_string(i) +
+                             " has species " + std::to_string(sp) + "; the scene has " +
+                             std::to_string(setup_->species.size()) + ")");
+    if (setup_ && setup_->n_total == static_cast<int>(n))
+      sides_[i] = static_cast<std::uint8_t>(setup_->species[static_cast<size_t>(sp)].sides);
+  }
   const size_t body = data.size() - header;
   truncated_ = body % fbytes != 0;
   data_ = std::move(data);
@@ -217,6 +236,12 @@ core::Frame Trajectory::frame(long k) const {
     q.force = get<float>(b, base + 4 * (5 * n + i));
     q.radius = info_.radius[i];
     q.species = info_.species[i];
+    q.sides = sides_[i];
+  }
+  if (setup_) {
+    const core::Vec2 off = core::container_offset(*setup_, f.t);
+    f.container_x = off.x;
+    f.container_y = off.y;
   }
   return f;
 }

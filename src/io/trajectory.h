@@ -18,10 +18,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/frame.h"
+#include "core/setup.h"
 
 namespace io {
 
@@ -82,6 +84,8 @@ class Trajectory {
     return data_.data() + header_ + static_cast<size_t>(k) * frame_bytes_;
   }
   bool truncated_ = false;
+  std::unique_ptr<core::Setup> setup_;  // from the metadata's scene, when it holds a valid one
+  std::vector<std::uint8_t> sides_;     // each grain's shape (0: disk)
   void parse(std::vector<unsigned char> data, const std::string& p);
 };
 

@@ -100,9 +100,15 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
   auto outlet = [&](Rect r) {
     // Ten original diameters tall: arches form up to ~5 diameters above the aperture; the grains falling out
     // below. Written in the paper's metres times the grain size over its 0.13 m (exactly 1 for the paper).
-    const double k = geo.grain_diameter / 0.13;
-    const double half = std::min(geo.half_width + 0.05 * k, 0.6 * k);
-    return View{fit(-half, -0.25 * k, half, std::min(1.05 * k, geo.total_height), r.w, r.h, t), r, "outlet"};
+    const double k = geo.grain_diameter / 0.13, d = geo.grain_diameter;
+    // As wide as the container where it is at most about 13 grains wide (the paper's: 1.1 m), else 13 grains
+    // and at least the outlet with 3 grains on each side; tall enough to show an obstacle whole.
+    const double half = std::min(geo.half_width + 0.05 * k, std::max(6.5 * d, geo.half_aperture + 3 * d));
+    double top = std::min(1.05 * k, geo.total_height);
+    if (geo.obstacle.present())
+      top = std::max(top,
+                     std::min(geo.total_height, geo.obstacle.centre.y + 0.5 * geo.obstacle.height + 0.5 * d));
+    return View{fit(-half, -0.25 * k, half, top, r.w, r.h, t), r, "outlet"};
   };
   switch (camera.kind) {
     case CameraSpec::Kind::Hopper:

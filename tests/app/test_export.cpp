@@ -47,6 +47,9 @@ TEST_CASE("export --format xyz loads in ASE with the right atoms, radii and arch
      << "assert abs(a.positions[7][0] - (" << last.particles[7].x << ")) < 1e-5\n"
      << "assert abs(a.info['Time'] - " << last.t << ") < 1e-6\n"
      << "assert abs(a.cell[1][1] - 6.36) < 1e-9\n"
+     << "assert set(a.arrays['kind']) == {'original', 'added'}, set(a.arrays['kind'])\n"
+     << "assert abs(a.arrays['angle'][7] - (" << last.particles[7].angle << ")) < 1e-5\n"
+     << "assert a.info['species_names'] == 'original added', a.info['species_names']\n"
      << "print('ase ok')\n";
   std::ofstream(r / "check.py") << py.str();
   REQUIRE(test::sh("/usr/bin/python3 " + (r / "check.py").string() + " > " + (r / "check.log").string() +
@@ -64,20 +67,23 @@ TEST_CASE("export --format csv writes one frame or a range, values equal to the 
   std::istringstream in(slurp(r / "f10.csv"));
   std::string line;
   std::getline(in, line);
-  CHECK(line == "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch");
+  CHECK(line ==
+        "frame,t_s,id,species,x_m,y_m,radius_m,vx_m_per_s,vy_m_per_s,force_n,in_arch,angle_rad,sides");
   long rows = 0;
   while (std::getline(in, line)) {
     std::istringstream row(line);
     std::string cell;
     std::vector<std::string> c;
     while (std::getline(row, cell, ',')) c.push_back(cell);
-    REQUIRE(c.size() == 11);
+    REQUIRE(c.size() == 13);
     const int id = std::stoi(c[2]);
     CHECK(std::stol(c[0]) == 10);
     CHECK(std::stod(c[1]) == Approx(f.t));
     CHECK(c[3] == (f.particles[id].species == core::Species::Original ? "original" : "added"));
     CHECK(std::stod(c[4]) == Approx(f.particles[id].x).margin(1e-6));
     CHECK(std::stod(c[5]) == Approx(f.particles[id].y).margin(1e-6));
+    CHECK(std::stod(c[11]) == Approx(f.particles[id].angle).margin(1e-6));
+    CHECK(c[12] == "0");  // the paper's disks
     ++rows;
   }
   CHECK(rows == 250);
@@ -101,13 +107,24 @@ TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and v
   REQUIRE(r.code == 0);
   std::istringstream in(r.output);
   std::string line;
-  std::getline(in, line);  // header
+  // Key lines start with two blanks and the key; section headers with '['; wrapped meanings with 8 blanks.
   std::vector<std::string> keys;
-  while (std::getline(in, line)) keys.push_back(line.substr(0, line.find(' ')));
+  bool species = false;
+  size_t widest = 0;
+  while (std::getline(in, line)) {
+    widest = std::max(widest, line.size());
+    if (line.rfind("[[species]]", 0) == 0) species = true;
+    if (line.size() > 2 && line[0] == ' ' && line[1] == ' ' && line[2] != ' ' && !species)
+      keys.push_back(line.substr(2, line.find(' ', 2) - 2));
+  }
+  CHECK(widest <= 100);  // fits a terminal
   std::vector<std::string> table;
   for (const auto& f : core::scene_fields()) table.push_back(f.key);
+  std::sort(keys.begin(), keys.end());
+  std::sort(table.begin(), table.end());
   CHECK(keys == table);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("kick_impulse_max       N*s      5e-05"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("  kick_impulse_max      5e-05 N*s        [0, 1000]"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("[container]") && Catch::Matchers::Contains("  sides "));
   r = cli("scene " + kScene + " --set mu=0.5");
   REQUIRE(r.code == 0);
   CHECK_THAT(r.output,
