@@ -1,6 +1,6 @@
-// siloscope export RUN --format xyz|csv: a recording's trajectory for the field's tools. Extended XYZ (one
-// frame per trajectory frame) loads in OVITO and ASE; CSV (one row per disk and frame) in pandas, R or a
-// spreadsheet.
+// siloscope export RUN --format xyz|csv|vtu: a recording's trajectory for the field's tools. Extended XYZ
+// (one frame per trajectory frame) loads in OVITO and ASE; CSV (one row per grain and frame) in pandas, R or
+// a spreadsheet; VTU (a directory of VTK files and a .pvd time series) in ParaView.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +14,7 @@
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/trajectory.h"
+#include "io/vtu.h"
 
 namespace app {
 
@@ -60,9 +61,49 @@ std::string num(double v) {
   return core::format_g(v, 7);
 }
 
+// ParaView: a directory with one VTK UnstructuredGrid per frame (grains_NNNNNN.vtu), the container's walls
+// (walls.vtu, or walls_NNNNNN.vtu when it vibrates), trajectory.pvd tying them into a time series, and the
+// run's metadata.
+int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajectory& t, long first, long last,
+               const core::Scene& scene, const core::Setup& setup) {
+  const fs::path out = o.out.empty() ? traj.parent_path() / "vtu" : fs::path(o.out);
+  io::OutputDir dir(out, o.force);
+  std::vector<io::PvdEntry> entries;
+  const bool moving = setup.drive.vibrating();
+  if (!moving) io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo), false);
+  char name[48];
+  for (long k = first; k <= last; ++k) {
+    const core::Frame f = t.frame(k);
+    std::snprintf(name, sizeof name, "grains_%06ld.vtu", k);
+    io::write_file_atomic(dir.file(name), io::vtu_grains(f), false);
+    entries.push_back({f.t, 0, name});
+    if (moving) {
+      std::snprintf(name, sizeof name, "walls_%06ld.vtu", k);
+      io::write_file_atomic(dir.file(name), io::vtu_walls(setup.geo, f.container_x, f.container_y), false);
+    }
+    entries.push_back({f.t, 1, moving ? name : "walls.vtu"});
+    if (interrupted()) throw core::RuntimeFault("interrupted; nothing written");
+  }
+  io::write_file_atomic(dir.file("trajectory.pvd"), io::pvd(entries), false);
+  io::RunInfo info{command_line(),
+                   {{"export", "vtu"},
+                    {"trajectory", fs::absolute(traj).string()},
+                    {"first_frame", first},
+                    {"last_frame", last},
+                    {"open_in_paraview", "trajectory.pvd"}},
+                   {}};
+  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
+  dir.commit();
+  std::printf(
+      "%ld frames of %d grains -> %s/trajectory.pvd (ParaView: Glyph filter, Sphere or 2D Glyph, scale by "
+      "radius)\n",
+      last - first + 1, setup.n_total, out.c_str());
+  return 0;
+}
+
 int export_run(const ExportOptions& o) {
-  if (o.format != "xyz" && o.format != "csv")
-    throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv");
+  if (o.format != "xyz" && o.format != "csv" && o.format != "vtu")
+    throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu");
   fs::path traj = o.run;
   if (fs::is_directory(traj)) traj /= "trajectory.sstraj";
   if (!fs::exists(traj))
@@ -78,6 +119,7 @@ int export_run(const ExportOptions& o) {
   std::string names_text;
   for (const auto& nm : names) names_text += (names_text.empty() ? "" : " ") + nm;
 
+  if (o.format == "vtu") return export_vtu(o, traj, t, first, last, scene, setup);
   fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "export file",
@@ -134,9 +176,12 @@ void add_export_command(CLI::App& app, Action& action) {
   cmd->add_option("run", o->run,
                   "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
       ->required();
-  cmd->add_option("--format", o->format, "xyz (extended XYZ) or csv")->capture_default_str();
+  cmd->add_option("--format", o->format,
+                  "xyz (extended XYZ: OVITO, ASE), csv, or vtu (ParaView: a directory)")
+      ->capture_default_str();
   cmd->add_option("--frames", o->frames, "K or A:B (inclusive; default: every frame)");
-  cmd->add_option("--out", o->out, "output file (default: RUN/trajectory.xyz or .csv)");
+  cmd->add_option("--out", o->out,
+                  "output file (default: RUN/trajectory.xyz or .csv; vtu: the directory RUN/vtu)");
   cmd->add_flag("--force", o->force, "replace an earlier export");
   cmd->callback([o, &action] { action = [o] { return export_run(*o); }; });
 }

@@ -11,26 +11,26 @@ One row per scene case, one column per accuracy measure, one point per numerical
 - the same for the gaps between consecutive exits of original disks (hundreds per run).
 The Pareto front (no other point both faster and more accurate) is dashed.
 """
-import csv
 import math
+import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import siloscope  # noqa: E402  one reader of siloscope's files
+from siloscope._tables import read_table, records  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        for k in [k for k in r if k is not None]:
-            try:
-                r[k] = float(r[k])
-            except (TypeError, ValueError):
-                pass
-    return rows
+    try:
+        return records(read_table(path, ("setting", "scene")))
+    except siloscope.SiloscopeError as e:
+        print(f"accuracy_chart: {e}", file=sys.stderr)
+        sys.exit(2)
 
 
 def pareto(points):

@@ -11,11 +11,14 @@ of any false difference in a claim stays 5%); a point from one realization has n
 Verdicts: reproduced (every resolved comparison agrees, at least one per part of the claim), contradicted (a
 resolved comparison disagrees), not resolved (the intervals overlap, or the grid lacks the points).
 """
-import csv
 import math
 import os
 import sys
 from statistics import NormalDist
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import siloscope  # noqa: E402  one reader of siloscope's files
+from siloscope._tables import records  # noqa: E402
 
 CHI0 = 0.4
 
@@ -86,15 +89,11 @@ def one(x):
 
 
 def load(path):
-    with open(os.path.join(path, "points.csv"), newline="") as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        for k, v in list(r.items()):
-            try:
-                r[k] = float(v)
-            except (TypeError, ValueError):
-                pass
-    return rows
+    try:
+        return records(siloscope.read_campaign(path).points)
+    except siloscope.SiloscopeError as e:
+        print(f"claims: {e}", file=sys.stderr)
+        sys.exit(2)
 
 
 def est(p, key):

@@ -6,12 +6,15 @@
 Reads points.csv, survival.csv and avalanches.csv; writes each figure as PNG, SVG and PDF. Error bars are the 95% confidence
 intervals of the mean over realizations. Restyle freely: every number comes from the CSV.
 """
-import csv
 import math
 import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import siloscope  # noqa: E402  one reader of siloscope's files, for the package and these scripts
+from siloscope._tables import records  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -19,18 +22,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 200, "font.size": 10, "axes.grid": True,
                      "grid.alpha": 0.3, "svg.hashsalt": "siloscope", "legend.fontsize": 8})
 COLORS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
-
-
-def read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        for k, v in list(r.items()):
-            try:
-                r[k] = float(v)
-            except (TypeError, ValueError):
-                pass
-    return rows
 
 
 NOTE = ""
@@ -73,21 +64,6 @@ def series(rows, x, y, key):
 
 def nearest(values, target):
     return min(values, key=lambda v: abs(v - target)) if values else None
-
-
-def planned_realizations(src):
-    """The campaign's planned realizations per point, from campaign.toml beside the analysis (None if unknown)."""
-    for path in (os.path.join(src, "..", "campaign.toml"), os.path.join(src, "campaign.toml")):
-        if os.path.exists(path):
-            with open(path) as f:
-                for line in f:
-                    key, _, value = line.partition("=")
-                    if key.strip() == "realizations":
-                        try:
-                            return int(value.split("#")[0])
-                        except ValueError:
-                            return None
-    return None
 
 
 def stats_note(points, planned):
@@ -162,16 +138,19 @@ def kick_figure(points, surv, out, note):
 
 
 def main(src, out):
+    try:
+        campaign = siloscope.read_campaign(src)
+    except siloscope.SiloscopeError as e:
+        print(f"figures: {e}", file=sys.stderr)
+        sys.exit(2)
     os.makedirs(out, exist_ok=True)
-    points = read(os.path.join(src, "points.csv"))
-    if not points:
-        sys.exit(f"figures: {src}/points.csv has no points")
-    note = stats_note(points, planned_realizations(src))
+    points = records(campaign.points)
+    note = stats_note(points, campaign.planned)
     global NOTE
     NOTE = note
-    surv_path = os.path.join(src, "survival.csv")
+    tables = {"survival": campaign.survival, "avalanches": campaign.avalanches}
     if len({p["kick_impulse_max"] for p in points}) > 1:
-        kick_figure(points, read(surv_path) if os.path.exists(surv_path) else [], out, note)
+        kick_figure(points, records(tables["survival"]) if tables["survival"] is not None else [], out, note)
         return
     chi0 = 0.4 if any(abs(p["chi"] - 0.4) < 1e-9 for p in points) else max(p["chi"] for p in points)
     mixed = [p for p in points if abs(p["chi"] - chi0) < 1e-9]
@@ -243,11 +222,10 @@ def main(src, out):
     for name, x, xlabel, ylabel, logx in (
             ("survival", "tau_s", r"$\tau$ [s]", r"$\tilde P(\Delta t \geq \tau)$", False),
             ("avalanches", "size", r"avalanche size $s$ (disks between two clogs)", r"$P(S \geq s)$", True)):
-        path = os.path.join(src, name + ".csv")
-        if not os.path.exists(path):
+        if tables[name] is None:
             print(f"skipped {name}: no {name}.csv")
             continue
-        distribution_panels(read(path), chi0, x, xlabel, ylabel, logx, out, name)
+        distribution_panels(records(tables[name]), chi0, x, xlabel, ylabel, logx, out, name)
 
     # Mean avalanche size versus r, one curve per dipole strength, the pure system as a band.
     if "avalanche_mean" not in points[0]:

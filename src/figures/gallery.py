@@ -3,12 +3,15 @@
 
     python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS]
 """
-import csv
 import math
 import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import siloscope  # noqa: E402  one reader of siloscope's files
+from siloscope._tables import read_table  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
@@ -18,8 +21,11 @@ plt.rcParams.update({"svg.hashsalt": "siloscope", "font.size": 8})
 
 
 def main(tiles, out, title, version, columns=0):
-    with open(os.path.join(tiles, "index.csv"), newline="") as f:
-        rows = list(csv.DictReader(f))
+    try:
+        rows = read_table(os.path.join(tiles, "index.csv"), ("tile", "t_s")).astype(str).to_dict("records")
+    except siloscope.SiloscopeError as e:
+        print(f"gallery: {e}", file=sys.stderr)
+        sys.exit(2)
     n = len(rows)
     cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
     nrows = math.ceil(n / cols)

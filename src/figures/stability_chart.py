@@ -4,10 +4,14 @@ ratio; marker colour says whether the safe-time-step check refused the cell and 
 
     python3 stability_chart.py stability.csv stability.png
 """
-import csv
+import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import siloscope  # noqa: E402  one reader of siloscope's files
+from siloscope._tables import read_table  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -17,8 +21,11 @@ STYLE = {"accepted-clean": ("#009E73", "o"), "refused-breaks": ("#D55E00", "X"),
 
 
 def main(src, out):
-    with open(src, newline="") as f:
-        rows = list(csv.DictReader(f))
+    try:
+        rows = read_table(src, ("size_ratio", "dt_s", "dipole_force_ratio")).astype(str).to_dict("records")
+    except siloscope.SiloscopeError as e:
+        print(f"stability_chart: {e}", file=sys.stderr)
+        sys.exit(2)
     sizes = sorted({float(r["size_ratio"]) for r in rows})
     fig, axes = plt.subplots(1, len(sizes), figsize=(5 * len(sizes), 4), sharey=True)
     for ax, r in zip(axes if len(sizes) > 1 else [axes], sizes):

@@ -101,9 +101,12 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
     // Ten original diameters tall: arches form up to ~5 diameters above the aperture; the grains falling out
     // below. Written in the paper's metres times the grain size over its 0.13 m (exactly 1 for the paper).
     const double k = geo.grain_diameter / 0.13, d = geo.grain_diameter;
-    // As wide as the container where it is at most about 13 grains wide (the paper's: 1.1 m), else 13 grains
-    // and at least the outlet with 3 grains on each side; tall enough to show an obstacle whole.
-    const double half = std::min(geo.half_width + 0.05 * k, std::max(6.5 * d, geo.half_aperture + 3 * d));
+    // A hopper: ten grains tall, at most 9.2 wide (the paper's whole hopper). A flat silo: as wide as the
+    // container where it is at most 13 grains wide, else 13 grains and the outlet with 3 grains each side
+    // (arches over a floor rest far out). Tall enough to show an obstacle whole.
+    const double wide =
+        geo.kind == core::ContainerKind::Flat ? std::max(6.5 * d, geo.half_aperture + 3 * d) : 0.6 * k;
+    const double half = std::min(geo.half_width + 0.05 * k, wide);
     double top = std::min(1.05 * k, geo.total_height);
     if (geo.obstacle.present())
       top = std::max(top,
@@ -124,8 +127,12 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
       const int left =
           std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
       View out = outlet({left, 0, w - left, h});
-      out.cam.cx +=
-          0.08 * out.cam.height * (w - left) / h;  // hopper a little left of centre: room for the panel
+      // The container a little left of centre, room for the panel on the right, as far as its left wall stays
+      // in view (a container as wide as the view is not pushed out of it).
+      const double k = geo.grain_diameter / 0.13;
+      const double half_view = 0.5 * out.cam.height * (w - left) / h;
+      const double half_box = std::min(geo.half_width + 0.05 * k, half_view);
+      out.cam.cx += std::min(0.08 * out.cam.height * (w - left) / h, std::max(0.0, half_view - half_box));
       return {hopper({0, 0, left, h}), out};
     }
     case CameraSpec::Kind::Window:

@@ -263,8 +263,10 @@ bool in_container(const core::Geometry& g, core::Vec2 p) {
 }  // namespace
 
 // The information box's lines, into the current ImGui window.
-void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const Style& style,
+void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const Style& given,
                    float em) {
+  Style style = given;  // the scene's own species colours, wherever the box is drawn (a window's side panel)
+  if (!d.species_colors.empty()) style.species_colors = d.species_colors;
   if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
   if (o.time) ImGui::Text("t = %.2f s", f.t);
   const bool shorthand = d.species_names.size() == 2 && d.species_names[0] == "original";

@@ -242,7 +242,13 @@ void Hopper::step() {
   t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
   if (setup_.drive.vibrating()) offset_ = {walls_->GetPosition().x / L_, walls_->GetPosition().y / L_};
   Clock::time_point t3;
-  if (profiling_) t3 = Clock::now(), times_.box2d += std::chrono::duration<double>(t3 - t2).count();
+  if (profiling_) {
+    t3 = Clock::now(), times_.box2d += std::chrono::duration<double>(t3 - t2).count();
+    const b2Profile& prof = world_->GetProfile();  // ms
+    times_.contacts += 1e-3 * prof.collide;
+    times_.solver += 1e-3 * prof.solve;
+    times_.toi += 1e-3 * prof.solveTOI;
+  }
 
   handle_exits();
   if (open_) apply_clog_rule();
@@ -472,6 +478,13 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
 void Hopper::finish() {
   clogs_.finish(t_);
   events_.clogs = clogs_.clogs();
+}
+
+long Hopper::contacts(bool touching_only) const {
+  long n = 0;
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext())
+    n += !touching_only || c->IsTouching();
+  return n;
 }
 
 void Hopper::step_box2d_only(int n) {

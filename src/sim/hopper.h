@@ -35,6 +35,9 @@ namespace sim {
 // Cumulative wall time of each stage of step(), filled when profiling is on.
 struct StageTimes {
   double kicks = 0, dipoles = 0, box2d = 0, bookkeeping = 0;  // s
+  // Inside Box2D's step (its own b2Profile): finding contacts (broad phase and narrow phase), the contact
+  // solver (initialisation, velocity and position iterations, integration), continuous collision.
+  double contacts = 0, solver = 0, toi = 0;  // s
   long steps = 0;
 };
 
@@ -98,6 +101,8 @@ class Hopper {
     double mean() const { return samples ? sum / samples : 0.0; }
   };
   static constexpr double kBallisticFraction = 0.01;
+  // Scenes of more grains than this make their Box2D bodies in order of height (memory follows space).
+  static constexpr int kSpatialOrderAbove = 1000;
   const Airborne& airborne() const { return airborne_; }
   bool ballistic() const { return airborne_.mean() > kBallisticFraction; }
   // The top of the packed column, m: the top edge of the highest horizontal slab (one original diameter
@@ -108,6 +113,8 @@ class Hopper {
   long health_warnings() const { return health_warnings_; }
 
   void set_profiling(bool on) { profiling_ = on; }
+  // Box2D's contacts now: pairs whose bounding boxes overlap, and those of them touching.
+  long contacts(bool touching_only) const;
   const StageTimes& stage_times() const { return times_; }
 
   // The benchmark's baseline: n steps of the Box2D world alone (no kicks, dipoles or bookkeeping; time does

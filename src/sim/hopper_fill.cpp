@@ -144,7 +144,18 @@ void Hopper::deposit() {
     grid.add(p, r);
     at[static_cast<size_t>(id)] = p;
   }
-  for (int id = 0; id < n; ++id) add_grain(id, at[static_cast<size_t>(id)], angle_[static_cast<size_t>(id)]);
+  // Box2D keeps bodies and contacts in memory in the order they are made. Above kSpatialOrderAbove grains
+  // neighbours in the packing are made next to each other (by height), so its contact and solver loops stay
+  // in cache: 23% faster at 5000 grains (docs/bench_scaling.csv). Smaller scenes, the paper's among them,
+  // keep id order, bit for bit the runs they always gave.
+  std::vector<int> make(static_cast<size_t>(n));
+  for (int id = 0; id < n; ++id) make[static_cast<size_t>(id)] = id;
+  if (n > kSpatialOrderAbove)
+    std::stable_sort(make.begin(), make.end(), [&](int a, int b) {
+      return at[static_cast<size_t>(a)].y < at[static_cast<size_t>(b)].y;
+    });
+  bodies_.assign(static_cast<size_t>(n), nullptr);
+  for (int id : make) add_grain(id, at[static_cast<size_t>(id)], angle_[static_cast<size_t>(id)]);
   angle_.clear();
   t_ = -static_cast<double>(open_step_) * scene_.dt;
 }
@@ -183,7 +194,7 @@ void Hopper::add_grain(int id, core::Vec2 p, double angle) {
   fd.restitutionThreshold = static_cast<float>(scene_.restitution_threshold * L_);
   fd.userData.pointer = static_cast<std::uintptr_t>(id) + 1;
   body->CreateFixture(&fd);
-  bodies_.push_back(body);
+  bodies_[static_cast<size_t>(id)] = body;
 }
 
 void Hopper::settle() {

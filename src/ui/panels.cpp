@@ -118,15 +118,25 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
     std::vector<double> rad;
     for (const auto& p : f.particles) pos.push_back({p.x, p.y}), rad.push_back(p.radius);
     const auto g = core::arch_geometry(f.arch, pos, rad);
+    const auto& names = insp.overlay_data.species_names;
+    const bool shorthand = names.size() == 2 && names[0] == "original";
     int added = 0;
-    for (int id : f.arch) added += f.particles[id].species == core::Species::Added;
-    ImGui::Text("arch: %zu disks, %d added%s", f.arch.size(), added,
-                f.since_last_exit >= insp.overlay_data.clog_min_gap ? ", clogging" : ", forming");
+    for (int id : f.arch) added += f.particles[id].species != core::Species::Original;
+    const char* clogging = f.since_last_exit >= insp.overlay_data.clog_min_gap ? ", clogging" : ", forming";
+    if (shorthand)
+      ImGui::Text("arch: %zu disks, %d added%s", f.arch.size(), added, clogging);
+    else
+      ImGui::Text("arch: %zu grains%s", f.arch.size(), clogging);
     ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
     std::string members;
-    for (int id : f.arch)
-      members += std::to_string(id) + (f.particles[id].species == core::Species::Added ? "a " : "o ");
-    ImGui::TextWrapped("members (left to right, o/a = original/added): %s", members.c_str());
+    for (int id : f.arch) {
+      const size_t sp = static_cast<size_t>(core::species_index(f.particles[id].species));
+      members += std::to_string(id) +
+                 (shorthand ? (sp == 1 ? "a " : "o ") : " (" + (sp < names.size() ? names[sp] : "?") + ") ");
+    }
+    ImGui::TextWrapped(
+        shorthand ? "members (left to right, o/a = original/added): %s" : "members (left to right): %s",
+        members.c_str());
   }
   ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
   // No corner of the picture is clear of the container (zoomed in): the information box is shown here.

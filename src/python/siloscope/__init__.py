@@ -1,0 +1,27 @@
+"""siloscope's runs and campaigns in Python: tables as pandas DataFrames, trajectories as memory-mapped numpy
+arrays, metadata as dicts. Pure Python on numpy and pandas (Debian's python3-numpy, python3-pandas); from a clone:
+
+    export PYTHONPATH=$PWD/src/python
+    python3 -c "import siloscope"
+
+    >>> import siloscope
+    >>> r = siloscope.read_run("recordings/demo")        # a run or recording directory
+    >>> r.summary["q_tilde_per_s"][0]                     # the run's Q~, 1/s
+    >>> r.exits.head()                                    # t_s, id, species
+    >>> r.scene["seed"], r.metadata["siloscope"]["version"]
+    >>> tr = r.trajectory                                 # trajectory.sstraj, memory-mapped (None without one)
+    >>> tr.t[-1], tr.x.shape                              # last time, (frames, grains)
+    >>> c = siloscope.read_campaign("docs/campaigns/paper")   # a sweep's results, or an analysis directory
+    >>> c.points[["size_ratio", "q_tilde_per_s", "n_runs"]]
+    >>> r = siloscope.run("assets/scenes/pure.toml", "runs/quick", duration=10, seed=3)   # the binary, then read_run
+
+Every reader checks what it reads: a missing file, a wrong header, a value out of its range (a negative count,
+time running backwards) raises siloscope.SiloscopeError with one line naming the file, the field and the value.
+"""
+from ._errors import SiloscopeError
+from ._trajectory import Trajectory, read_trajectory
+from ._run import Run, read_run, run
+from ._campaign import Campaign, read_campaign
+
+__all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "read_run", "run", "Campaign", "read_campaign"]
+__version__ = "0.1.0"

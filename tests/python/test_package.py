@@ -1,0 +1,90 @@
+"""The Python package reads what the binary wrote, exactly, and refuses what it did not write in one line."""
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import siloscope
+
+
+def test_read_run_gives_tables_metadata_and_a_memory_mapped_trajectory(recording, binary, tmp_path):
+    r = siloscope.read_run(str(recording))
+    assert r.scene["seed"] == 1 and r.metadata["siloscope"]["version"]
+    assert list(r.exits.columns) == ["t_s", "id", "species"]
+    assert set(r.exits["species"]) <= {"original", "added"}
+    assert r.summary["exits"][0] == len(r.exits[r.exits["t_s"] <= r.scene["duration"]])
+    assert list(r.species["species"]) == ["original", "added"]
+    tr = r.trajectory
+    assert isinstance(tr.frames, np.memmap)  # not loaded: mapped
+    assert tr.n == 250 and len(tr) > 20
+    assert tr.species_names == ["original", "added"]
+    assert int((tr.species == 1).sum()) == 100 and abs(float(tr.radius[0]) - 0.065) < 1e-7
+    # The same numbers the binary's own CSV export gives for a frame.
+    subprocess.run([binary, "export", str(recording), "--format", "csv", "--frames", "15", "--out",
+                    str(tmp_path / "f.csv")], check=True, capture_output=True)
+    import pandas as pd
+    csv = pd.read_csv(tmp_path / "f.csv")
+    k = 15
+    assert abs(csv["t_s"][0] - tr.t[k]) < 1e-6
+    for i in (0, 7, 249):
+        row = csv[csv["id"] == i].iloc[0]
+        assert abs(row["x_m"] - tr.x[k, i]) < 1e-6 and abs(row["y_m"] - tr.y[k, i]) < 1e-6
+    assert list(tr.arch(k)) == list(csv[csv["in_arch"] == 1]["id"]) or len(tr.arch(k)) == int(csv["in_arch"].sum())
+
+
+def test_run_calls_the_binary_with_an_argument_vector(binary, tmp_path, root):
+    out = tmp_path / "odd name; $(touch nope)"
+    r = siloscope.run(os.path.join(root, "assets/scenes/pure.toml"), out, seed=3, duration=2,
+                      set={"settle_time": 2})
+    assert r.scene["seed"] == 3 and r.scene["duration"] == 2.0 and r.scene["chi"] == 0.0
+    assert not os.path.exists("nope")
+    with pytest.raises(siloscope.SiloscopeError, match="chi = 2.0 is not allowed"):
+        siloscope.run(os.path.join(root, "assets/scenes/pure.toml"), tmp_path / "bad", set={"chi": 2})
+
+
+def test_read_campaign_gives_the_committed_tables(root):
+    c = siloscope.read_campaign(os.path.join(root, "docs/campaigns/paper"))
+    assert len(c.points) == 34 and c.points["n_runs"].min() == 50 and c.planned == 50
+    assert len(c.realizations) == 1700
+    assert set(c.avalanches.columns) >= {"size", "survival", "avalanches"}
+
+
+def one_line(excinfo):
+    text = str(excinfo.value)
+    assert "\n" not in text and "Traceback" not in text
+    return text
+
+
+def test_bad_files_give_one_line_naming_file_field_and_value(recording, root, tmp_path):
+    run = tmp_path / "run"
+    shutil.copytree(recording, run)
+    meta = (run / "metadata.toml").read_text()
+    (run / "metadata.toml").write_text(meta[: meta.index("[scene]") + 10])  # truncated
+    with pytest.raises(siloscope.SiloscopeError) as e:
+        siloscope.read_run(str(run))
+    assert "metadata.toml" in one_line(e)
+    (run / "metadata.toml").write_text(meta)
+    exits = (run / "exits.csv").read_text().splitlines()
+    exits.insert(2, "9.5,3,original")  # time runs backwards after it
+    (run / "exits.csv").write_text("\n".join(exits) + "\n")
+    with pytest.raises(siloscope.SiloscopeError, match="backwards") as e:
+        siloscope.read_run(str(run))
+    one_line(e)
+    camp = tmp_path / "camp"
+    shutil.copytree(os.path.join(root, "docs/campaigns/kicks/analysis"), camp)
+    rows = (camp / "points.csv").read_text().splitlines()
+    cells = rows[1].split(",")
+    header = rows[0].split(",")
+    cells[header.index("n_runs")] = "-3"
+    rows[1] = ",".join(cells)
+    (camp / "points.csv").write_text("\n".join(rows) + "\n")
+    with pytest.raises(siloscope.SiloscopeError, match="n_runs = -3") as e:
+        siloscope.read_campaign(str(camp))
+    assert "points.csv:2" in one_line(e)
+    with pytest.raises(siloscope.SiloscopeError, match="no points.csv"):
+        siloscope.read_campaign(str(tmp_path))
+    with pytest.raises(siloscope.SiloscopeError, match="not a siloscope trajectory"):
+        (tmp_path / "t.sstraj").write_bytes(b"NOTATRAJ" + bytes(100))
+        siloscope.read_trajectory(str(tmp_path / "t.sstraj"))

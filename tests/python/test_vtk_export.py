@@ -1,0 +1,62 @@
+"""export --format vtu read back with VTK's own readers (Debian's python3-vtk9, the library ParaView is built on)."""
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+import pytest
+
+import siloscope
+
+vtk = pytest.importorskip("vtk", reason="python3-vtk9 (installed by .ci/test) is needed to read the export")
+
+
+def read_grid(path):
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    return reader.GetOutput()
+
+
+def test_vtk_reads_the_export(recording, binary, tmp_path):
+    out = tmp_path / "vtu"
+    done = subprocess.run([binary, "export", str(recording), "--format", "vtu", "--frames", "10:20", "--out",
+                           str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    tr = siloscope.read_trajectory(str(recording))
+    # The time series: two parts (grains, walls) at every frame's time.
+    pvd = ET.parse(out / "trajectory.pvd").getroot()
+    sets = pvd.find("Collection").findall("DataSet")
+    assert len(sets) == 2 * 11
+    grains = [d for d in sets if d.get("part") == "0"]
+    assert abs(float(grains[5].get("timestep")) - float(tr.t[15])) < 1e-6
+    g = read_grid(out / grains[5].get("file"))
+    assert g.GetNumberOfPoints() == 250 and g.GetNumberOfCells() == 250
+    x, y, z = g.GetPoint(7)
+    assert abs(x - tr.x[15, 7]) < 1e-6 and abs(y - tr.y[15, 7]) < 1e-6 and z == 0
+    pd = g.GetPointData()
+    assert abs(pd.GetArray("radius").GetValue(0) - 0.065) < 1e-7
+    assert abs(pd.GetArray("radius").GetValue(249) - 0.026) < 1e-7
+    assert pd.GetArray("velocity").GetNumberOfComponents() == 3
+    assert sum(pd.GetArray("species").GetValue(i) for i in range(250)) == 100
+    assert sum(pd.GetArray("arch").GetValue(i) for i in range(250)) == len(tr.arch(15))
+    assert abs(g.GetFieldData().GetArray("TimeValue").GetValue(0) - tr.t[15]) < 1e-6
+    walls = read_grid(out / "walls.vtu")
+    assert walls.GetNumberOfCells() == 5  # two hopper walls, two silo walls, the top
+    bounds = walls.GetBounds()
+    assert abs(bounds[0] + 0.5) < 1e-6 and abs(bounds[1] - 0.5) < 1e-6 and abs(bounds[3] - 6.36) < 1e-6
+    print(f"VTK {vtk.vtkVersion.GetVTKVersion()}: {len(grains)} frames, 250 grains, point 7 at ({x:.4f}, {y:.4f}), "
+          f"radius 0.065, t = {float(grains[5].get('timestep')):.3f} s; walls {walls.GetNumberOfCells()} lines")
+
+
+def test_vtu_of_a_flat_silo_with_an_obstacle_and_pentagons(binary, root, tmp_path):
+    rec = tmp_path / "pent"
+    subprocess.run([binary, "record", os.path.join(root, "assets/scenes/pentagons.toml"), "--duration", "1",
+                    "--set", "settle_time=1", "--set", "obstacle=bar", "--set", "obstacle_size=0.3", "--set",
+                    "obstacle_thickness=0.05", "--set", "obstacle_height=0.6", "--size", "320x240", "--fps", "10",
+                    "--quiet", "--out", str(rec)], check=True)
+    subprocess.run([binary, "export", str(rec), "--format", "vtu"], check=True, capture_output=True)
+    g = read_grid(rec / "vtu" / "grains_000005.vtu")
+    assert g.GetPointData().GetArray("sides").GetValue(0) == 5
+    assert g.GetPointData().GetArray("extent").GetValue(0) > g.GetPointData().GetArray("radius").GetValue(0)
+    walls = read_grid(rec / "vtu" / "walls.vtu")
+    assert walls.GetNumberOfCells() == 6  # five walls and the bar's outline
