@@ -9,8 +9,9 @@ void ClogTracker::close(double t, core::ClogEnd how) {
 }
 
 void ClogTracker::on_exit(double t) {
-  // An arrested outlet cannot restart on its own: a kick broke it. Otherwise the jam was transient.
-  close(t, arrested_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous);
+  // An arrested outlet does not restart on its own while a drive acts: the drive broke it. Otherwise the jam
+  // was transient (or, without any drive, the arch collapsed by itself).
+  close(t, arrested_ && driven_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous);
 }
 
 void ClogTracker::on_rest_check(double t, bool outlet_at_rest) {

@@ -10,7 +10,10 @@ namespace sim {
 
 class ClogTracker {
  public:
-  ClogTracker(double min_gap, double timeout) : min_gap_(min_gap), timeout_(timeout) {}
+  // `driven`: kicks or a vibrating container act on the grains. Without a drive nothing breaks a clog from
+  // outside: an arrested clog that flows again collapsed by itself, and is spontaneous.
+  ClogTracker(double min_gap, double timeout, bool driven = true)
+      : min_gap_(min_gap), timeout_(timeout), driven_(driven) {}
 
   // A particle left through the aperture at time t.
   void on_exit(double t);
@@ -29,12 +32,14 @@ class ClogTracker {
   void finish(double t);
 
   double since_last(double t) const { return t - last_; }
+  void set_driven(bool driven) { driven_ = driven; }
   bool arrested() const { return arrested_; }
   const std::vector<core::ClogEvent>& clogs() const { return clogs_; }
 
  private:
   void close(double t, core::ClogEnd how);
   double min_gap_, timeout_;
+  bool driven_;
   double last_ = 0;        // last exit, rule firing, or the opening
   bool arrested_ = false;  // the outlet came to rest since last_
   std::vector<core::ClogEvent> clogs_;

@@ -52,7 +52,8 @@ Hopper::Hopper(const core::Scene& scene)
       rng_reinject_(scene.seed, 3),
       rng_shape_(scene.seed, 4),
       rng_orient_(scene.seed, 5),
-      clogs_(scene.clog_min_gap, scene.clog_timeout) {
+      clogs_(scene.clog_min_gap, scene.clog_timeout,
+             setup_.drive.kick_impulse_max > 0 || setup_.drive.vibrating()) {
   arch_method_ = setup_.arch_method;
   // Time steps the integration cannot survive are refused before any work: the explicit dipole repulsion,
   // and grains outrunning their own size in one step.

@@ -124,7 +124,11 @@ class Hopper {
   void place(int id, core::Vec2 p);
   void set_velocity(int id, core::Vec2 v);  // m/s
   // Change the kick strength from now on (N*s); tests stage a clog without kicks, then kick it.
-  void set_kick_impulse_max(double j) { scene_.kick_impulse_max = j; }
+  void set_kick_impulse_max(double j) {
+    scene_.kick_impulse_max = j;
+    setup_.drive.kick_impulse_max = j;
+    clogs_.set_driven(j > 0 || setup_.drive.vibrating());
+  }
   // Run every health check now (they also run on their own: per disk every step, overlaps at every kick).
   void check_health();
 

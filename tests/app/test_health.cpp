@@ -52,7 +52,7 @@ TEST_CASE("health: non-finite, escaped, too fast and overlapping disks stop the 
     h.place(0, {0.0, 3.0});
     h.place(1, {0.03, 3.0});  // two original disks (r = 6.5 cm) 3 cm apart: 77% overlap
     h.step();                 // Box2D finds the contact
-    CHECK_THAT(fault_of([&] { h.check_health(); }), Contains("overlap") && Contains("disks 0 and 1"));
+    CHECK_THAT(fault_of([&] { h.check_health(); }), Contains("overlap") && Contains("grains 0 and 1"));
   }
 }
 
