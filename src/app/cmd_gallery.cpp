@@ -11,6 +11,7 @@
 #include "app/common.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/setup.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -47,7 +48,9 @@ int gallery(const GalleryOptions& o) {
     throw core::InputError("--tile " + std::to_string(o.tile) +
                            ": allowed are even sizes from 120 to 2000 pixels");
   const core::Scene scene = core::load_scene((run / "metadata.toml").string());
-  const core::Events recorded = io::read_events(run);
+  const core::Setup setup = core::resolve(scene);
+  const std::vector<std::string> names = setup.species_names();
+  const core::Events recorded = io::read_events(run, names);
   if (recorded.arches.empty())
     throw core::InputError("gallery: " + o.run + " has no long-lasting arch (arches.csv is empty)");
   const size_t n = std::min(recorded.arches.size(), static_cast<size_t>(o.max_arches));
@@ -73,6 +76,7 @@ int gallery(const GalleryOptions& o) {
   const core::Geometry geo = core::make_geometry(scene);
   const auto views = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile);
   sim::Hopper h(scene);
+  const render::OverlayData data = render::overlay_data_for(scene);  // the species' colours; no overlay drawn
   std::string index = "tile,t_s,clog_s,members,added,species,method,span_m\n";
   for (size_t k = 0; k < n; ++k) {
     const core::ArchEvent& a = recorded.arches[k];
@@ -81,9 +85,8 @@ int gallery(const GalleryOptions& o) {
     core::Frame f = h.frame(false, false);
     f.arch = a.ids;
     f.since_last_exit = a.clog_duration;
-    const render::OverlayData no_overlay;
     core::Image img =
-        painter.paint(f, geo, views, style, render::OverlayOptions::none(), no_overlay, o.tile, o.tile);
+        painter.paint(f, geo, views, style, render::OverlayOptions::none(), data, o.tile, o.tile);
     char name[32];
     std::snprintf(name, sizeof name, "tile_%03zu.png", k);
     record::write_png(tmp / name, img);
@@ -96,20 +99,23 @@ int gallery(const GalleryOptions& o) {
     int added = 0;
     std::string species;
     for (auto s : a.species) {
-      added += s == core::Species::Added;
-      species += std::string(species.empty() ? "" : ";") + core::species_name(s);
+      added += s != core::Species::Original;
+      const size_t k = static_cast<size_t>(core::species_index(s));
+      species += std::string(species.empty() ? "" : ";") + (k < names.size() ? names[k] : "?");
     }
     index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) +
              "," + std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
              core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "\n";
   }
   io::write_file_atomic(tmp / "index.csv", index);
-  const std::string title = "long-lasting arches of " + fs::absolute(run).filename().string() +
-                            ": r = " + core::format_g(scene.size_ratio) +
-                            ", chi = " + core::format_g(scene.chi) + ", mu = " + core::format_g(scene.mu) +
-                            " A m^2, kick " + core::format_g(scene.kick_impulse_max) + " N s, seed " +
-                            std::to_string(scene.seed) + " (" + std::to_string(n) + " of " +
-                            std::to_string(recorded.arches.size()) + ")";
+  const std::string title =
+      "long-lasting arches of " + fs::absolute(run).filename().string() + ": " +
+      (setup.shorthand
+           ? "r = " + core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) +
+                 ", mu = " + core::format_g(scene.mu) + " A m^2, kick " +
+                 core::format_g(scene.kick_impulse_max) + " N s, seed " + std::to_string(scene.seed)
+           : data.title) +
+      " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")";
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
   const std::string cmd = python_interpreter() + " " + core::shell_quote(SILOSCOPE_GALLERY_SCRIPT) + " " +

@@ -149,6 +149,12 @@ def main(src, out):
     global NOTE
     NOTE = note
     tables = {"survival": campaign.survival, "avalanches": campaign.avalanches}
+    cols = list(campaign.points.columns)
+    extra = cols[cols.index("kick_impulse_max") + 1: cols.index("dipole_force_ratio")]
+    own_species = all(not finite(p.get("dipole_force_ratio")) for p in points)
+    if extra or own_species:
+        scene_figures(campaign, points, extra, out)
+        return
     if len({p["kick_impulse_max"] for p in points}) > 1:
         kick_figure(points, records(tables["survival"]) if tables["survival"] is not None else [], out, note)
         return
@@ -250,6 +256,82 @@ def main(src, out):
     ax.set_title(rf"$\chi$ = {chi0:g}")
     ax.legend()
     save(fig, out, "avalanche_size_vs_r")
+
+
+def scene_figures(campaign, points, keys, out):
+    """A campaign of one's own scenes (analyze --by KEY): the flow (all grains and each species), the mean
+    avalanche size and the clogs' survival against the key the campaign varies; categorical keys (obstacle =
+    none|disk) by name. Every figure names the slice it shows (the other keys' values)."""
+    if not keys:
+        keys = []
+    def label_of(p, skip=None):
+        return ", ".join(f"{k} = {p[k]:g}" if isinstance(p[k], float) else f"{k} = {p[k]}" for k in keys if k != skip)
+    if not keys:
+        print("a single point: flow and clog figures of one point")
+    x = next((k for k in keys if all(isinstance(p[k], float) for p in points)), keys[0] if keys else None)
+    groups = {}
+    for p in points:
+        groups.setdefault(label_of(p, x), []).append(p)
+    species = records(campaign.species) if campaign.species is not None else []
+    for what, key, ylabel in (("flow", "q_per_s", "Q, all grains [1/s]"),
+                              ("avalanche", "avalanche_mean", r"mean avalanche size $\langle s \rangle$ [grains]")):
+        fig, ax = plt.subplots(figsize=(5, 3.6))
+        for i, (slice_label, ps) in enumerate(sorted(groups.items())):
+            if x is None or not all(isinstance(p[x], float) for p in ps):
+                names = [label_of(p) for p in ps]
+                xs = list(range(len(ps)))
+                ax.set_xticks(xs, names, rotation=20, fontsize=7)
+            else:
+                ps = sorted(ps, key=lambda p: p[x])
+                xs = [p[x] for p in ps]
+            ys = [p[key] for p in ps]
+            hs = [p.get(key + "_ci95", 0.0) if finite(p.get(key + "_ci95")) else 0.0 for p in ps]
+            ax.errorbar(xs, ys, yerr=bounded(ys, hs, key), marker="o", capsize=3, color=COLORS[i % len(COLORS)],
+                        label=slice_label or None)
+            if what == "flow" and len({s["species"] for s in species}) > 1:
+                for j, name in enumerate(sorted({s["species"] for s in species})):
+                    sp = [next((s for s in species if s["species"] == name and all(s.get(k) == p[k] for k in keys)),
+                               None) for p in ps]
+                    if any(v is None for v in sp):
+                        continue
+                    ax.errorbar(xs, [v["q_per_s"] for v in sp], yerr=[v["q_per_s_ci95"] for v in sp], marker=".",
+                                ls=":", capsize=2, color=COLORS[(i + j + 1) % len(COLORS)], label=f"{name}")
+        ax.set_xlabel(x if x and all(isinstance(p[x], float) for p in points) else "point")
+        ax.set_ylabel(ylabel)
+        if any(groups):
+            ax.legend(fontsize=7)
+        name = f"{what}_vs_{x}" if x else what
+        save(fig, out, name.replace(".", "_"))
+    cs = campaign.clog_survival
+    if cs is not None and len(cs):
+        rows = records(cs)
+        fig, ax = plt.subplots(figsize=(5, 3.6))
+        for i, p in enumerate(points):
+            curve = [r for r in rows if all(r.get(k) == p[k] for k in keys) and r["t_s"] > 0]
+            if not curve:
+                continue
+            ax.step([r["t_s"] for r in curve], [r["survival"] for r in curve], where="post",
+                    color=COLORS[i % len(COLORS)], label=label_of(p) or "all")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("clog duration t [s]")
+        ax.set_ylabel("P(clog lasts > t) (Kaplan-Meier)")
+        ax.legend(fontsize=7)
+        save(fig, out, "clog_survival")
+    if campaign.avalanches is not None and len(campaign.avalanches):
+        rows = records(campaign.avalanches)
+        fig, ax = plt.subplots(figsize=(5, 3.6))
+        for i, p in enumerate(points):
+            curve = [r for r in rows if all(r.get(k) == p[k] for k in keys) and r["survival"] > 0]
+            if curve:
+                ax.step([r["size"] for r in curve], [r["survival"] for r in curve], where="post",
+                        color=COLORS[i % len(COLORS)], label=label_of(p) or "all")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("avalanche size s [grains]")
+        ax.set_ylabel(r"$P(S \geq s)$")
+        ax.legend(fontsize=7)
+        save(fig, out, "avalanches")
 
 
 def distribution_panels(rows, chi0, x, xlabel, ylabel, logx, out, name):

@@ -36,14 +36,13 @@ def main(tiles, out, title, version, columns=0):
             continue
         r = rows[k]
         ax.imshow(mpimg.imread(os.path.join(tiles, r["tile"])))
-        members = r["species"].split(";")
+        shorthand = set(r["species"].split(";")) <= {"original", "added"}
+        who = f"{r['members']} disks ({r['added']} added)" if shorthand else f"{r['members']} grains"
         ax.set_title(f"#{k + 1}  t = {float(r['t_s']):.2f} s, clog {float(r['clog_s']):.1f} s\n"
-                     f"{r['members']} disks ({r['added']} added), span {100 * float(r['span_m']):.0f} cm",
-                     fontsize=7)
-        del members
+                     f"{who}, span {100 * float(r['span_m']):.0f} cm", fontsize=7)
     fig.suptitle(title, fontsize=9)
     fig.text(0.99, 0.003, f"siloscope {version}; members gold, bonds dark; the state one time step before the "
-             f"5 s rule removed each arch", ha="right", va="bottom", fontsize=6, color="#444444")
+             f"clog rule removed each arch", ha="right", va="bottom", fontsize=6, color="#444444")
     fig.tight_layout(rect=(0, 0.02, 1, 0.97))
     # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
     tag = f"siloscope gallery {version}"

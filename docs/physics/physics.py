@@ -1,0 +1,296 @@
+#!/usr/bin/env python3
+"""The physics of the general scenes (issue 25), measured, not tuned: Beverloo's law in a wide flat silo, an
+obstacle's effect on clogging, pentagons against disks of equal area, and how long clogs survive a harmonically
+vibrated container with the clog rule off. Reads the four campaigns' results (assets/campaigns/{beverloo,
+obstacle,polygons,harmonic}.toml, committed under docs/campaigns/) through the siloscope package; writes
+docs/physics/figures/*.png and docs/physics/results.md (every number with its 95% interval and n).
+
+    PYTHONPATH=src/python python3 docs/physics/physics.py CAMPAIGNS_DIR OUT_DIR
+
+CAMPAIGNS_DIR holds beverloo/, obstacle/, polygons/ and harmonic/, each a results directory (runs/ and analysis/)
+or an unpacked copy of docs/campaigns/NAME (tar -xJf runs/runs.tar.xz beside its analysis/).
+"""
+import glob
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "python"))
+import siloscope  # noqa: E402
+
+plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 150, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
+RNG = np.random.default_rng(2025)
+G = 9.8
+
+
+def runs_of(results):
+    """Every finished realization under RESULTS/runs, read (events and metadata)."""
+    dirs = sorted(os.path.dirname(p) for p in glob.glob(os.path.join(results, "runs", "p*", "r*", "metadata.toml")))
+    return [siloscope.read_run(d) for d in dirs]
+
+
+def ci95(samples):
+    a = np.asarray([x for x in samples if math.isfinite(x)], dtype=float)
+    if len(a) < 2:
+        return float(a.mean()) if len(a) else math.nan, math.nan, len(a)
+    from statistics import NormalDist  # noqa: F401  (t quantile below)
+    t = {2: 12.71, 3: 4.30, 4: 3.18, 5: 2.78, 6: 2.57, 7: 2.45, 8: 2.36, 9: 2.31, 10: 2.26, 11: 2.23, 12: 2.20,
+         13: 2.18, 14: 2.16, 15: 2.14, 16: 2.13, 20: 2.09, 30: 2.05}
+    n = len(a)
+    tq = t.get(n, 1.96 + 2.4 / n)
+    return float(a.mean()), float(tq * a.std(ddof=1) / math.sqrt(n)), n
+
+
+def mean_square_radius(scene):
+    sp = scene["species"][0]
+    if sp.get("size", "fixed") == "uniform":
+        a, b = sp["radius_min"], sp["radius_max"]
+        return (a * a + a * b + b * b) / 3.0
+    return sp["radius"] ** 2
+
+
+def flowing_rate(run):
+    """Exits per second of flow: the run's duration less the time its clogs lasted (Beverloo's law is about the
+    flowing silo)."""
+    clogged = float(run.clogs["duration_s"].sum()) if len(run.clogs) else 0.0
+    return len(run.exits) / (run.scene["duration"] - clogged)
+
+
+def beverloo(results, out, lines):
+    runs = runs_of(results)
+    scene = runs[0].scene
+    d = 2 * 0.5 * (scene["species"][0]["radius_min"] + scene["species"][0]["radius_max"])  # mean diameter
+    mass = math.pi * mean_square_radius(scene) * scene["density"]
+    by_d = {}
+    for r in runs:
+        by_d.setdefault(r.scene["aperture"], []).append(flowing_rate(r) * mass)  # kg/s per m of depth
+    ds = np.array(sorted(by_d))
+
+    def fit(samples):
+        # W = C phi rho sqrt(g) (D - k d)^(3/2)  <=>  (W / (rho sqrt g))^(2/3) = (C phi)^(2/3) (D - k d)
+        x = np.concatenate([[D] * len(samples[D]) for D in ds])
+        y = np.concatenate([(np.asarray(samples[D]) / (scene["density"] * math.sqrt(G))) ** (2 / 3) for D in ds])
+        a, b = np.polyfit(x, y, 1)
+        return a ** 1.5, -b / (a * d)
+
+    c_phi, k = fit(by_d)
+    boot = []
+    for _ in range(2000):
+        resampled = {D: list(RNG.choice(by_d[D], size=len(by_d[D]))) for D in ds}
+        boot.append(fit(resampled))
+    boot = np.array(boot)
+    c_lo, c_hi = np.percentile(boot[:, 0], [2.5, 97.5])
+    k_lo, k_hi = np.percentile(boot[:, 1], [2.5, 97.5])
+    n = min(len(v) for v in by_d.values())
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9, 3.6))
+    means = [np.mean(by_d[D]) for D in ds]
+    errs = [ci95(by_d[D])[1] for D in ds]
+    ax.errorbar(ds / d, means, yerr=errs, fmt="o", capsize=3, label=f"siloscope (n = {n} per outlet)")
+    xs = np.linspace(k * d + 1e-3, ds.max() * 1.05, 200)
+    ax.plot(xs / d, c_phi * scene["density"] * math.sqrt(G) * (xs - k * d) ** 1.5, "r-",
+            label=rf"Beverloo: $C\phi$ = {c_phi:.2f}, k = {k:.2f}")
+    ax.set_xlabel("outlet D / mean grain diameter d")
+    ax.set_ylabel("mass flow rate W [kg/s per m of depth]")
+    ax.set_title(f"flat silo W = {scene['silo_width']:g} m, {scene['species'][0]['count']} grains")
+    ax.legend(fontsize=7)
+    ys = [(m / (scene["density"] * math.sqrt(G))) ** (2 / 3) for m in means]
+    bx.plot(ds / d, ys, "o")
+    bx.plot(xs / d, c_phi ** (2 / 3) * (xs - k * d), "r-")
+    bx.axvline(k, color="r", ls=":", lw=0.8)
+    bx.set_xlabel("D / d")
+    bx.set_ylabel(r"$(W / \rho \sqrt{g})^{2/3}$ [m]")
+    bx.set_title("linearised: the intercept is k d")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "beverloo.png"))
+    plt.close(fig)
+    lines += ["## Beverloo's law (a flat silo wide enough for it)", "",
+              f"`assets/campaigns/beverloo.toml`: a flat-bottomed silo W = {scene['silo_width']:g} m wide (>= 3 D at "
+              f"every outlet; Mankoc et al. 2007 ask W > 2.5 D), {scene['species'][0]['count']} disks of radii "
+              f"uniform in {scene['species'][0]['radius_min']:g}-{scene['species'][0]['radius_max']:g} m (mean "
+              f"diameter d = {d:g} m), density {scene['density']:g} kg/m^2, no drive, outlets D = "
+              f"{ds.min() / d:g}-{ds.max() / d:g} d, {n} realizations of {scene['duration']:g} s per outlet. The "
+              "flow rate is that of the flowing silo (exits over the time not spent clogged). Fitted by least "
+              "squares on (W / rho sqrt g)^(2/3) = (C phi)^(2/3) (D - k d), intervals by bootstrap over "
+              "realizations (2000 resamples):", "",
+              f"- **C phi = {c_phi:.3f}** (95% interval {c_lo:.3f}-{c_hi:.3f}), **k = {k:.2f}** ({k_lo:.2f}-{k_hi:.2f})",
+              "- mass flow rate per outlet: " + ", ".join(
+                  f"D = {D / d:g} d: {m:.3f} +- {e:.3f} kg/s" for D, m, e in zip(ds, means, errs)),
+              f"- the literature's range for 2D silos: k about 1-2, C phi about 0.6-1 (model.md: this model in a 3 m "
+              f"silo gave k = 1.70 +- 0.07, C phi = 0.95)", "", "![Beverloo fit](figures/beverloo.png)", ""]
+
+
+def avalanche_table(campaign):
+    return campaign.points
+
+
+def obstacle(results, out, lines):
+    c = siloscope.read_campaign(results)
+    p = c.points
+    scene = runs_of(results)[0].scene
+    D = scene["aperture"]
+    none = p[p["obstacle"] == "none"].iloc[0]
+    with_ob = p[p["obstacle"] == "disk"].sort_values("obstacle_height")
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9, 3.6))
+    ax.errorbar(with_ob["obstacle_height"] / D, with_ob["avalanche_mean"], yerr=with_ob["avalanche_mean_ci95"],
+                fmt="o-", capsize=3, label="disk obstacle (diameter D)")
+    ax.axhspan(none["avalanche_mean"] - none["avalanche_mean_ci95"], none["avalanche_mean"] + none["avalanche_mean_ci95"],
+               color="k", alpha=0.15, lw=0)
+    ax.axhline(none["avalanche_mean"], color="k", ls="--", lw=0.8, label="no obstacle")
+    ax.set_xlabel("obstacle centre height h / outlet D")
+    ax.set_ylabel(r"mean avalanche size $\langle s \rangle$ [grains]")
+    ax.set_title(f"flat silo, D = {D / 0.1:g} d, n = {int(p['n_runs'].min())} per point")
+    ax.legend(fontsize=7)
+    av = c.avalanches
+    for _, row in [(None, none)] + list(with_ob.iterrows()):
+        sel = av[(av["obstacle"] == row["obstacle"]) & (np.isclose(av["obstacle_height"], row["obstacle_height"]))]
+        sel = sel[sel["survival"] > 0]
+        label = "no obstacle" if row["obstacle"] == "none" else f"h = {row['obstacle_height'] / D:g} D"
+        bx.step(sel["size"], sel["survival"], where="post", label=label, color="k" if row["obstacle"] == "none" else None)
+    bx.set_xscale("log")
+    bx.set_yscale("log")
+    bx.set_xlabel("avalanche size s [grains]")
+    bx.set_ylabel(r"$P(S \geq s)$")
+    bx.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "obstacle.png"))
+    plt.close(fig)
+    best = with_ob.loc[with_ob["avalanche_mean"].idxmax()]
+    ratio = best["avalanche_mean"] / none["avalanche_mean"]
+    rel = math.hypot(best["avalanche_mean_ci95"] / best["avalanche_mean"], none["avalanche_mean_ci95"] / none["avalanche_mean"])
+    lines += ["## An obstacle above the outlet", "",
+              f"`assets/campaigns/obstacle.toml` (`silo-obstacle.toml`): outlet D = {D:g} m = {D / 0.1:g} mean grain "
+              "diameters, no drive (a clog lasts until the rule removes its arch after 1 s), a disk obstacle of "
+              f"diameter D with its centre at h = 1, 1.5, 2 and 3 D above the outlet, and none; "
+              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per point. Mean avalanche size "
+              "(grains leaving between two clogs; Zuriguel et al., PRL 107, 278001, 2011 measure the same):", "",
+              f"- no obstacle: <s> = {none['avalanche_mean']:.1f} +- {none['avalanche_mean_ci95']:.1f} "
+              f"(Q = {none['q_per_s']:.2f} +- {none['q_per_s_ci95']:.2f} grains/s)"]
+    for _, row in with_ob.iterrows():
+        lines.append(f"- h = {row['obstacle_height'] / D:g} D: <s> = {row['avalanche_mean']:.1f} +- "
+                     f"{row['avalanche_mean_ci95']:.1f} ({row['avalanche_mean'] / none['avalanche_mean']:.2f}x; "
+                     f"Q = {row['q_per_s']:.2f} +- {row['q_per_s_ci95']:.2f} grains/s)")
+    lines += [f"- the best height measured, h = {best['obstacle_height'] / D:g} D, makes avalanches {ratio:.1f} +- "
+              f"{ratio * rel:.1f} times larger; an obstacle too close (h = 1 D) makes them smaller", "",
+              "![Obstacle](figures/obstacle.png)", ""]
+
+
+def polygons(results, out, lines):
+    c = siloscope.read_campaign(results)
+    p = c.points
+    key = "species.pentagons.sides"
+    pent = p[p[key] == 5].iloc[0]
+    disk = p[p[key] == 0].iloc[0]
+    scene = runs_of(results)[0].scene
+    fig, ax = plt.subplots(figsize=(4.6, 3.6))
+    av = c.avalanches
+    for row, label, color in ((disk, "disks", "#c8553d"), (pent, "pentagons (equal area)", "#2a9d8f")):
+        sel = av[(av[key] == row[key]) & (av["survival"] > 0)]
+        ax.step(sel["size"], sel["survival"], where="post", color=color,
+                label=f"{label}: <s> = {row['avalanche_mean']:.1f} +- {row['avalanche_mean_ci95']:.1f}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("avalanche size s [grains]")
+    ax.set_ylabel(r"$P(S \geq s)$")
+    ax.set_title(f"flat silo, D = {scene['aperture'] / 0.1:g} d, n = {int(p['n_runs'].min())} per shape")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "polygons.png"))
+    plt.close(fig)
+    ratio = disk["avalanche_mean"] / pent["avalanche_mean"]
+    rel = math.hypot(disk["avalanche_mean_ci95"] / disk["avalanche_mean"], pent["avalanche_mean_ci95"] / pent["avalanche_mean"])
+    more = "pentagons clog more" if pent["avalanche_mean"] + pent["avalanche_mean_ci95"] < disk["avalanche_mean"] - \
+        disk["avalanche_mean_ci95"] else ("disks clog more" if disk["avalanche_mean"] + disk["avalanche_mean_ci95"] <
+                                          pent["avalanche_mean"] - pent["avalanche_mean_ci95"] else "not resolved")
+    lines += ["## Pentagons against disks of equal area", "",
+              f"`assets/campaigns/polygons.toml` (`pentagons.toml`): the same flat silo and outlet (D = "
+              f"{scene['aperture']:g} m = {scene['aperture'] / 0.1:g} equal-area diameters), no obstacle, no drive, "
+              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per shape:", "",
+              f"- pentagons: <s> = {pent['avalanche_mean']:.1f} +- {pent['avalanche_mean_ci95']:.1f} grains, Q = "
+              f"{pent['q_per_s']:.2f} +- {pent['q_per_s_ci95']:.2f} /s",
+              f"- disks: <s> = {disk['avalanche_mean']:.1f} +- {disk['avalanche_mean_ci95']:.1f} grains, Q = "
+              f"{disk['q_per_s']:.2f} +- {disk['q_per_s_ci95']:.2f} /s",
+              f"- **{more}**: disks' avalanches are {ratio:.2f} +- {ratio * rel:.2f} times the pentagons'", "",
+              "![Polygons](figures/polygons.png)", ""]
+
+
+def harmonic(results, out, lines):
+    c = siloscope.read_campaign(results)
+    p = c.points.sort_values("vibration_gamma")
+    ks = c.clog_survival
+    scene = runs_of(results)[0].scene
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9, 3.6))
+    rows = []
+    cmap = plt.get_cmap("plasma")
+    gammas = list(p["vibration_gamma"])
+    for i, (_, row) in enumerate(p.iterrows()):
+        g = row["vibration_gamma"]
+        s = ks[np.isclose(ks["vibration_gamma"], g)]
+        color = cmap(i / max(1, len(gammas) - 1) * 0.85)
+        ax.step(s["t_s"], s["survival"], where="post", color=color, label=f"$\\Gamma$ = {g:g}")
+        ax.fill_between(s["t_s"], s["survival_lo95"], s["survival_hi95"], step="post", color=color, alpha=0.15, lw=0)
+        clogs, broken, censored = int(s["clogs"].iloc[0]), int(s["clogs_broken"].iloc[0]), int(s["clogs_run_end"].iloc[0])
+        s10 = float(s[s["t_s"] <= 10]["survival"].iloc[-1]) if (s["t_s"] <= 10).any() else 1.0
+        rows.append((g, clogs, broken, censored, row["q_per_s"], row["q_per_s_ci95"], s10, int(row["n_runs"])))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("clog duration t [s]")
+    ax.set_ylabel("P(clog lasts > t) (Kaplan-Meier)")
+    ax.set_title(f"vibrated flat silo, f = {scene['vibration_frequency']:g} Hz, rule off")
+    ax.legend(fontsize=7)
+    bx.plot([r[0] for r in rows], [r[3] / r[1] if r[1] else math.nan for r in rows], "o-", label="clogs never broken")
+    bx.plot([r[0] for r in rows], [r[6] for r in rows], "s--", label="P(clog lasts > 10 s)")
+    bx.set_xlabel(r"$\Gamma = A (2\pi f)^2 / g$")
+    bx.set_ylabel("fraction")
+    bx.set_ylim(-0.02, 1.02)
+    bx.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "harmonic.png"))
+    plt.close(fig)
+    lines += ["## A harmonically vibrated silo, the clog rule off", "",
+              f"`assets/campaigns/harmonic.toml` (`vibrated-silo.toml`): a flat silo, outlet {scene['aperture']:g} m "
+              f"= {scene['aperture'] / 0.1:g} d, the container vibrated vertically at {scene['vibration_frequency']:g} "
+              "Hz, no kicks, no clog rule: a clog ends when the vibration breaks it or the run ends (censored). "
+              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per Gamma. Survival of the clogs' "
+              "durations by Kaplan-Meier (the run's end censors the last clog of a run), 95% bands by Greenwood:", "",
+              "| Gamma | realizations | clogs | broken by the drive or spontaneous | never broken (censored at the "
+              "run's end) | P(clog lasts > 10 s) | Q [grains/s] |", "|---|---|---|---|---|---|---|"]
+    for g, clogs, broken, censored, q, qh, s10, n in rows:
+        lines.append(f"| {g:g} | {n} | {clogs} | {broken} | {censored} ({censored / clogs:.0%} of clogs) | "
+                     f"{s10:.2f} | {q:.2f} +- {qh:.2f} |" if clogs else f"| {g:g} | {n} | 0 | - | - | - | {q:.2f} |")
+    lines += ["", "![Harmonic drive](figures/harmonic.png)", ""]
+
+
+def main(src, out):
+    figs = os.path.join(out, "figures")
+    os.makedirs(figs, exist_ok=True)
+    lines = ["# Physics of the general scenes, measured", "",
+             "Generated by `docs/physics/physics.py` from the committed campaigns (docs/campaigns/{beverloo,obstacle,"
+             "polygons,harmonic}); every interval is 95% over realizations unless said. Measured against the "
+             "literature, never tuned to it (../shared/model.md, 'Beyond the paper').", ""]
+    for name, fn in (("beverloo", beverloo), ("obstacle", obstacle), ("polygons", polygons), ("harmonic", harmonic)):
+        path = os.path.join(src, name)
+        if not os.path.exists(path):
+            lines += [f"## {name}: not measured yet (no results at {path})", ""]
+            print(f"skipped {name}: no {path}")
+            continue
+        try:
+            fn(path, figs, lines)
+        except siloscope.SiloscopeError as e:
+            print(f"physics: {e}", file=sys.stderr)
+            sys.exit(2)
+        print(f"{name}: done")
+    with open(os.path.join(out, "results.md"), "w") as f:
+        f.write("\n".join(lines))
+    print(f"written {out}/results.md and figures/")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])
