@@ -44,8 +44,19 @@ std::vector<int> shortest_wall_path(const ContactGraph& g, const std::vector<Vec
       return path;
     }
     std::vector<int> next;
+    // The obstacle links every grain touching it (a support, not a grain): those are neighbours of each
+    // other.
+    std::vector<char> at_obstacle;
+    if (!g.on_obstacle.empty()) {
+      at_obstacle.assign(static_cast<size_t>(n), 0);
+      for (int i : g.on_obstacle) at_obstacle[static_cast<size_t>(i)] = 1;
+    }
     for (int u : frontier) {
-      for (int v : g.neighbours[u]) {
+      std::vector<int> reach = g.neighbours[u];
+      if (!at_obstacle.empty() && at_obstacle[static_cast<size_t>(u)])
+        for (int o : g.on_obstacle)
+          if (o != u) reach.push_back(o);
+      for (int v : reach) {
         if (layer_of[v] >= 0 && layer_of[v] <= layer) continue;
         double s = sum_y[u] + pos[v].y;
         if (layer_of[v] < 0) {

@@ -20,6 +20,9 @@ struct ContactGraph {
   std::vector<std::vector<int>> neighbours;  // per particle id, ids of touching disks
   std::vector<bool> touches_left;            // touches the left hopper wall
   std::vector<bool> touches_right;           // touches the right hopper wall
+  // Grains touching an obstacle: it supports an arch as a wall does, so a path may pass through it (from any
+  // grain touching it to any other) without counting it as a grain.
+  std::vector<int> on_obstacle;
 
   explicit ContactGraph(int n = 0) : neighbours(n), touches_left(n, false), touches_right(n, false) {}
   int size() const { return static_cast<int>(neighbours.size()); }

@@ -157,6 +157,10 @@ void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const s
     for (size_t k = 0; k + 1 < frame.arch.size(); ++k) {
       const auto& a = frame.particles[frame.arch[k]];
       const auto& b = frame.particles[frame.arch[k + 1]];
+      // Neighbours in the arch that do not touch lean on an obstacle between them: no bond across it.
+      const float reach = 1.05f * (a.radius * extent[a.sides <= 8 ? a.sides : 0] +
+                                   b.radius * extent[b.sides <= 8 ? b.sides : 0]);
+      if (std::hypot(a.x - b.x, a.y - b.y) > reach) continue;
       SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
       copy(seg.color, Rgba{0.1f, 0.1f, 0.1f, arch_alpha});
       bonds_.push_back(seg);

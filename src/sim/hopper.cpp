@@ -428,6 +428,7 @@ core::ContactGraph Hopper::contact_graph() const {
     // The walls the outlet opens between anchor arches (the hopper's, or a flat floor's two halves).
     if (wall == static_cast<int>(core::Wall::HopperLeft)) g.touches_left[particle] = true;
     if (wall == static_cast<int>(core::Wall::HopperRight)) g.touches_right[particle] = true;
+    if (wall == static_cast<int>(core::Wall::Obstacle)) g.on_obstacle.push_back(particle);
   }
   return g;
 }

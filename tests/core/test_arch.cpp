@@ -180,3 +180,20 @@ TEST_CASE("the clog rule fires at clog_timeout, removes exactly the arch and re-
   CHECK(h.events().clogs[0].ended_by == core::ClogEnd::Rule);
   CHECK(h.events().clogs[0].arrested);
 }
+
+TEST_CASE("an obstacle supports an arch: a path may pass through it without counting it as a grain",
+          "[arch]") {
+  // Left wall - 0 - 1 | obstacle | 2 - 3 - right wall; 1 and 2 touch the obstacle, not each other. Above, a
+  // longer chain 0 - 4 - 5 - 6 - 7 - 3 spans without it.
+  core::ContactGraph g(8);
+  std::vector<core::Vec2> pos = {{-0.3, 0.05}, {-0.15, 0.2}, {0.15, 0.2}, {0.3, 0.05},
+                                 {-0.25, 0.6}, {-0.1, 0.7},  {0.1, 0.7},  {0.25, 0.6}};
+  g.touches_left[0] = true;
+  g.touches_right[3] = true;
+  g.add_bond(0, 1);
+  g.add_bond(2, 3);
+  g.add_bond(0, 4), g.add_bond(4, 5), g.add_bond(5, 6), g.add_bond(6, 7), g.add_bond(7, 3);
+  CHECK(core::shortest_wall_path(g, pos, 1.0) == std::vector<int>{0, 4, 5, 6, 7, 3});  // no obstacle yet
+  g.on_obstacle = {1, 2};
+  CHECK(core::shortest_wall_path(g, pos, 1.0) == std::vector<int>{0, 1, 2, 3});
+}
