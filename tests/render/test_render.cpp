@@ -82,9 +82,9 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   core::Frame f;
   f.particles = {disk(-0.25f, 0.75f, 0.065f, core::Species::Original),
                  disk(0.25f, 0.75f, 0.026f, core::Species::Added),
-                 disk(-0.15f, 0.25f, 0.065f, core::Species::Original),
-                 disk(0.15f, 0.25f, 0.065f, core::Species::Original)};
-  f.arch = {2, 3};
+                 disk(-0.065f, 0.25f, 0.065f, core::Species::Original),
+                 disk(0.065f, 0.25f, 0.065f, core::Species::Original)};
+  f.arch = {2, 3};  // two members in contact
   f.since_last_exit = 3.0;  // clogged: the arch is drawn at full strength
   auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
   render::Style style;
@@ -106,10 +106,10 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
         0);  // just outside the small disk
   // The halo: a gold ring just outside each arch member (here 4.8 px wide, sampled 2.4 px out).
   const double ring = 0.065 + 2.4 / v.px_per_m();
-  CHECK(distance(at(-0.15, 0.25 - ring), render::arch_color(style.palette)) < 40);
+  CHECK(distance(at(-0.065, 0.25 - ring), render::arch_color(style.palette)) < 40);
   CHECK(distance(at(-0.25, 0.75 - ring), render::background_color(style)) == 0);  // a non-member has none
-  // The bond between the two members is dark, mid-way between them.
-  CHECK(at(0.0, 0.25)[0] < 60);
+  // The bond between the two members is dark, mid-way between them (over their contact).
+  CHECK(at(-0.03, 0.25)[0] < 60);
   // Rows come from the top: the top row of the image shows world y = 1 (empty), not y = 0.
   CHECK(distance(img.pixel(200, 0), render::background_color(style)) == 0);
   // GL's own top-down read-back (GL_MESA_pack_invert, where offered) and the flip on the CPU give the same
