@@ -1,5 +1,7 @@
 #include "app/accuracy.h"
 
+#include "app/session.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -41,10 +43,11 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
       s.seed = static_cast<std::uint64_t>(seed);
       try {
         auto t0 = std::chrono::steady_clock::now();
-        sim::Hopper h(s);
+        Session session({s});
+        const sim::Hopper& h = session.world(0);
         auto t1 = std::chrono::steady_clock::now();
-        h.advance_to(s.duration);
-        h.finish();
+        session.run(s.duration, FrameClock::none(), {});
+        session.finish();
         double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
         (void)t0;
         std::lock_guard lock(m);
@@ -82,7 +85,8 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   s.kick_impulse_max = 0;
   s.settle_time = 0;
   s.dipole_cutoff = 0;
-  sim::Hopper h(s);
+  Session session({s});
+  sim::Hopper& h = session.world(0);
   // Start one contact-gap apart in the middle of the silo, at rest: all energy is the dipole's at first.
   const double ra = s.radius_added(), y = 3.0;
   h.place(0, {-ra - 0.25 * ra, y});
@@ -99,11 +103,12 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   const double e0 = energy();
   // Stop before either disk comes within two radii of a side wall: wall contacts are inelastic by design.
   const double limit = h.geometry().half_width - 3 * ra;
-  while (h.time() < seconds) {
-    h.step();
-    auto p = h.positions();
-    if (std::abs(p[0].x) > limit || std::abs(p[1].x) > limit) break;
-  }
+  FunctionSink probe;
+  probe.on_step = [&](const sim::Hopper& w, size_t) {
+    const auto p = w.positions();
+    return std::abs(p[0].x) <= limit && std::abs(p[1].x) <= limit;
+  };
+  session.run(seconds, FrameClock::none(), {&probe});
   return std::abs(energy() - e0) / e0;
 }
 

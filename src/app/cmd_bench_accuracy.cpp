@@ -9,6 +9,7 @@
 #include "app/accuracy.h"
 #include "app/campaign.h"
 #include "app/common.h"
+#include "app/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/physics.h"
@@ -165,10 +166,8 @@ int bench_accuracy(const AccuracyOptions& o) {
   io::write_file_atomic(o.csv, csv);
   std::printf("\nwritten %s\n", o.csv.c_str());
   if (!o.chart.empty()) {
-    std::string cmd =
-        python_interpreter() + " " + SILOSCOPE_ACCURACY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
-    if (std::system(cmd.c_str()) != 0) {
-      std::fprintf(stderr, "siloscope: the chart could not be drawn (%s)\n", cmd.c_str());
+    if (run_python(script_path("accuracy_chart.py"), {o.csv, o.chart}) != 0) {
+      std::fprintf(stderr, "siloscope: the chart could not be drawn (accuracy_chart.py)\n");
       return 1;
     }
   }

@@ -5,6 +5,7 @@
 
 #include "analysis/stats.h"
 #include "app/common.h"
+#include "app/session.h"
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -29,28 +30,28 @@ int bench_arch(const ArchBenchOptions& o) {
     throw core::InputError("--repeats, --seconds and --fps must be > 0");
   if (!o.csv.empty())
     io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
-  const long steps_per_frame = std::max(1L, std::lround(1.0 / (o.fps * scene.dt)));
+  const FrameClock clock = FrameClock::every(scene.dt, 1.0 / o.fps, "--fps");
   std::printf("siloscope %s, bench arch: %g s simulated per repeat, detection every %ld steps (%g fps)\n",
-              io::version_string().c_str(), o.seconds, steps_per_frame, o.fps);
+              io::version_string().c_str(), o.seconds, clock.steps, o.fps);
   std::vector<double> per_call, plain_wall, detect_wall;
   long calls_found = 0, calls = 0;
   for (int r = 0; r < o.repeats; ++r) {
     // The same run twice, with and without detection; alternate which goes first.
     for (int pass = 0; pass < 2; ++pass) {
       bool detect = (pass + r) % 2 == 0;
-      sim::Hopper h(scene);
+      Session session({scene});
       double in_detection = 0;
+      FunctionSink probe;
+      probe.frames = false;  // the detection is what is timed; no frames are built
+      probe.on_frame = [&](const FrameTick& tick) {
+        auto a = Clock::now();
+        auto arch = tick.worlds[0]->current_arch();
+        in_detection += std::chrono::duration<double>(Clock::now() - a).count();
+        ++calls;
+        calls_found += !arch.empty();
+      };
       auto t0 = Clock::now();
-      for (long step = 1; h.time() < o.seconds; ++step) {
-        h.step();
-        if (detect && step % steps_per_frame == 0) {
-          auto a = Clock::now();
-          auto arch = h.current_arch();
-          in_detection += std::chrono::duration<double>(Clock::now() - a).count();
-          ++calls;
-          calls_found += !arch.empty();
-        }
-      }
+      session.run(o.seconds, detect ? clock : FrameClock::none(), {&probe});
       double wall = std::chrono::duration<double>(Clock::now() - t0).count();
       if (detect) {
         detect_wall.push_back(wall);

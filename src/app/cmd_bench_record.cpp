@@ -16,6 +16,7 @@
 
 #include "analysis/stats.h"
 #include "app/common.h"
+#include "app/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"
@@ -36,7 +37,8 @@ struct RecordBenchOptions {
 };
 
 struct Case {
-  std::string name, args;
+  std::string name;
+  std::vector<std::string> args;
 };
 
 int bench_record(const RecordBenchOptions& o) {
@@ -44,24 +46,28 @@ int bench_record(const RecordBenchOptions& o) {
   const double duration = o.scene.duration.value_or(20.0);
   if (!(duration > 0 && duration <= 600)) throw core::InputError("--duration must be in (0, 600] s");
   const std::string scene =
-      o.scene.path.empty() ? std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml" : o.scene.path;
+      o.scene.path.empty() ? (share_dir() / "scenes" / "paper.toml").string() : o.scene.path;
   if (o.binary.empty()) o.scene.load();  // validate before any work (another binary validates its own scenes)
   std::error_code ec;
-  const fs::path self = o.binary.empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(o.binary);
+  const fs::path self = o.binary.empty() ? fs::path(self_exe()) : fs::path(o.binary);
   if (!o.binary.empty() && ::access(o.binary.c_str(), X_OK) != 0)
     throw core::InputError("--binary " + o.binary + ": not an executable file");
   const fs::path tmp = fs::temp_directory_path() / ("siloscope_bench_record_" + std::to_string(::getpid()));
   fs::create_directories(tmp);
-  std::string common = " " + core::shell_quote(scene) + " --quiet";
-  for (const auto& s : o.scene.overrides) common += " --set " + core::shell_quote(s);
-  const std::string d = " --duration " + core::format_g(duration);
+  auto args = [&](const char* command, double seconds, std::vector<std::string> extra) {
+    std::vector<std::string> a = {self.string(), command,      scene,
+                                  "--quiet",     "--duration", core::format_g(seconds)};
+    for (const auto& s : o.scene.overrides) a.insert(a.end(), {"--set", s});
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
   const std::vector<Case> cases = {
-      {"run", "run" + common + d},
-      {"record_720p30", "record" + common + d + " --size 1280x720 --fps 30"},
-      {"record_1080p30", "record" + common + d + " --size 1920x1080 --fps 30"},
+      {"run", args("run", duration, {})},
+      {"record_720p30", args("record", duration, {"--size", "1280x720", "--fps", "30"})},
+      {"record_1080p30", args("record", duration, {"--size", "1920x1080", "--fps", "30"})},
       // PNG frames per second at 1080p: a shorter clip (each frame is a file).
-      {"png_1080p", "record" + common + " --duration " + core::format_g(std::min(duration, 4.0)) +
-                        " --size 1920x1080 --fps 30 --png-every 1 --no-movie"},
+      {"png_1080p", args("record", std::min(duration, 4.0),
+                         {"--size", "1920x1080", "--fps", "30", "--png-every", "1", "--no-movie"})},
   };
   std::map<std::string, std::vector<double>> walls;
   std::map<std::string, std::map<std::string, std::vector<double>>> stage;
@@ -70,13 +76,14 @@ int bench_record(const RecordBenchOptions& o) {
   for (int k = 0; k < o.repeats; ++k) {
     for (const auto& c : cases) {
       const fs::path out = tmp / (c.name + "_" + std::to_string(k));
-      const std::string cmd = self.string() + " " + c.args + " --out " + core::shell_quote(out.string());
+      std::vector<std::string> argv = c.args;
+      argv.insert(argv.end(), {"--out", out.string()});
       const auto t0 = std::chrono::steady_clock::now();
-      const int status = std::system(cmd.c_str());
+      const int status = run_process(argv);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      if (status != 0) {
         fs::remove_all(tmp, ec);
-        throw core::RuntimeFault("bench record: `" + cmd + "` failed");
+        throw core::RuntimeFault("bench record: `" + c.name + "` (" + argv[1] + " " + scene + ") failed");
       }
       walls[c.name].push_back(wall);
       std::string row = c.name + "," + std::to_string(k) + "," + core::format_g(wall, 5) + ",";

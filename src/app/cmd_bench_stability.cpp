@@ -10,6 +10,8 @@
 
 #include "app/campaign.h"
 #include "app/common.h"
+#include "app/process.h"
+#include "app/session.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "core/setup.h"
@@ -60,9 +62,10 @@ int bench_stability(const StabilityOptions& o) {
       c.safe_dt = std::min(core::dipole_safe_dt(st), core::kinematic_safe_dt(st, s.gravity));
       c.refused = s.dt > c.safe_dt;
       try {
-        sim::Hopper h(s);
-        h.advance_to(s.duration);
-        c.warnings = h.health_warnings() - (c.refused ? 1 : 0);  // the static refusal is one warning
+        Session session({s});
+        session.run(s.duration, FrameClock::none(), {});
+        c.warnings =
+            session.world(0).health_warnings() - (c.refused ? 1 : 0);  // the static refusal: one warning
       } catch (const std::exception& e) {
         c.failure = e.what();
         c.warnings = std::max(1L, c.warnings);
@@ -100,9 +103,8 @@ int bench_stability(const StabilityOptions& o) {
   io::write_file_atomic(o.csv, csv);
   std::printf("written %s\n", o.csv.c_str());
   if (!o.chart.empty()) {
-    std::string cmd =
-        python_interpreter() + " " + SILOSCOPE_STABILITY_SCRIPT + " '" + o.csv + "' '" + o.chart + "'";
-    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "siloscope: the chart could not be drawn\n");
+    if (run_python(script_path("stability_chart.py"), {o.csv, o.chart}) != 0)
+      std::fprintf(stderr, "siloscope: the chart could not be drawn\n");
   }
   return missed == 0 ? 0 : 1;
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "app/common.h"
+#include "app/process.h"
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -27,19 +28,17 @@ int bench_sweep(const SweepBenchOptions& o) {
   if (!o.csv.empty())
     io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "workers,realizations,wall_s");
   std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   const fs::path tmp = fs::temp_directory_path() / ("siloscope_bench_sweep_" + std::to_string(::getpid()));
   double wall[2] = {0, 0};
   long runs[2] = {0, 0};
   const int workers[2] = {1, o.workers};
   for (int i = 0; i < 2; ++i) {
     const fs::path dir = tmp / ("w" + std::to_string(workers[i]));
-    const std::string cmd = self.string() + " sweep '" + o.campaign + "' --quiet --no-analyze --workers " +
-                            std::to_string(workers[i]) + " --results '" + dir.string() + "'";
     const auto t0 = std::chrono::steady_clock::now();
-    const int status = std::system(cmd.c_str());
+    const int status = run_process({self_exe(), "sweep", o.campaign, "--quiet", "--no-analyze", "--workers",
+                                    std::to_string(workers[i]), "--results", dir.string()});
     wall[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (status != 0) {
       fs::remove_all(tmp, ec);
       throw core::RuntimeFault("bench sweep: the sweep with " + std::to_string(workers[i]) +
                                " workers failed");

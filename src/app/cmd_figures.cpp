@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "app/common.h"
+#include "app/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"
@@ -31,20 +32,20 @@ int figures(const FiguresOptions& o) {
                            " holds no points.csv (run `siloscope analyze` or `sweep` first)");
   fs::path out = o.out.empty() ? src.parent_path() / "figures" : fs::path(o.out);
   const char* env = std::getenv("SILOSCOPE_FIGURES_SCRIPT");
-  fs::path script = env ? env : SILOSCOPE_FIGURES_SCRIPT;
+  fs::path script = env ? env : script_path("figures.py");
   if (!fs::exists(script)) throw core::InputError("figures: the script " + script.string() + " is missing");
-  if (std::system((python_interpreter() + " -c 'import matplotlib' 2>/dev/null").c_str()) != 0)
+  if (run_process({python_interpreter(), "-c", "import matplotlib, pandas"}, "", "/dev/null") != 0)
     throw core::RuntimeFault(
-        "figures: python3 with matplotlib is needed (Debian: apt-get install python3-matplotlib)");
+        "figures: python3 with matplotlib and pandas is needed (Debian: apt-get install "
+        "python3-matplotlib python3-pandas)");
   // Drawn into a temporary directory, moved into place when complete; an existing figures directory is
   // replaced only with --force and only when siloscope made it (its metadata.toml says so).
   io::OutputDir dir(out, o.force);
   const fs::path tmp = dir.file("");
-  std::string cmd = python_interpreter() + " " + core::shell_quote(script.string()) + " " +
-                    core::shell_quote(src.string()) + " " + core::shell_quote(tmp.string());
-  int status = std::system(cmd.c_str());
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw core::RuntimeFault("figures: the matplotlib script failed (" + cmd + ")");
+  const int status = run_python(script.string(), {src.string(), tmp.string()});
+  if (status == 2)
+    throw core::InputError("figures: " + src.string() + " cannot be drawn (the line above says why)");
+  if (status != 0) throw core::RuntimeFault("figures: the matplotlib script " + script.string() + " failed");
   std::string meta = "# siloscope figures metadata: made from the analysis in [run].source\n[siloscope]\n" +
                      std::string("version = ") + core::toml_string(io::version_string()) + "\n" +
                      "command = " + core::toml_string(command_line()) +
@@ -83,14 +84,14 @@ int claims(const ClaimsOptions& o) {
                         "# The paper's seven claims against siloscope's results");
   fs::path partial = out;
   partial += ".partial";
-  std::string cmd = python_interpreter() + " " + core::shell_quote(SILOSCOPE_CLAIMS_SCRIPT) + " " +
-                    core::shell_quote(partial.string()) + " " + core::shell_quote(io::version_string());
-  for (const auto& s : specs) cmd += " " + core::shell_quote(s);
-  const int status = std::system(cmd.c_str());
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  std::vector<std::string> args = {partial.string(), io::version_string()};
+  args.insert(args.end(), specs.begin(), specs.end());
+  const int status = run_python(script_path("claims.py"), args);
+  if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
-    throw core::RuntimeFault("claims: the script failed (" + cmd + ")");
+    if (status == 2) throw core::InputError("claims: the results cannot be judged (the line above says why)");
+    throw core::RuntimeFault("claims: the script claims.py failed");
   }
   io::rename_into_place(partial, out);
   std::printf("claims table in %s\n", out.c_str());

@@ -9,6 +9,8 @@
 #include <filesystem>
 
 #include "app/common.h"
+#include "app/process.h"
+#include "app/session.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"
@@ -20,10 +22,6 @@
 #include "render/context.h"
 #include "render/painter.h"
 #include "sim/hopper.h"
-
-#ifndef SILOSCOPE_GALLERY_SCRIPT
-#define SILOSCOPE_GALLERY_SCRIPT "src/figures/gallery.py"
-#endif
 
 namespace app {
 
@@ -75,14 +73,17 @@ int gallery(const GalleryOptions& o) {
   style.palette = render::parse_palette(o.palette);
   const core::Geometry geo = core::make_geometry(scene);
   const auto views = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile);
-  sim::Hopper h(scene);
   const render::OverlayData data = render::overlay_data_for(scene);  // the species' colours; no overlay drawn
+  // Re-simulate the run, one frame one step before each recorded rule firing: the clog as it stood.
+  std::vector<long> at;
+  for (size_t k = 0; k < n; ++k) at.push_back(std::lround(recorded.arches[k].t / scene.dt) - 1);
+  Session session({scene});
   std::string index = "tile,t_s,clog_s,members,added,species,method,span_m\n";
-  for (size_t k = 0; k < n; ++k) {
+  size_t k = 0;
+  FunctionSink tiles;
+  tiles.on_frame = [&](const FrameTick& tick) {
     const core::ArchEvent& a = recorded.arches[k];
-    // The state one step before the rule fired: the clog as it stood.
-    h.advance_to(a.t - scene.dt);
-    core::Frame f = h.frame(false, false);
+    core::Frame f = tick.frames[0];
     f.arch = a.ids;
     f.since_last_exit = a.clog_duration;
     core::Image img =
@@ -90,23 +91,26 @@ int gallery(const GalleryOptions& o) {
     char name[32];
     std::snprintf(name, sizeof name, "tile_%03zu.png", k);
     record::write_png(tmp / name, img);
-    h.advance_to(a.t);
-    const auto& again = h.events().arches;
-    if (again.size() != k + 1 || again.back().ids != a.ids)
-      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
-                               std::to_string(k) + " at t = " + core::format_g(a.t, 6) +
-                               " s (a different build or physics?)");
     int added = 0;
     std::string species;
     for (auto s : a.species) {
       added += s != core::Species::Original;
-      const size_t k = static_cast<size_t>(core::species_index(s));
-      species += std::string(species.empty() ? "" : ";") + (k < names.size() ? names[k] : "?");
+      const size_t i = static_cast<size_t>(core::species_index(s));
+      species += std::string(species.empty() ? "" : ";") + (i < names.size() ? names[i] : "?");
     }
     index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) +
              "," + std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
              core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "\n";
-  }
+    ++k;
+  };
+  session.run(recorded.arches[n - 1].t + 0.5 * scene.dt, FrameClock::at_steps(at), {&tiles});
+  // The re-simulation must give the recorded arches: the same physics, build and seed.
+  const auto& again = session.world(0).events().arches;
+  for (size_t i = 0; i < n; ++i)
+    if (again.size() <= i || again[i].ids != recorded.arches[i].ids)
+      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
+                               std::to_string(i) + " at t = " + core::format_g(recorded.arches[i].t, 6) +
+                               " s (a different build or physics?)");
   io::write_file_atomic(tmp / "index.csv", index);
   const std::string title =
       "long-lasting arches of " + fs::absolute(run).filename().string() + ": " +
@@ -118,15 +122,12 @@ int gallery(const GalleryOptions& o) {
       " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")";
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
-  const std::string cmd = python_interpreter() + " " + core::shell_quote(SILOSCOPE_GALLERY_SCRIPT) + " " +
-                          core::shell_quote(tmp.string()) + " " + core::shell_quote(partial.string()) + " " +
-                          core::shell_quote(title) + " " + core::shell_quote(io::version_string()) + " " +
-                          std::to_string(o.columns);
-  const int status = std::system(cmd.c_str());
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  const int status = run_python(script_path("gallery.py"), {tmp.string(), partial.string(), title,
+                                                            io::version_string(), std::to_string(o.columns)});
+  if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
-    throw core::RuntimeFault("gallery: the matplotlib script failed (" + cmd + ")");
+    throw core::RuntimeFault("gallery: the matplotlib script gallery.py failed");
   }
   io::rename_into_place(partial, out);
   std::printf("%zu arches -> %s\n", n, out.c_str());

@@ -6,6 +6,7 @@
 
 #include "app/common.h"
 #include "app/inspect_files.h"
+#include "app/session.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "io/metadata.h"
@@ -77,11 +78,13 @@ int inspect(const InspectOptions& o) {
 class LiveHopper final : public ui::LiveSource {
  public:
   explicit LiveHopper(const core::Scene& scene)
-      : scene_(scene), hopper_(std::make_unique<sim::Hopper>(scene)) {}
-  void advance(double seconds) override { hopper_->advance_to(hopper_->time() + seconds); }
-  core::Frame frame(bool forces) const override { return hopper_->frame(true, forces); }
-  const core::Geometry& geometry() const override { return hopper_->geometry(); }
-  render::OverlayData overlay_data() const override { return render::overlay_data_for(hopper_->scene()); }
+      : scene_(scene), session_(std::make_unique<Session>(std::vector{scene})) {}
+  void advance(double seconds) override {
+    session_->run(session_->world(0).time() + seconds, FrameClock::none(), {});
+  }
+  core::Frame frame(bool forces) const override { return session_->world(0).frame(true, forces); }
+  const core::Geometry& geometry() const override { return session_->world(0).geometry(); }
+  render::OverlayData overlay_data() const override { return render::overlay_data_for(scene_); }
   ui::LiveParams params() const override {
     // The dipole force grows with mu^2: the ratio of this mu is (mu / mu at ratio 1)^2.
     const double unit = core::mu_for_force_ratio(scene_, 1.0);
@@ -95,7 +98,7 @@ class LiveHopper final : public ui::LiveSource {
     core::Scene s = with(p);
     s.mu = core::mu_for_force_ratio(s, p.force_ratio);
     core::validate(s);
-    hopper_ = std::make_unique<sim::Hopper>(s);
+    session_ = std::make_unique<Session>(std::vector{s});
     scene_ = s;
   }
 
@@ -108,7 +111,7 @@ class LiveHopper final : public ui::LiveSource {
     return s;
   }
   core::Scene scene_;
-  std::unique_ptr<sim::Hopper> hopper_;
+  std::unique_ptr<Session> session_;
 };
 
 int live(const LiveOptions& o) {

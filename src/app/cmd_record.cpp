@@ -13,6 +13,8 @@
 #include "app/common.h"
 #include "app/pipeline.h"
 #include "app/recording.h"
+#include "app/session.h"
+#include "app/sinks.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/events_csv.h"
@@ -60,8 +62,6 @@ struct Panel {
   core::Geometry geo;
   std::vector<render::View> views;
   render::OverlayData odata;
-  std::unique_ptr<sim::Hopper> hopper;
-  std::unique_ptr<io::TrajectoryWriter> trajectory;
   EventMarks marks;
   std::string subdir;  // inside NAME/: "" for one panel, "panelK/" for a comparison
 };
@@ -116,12 +116,41 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
   return panels;
 }
 
-int record_movie(const RecordOptions& o) {
-  // --- everything the user typed is checked before any work starts ---
-  std::vector<Panel> panels = make_panels(o);
-  const core::Scene& scene = panels.front().scene;
-  const size_t n_panels = panels.size();
+void print_recording(const RecordOptions& o, const Stages& st, long encoded, double shown, double wall,
+                     bool was_interrupted, const std::string& gl_renderer, const std::vector<Panel>& panels,
+                     const Session& session, const std::vector<analysis::Measurements>& ms,
+                     const fs::path& movie_path, const fs::path& base) {
+  const double per = 1e3 / std::max(1L, encoded);
+  std::printf("renderer    %s\n", gl_renderer.c_str());
+  std::printf(
+      "recorded    %ld frames (%.1f s of discharge%s) in %.1f s wall: %.2fx real time, %.1f frames/s\n",
+      encoded, shown, was_interrupted ? ", interrupted" : "", wall, shown / wall, encoded / wall);
+  std::printf(
+      "per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f ms"
+      " (stages overlap)\n",
+      st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
+  for (size_t k = 0; k < panels.size(); ++k) {
+    if (panels.size() > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
+    const auto& setup = session.world(k).setup();
+    std::printf("%s", analysis::summary_text(ms[k], setup.species_names(), setup.clog_rule).c_str());
+  }
+  if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
+  std::printf("run data    %s/\n", base.c_str());
+}
+
+// Everything the user typed, checked before any work starts: the video, the clock, the style, the overlay and
+// each panel's views.
+struct Plan {
   record::VideoSettings video;
+  FrameClock clock;
+  render::Style style;
+  render::OverlayOptions overlay;
+};
+
+Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
+  Plan plan;
+  const core::Scene& scene = panels.front().scene;
+  record::VideoSettings& video = plan.video;
   render::parse_size(o.size, "--size", video.width, video.height);
   video.fps = o.fps;
   video.crf = o.crf;
@@ -132,20 +161,21 @@ int record_movie(const RecordOptions& o) {
                            ": allowed range is (0, 1000] simulated s per video s");
   if (!(o.slowmo >= 1) || o.slowmo > 100)
     throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
-  const FrameClock clock = make_frame_clock(scene.dt, o.fps, o.speed, o.slowmo);
-  video.frame_rate = clock.video_fps;
+  if (o.fps < 1 || o.fps > 240)
+    throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
+  plan.clock = FrameClock::video(scene.dt, o.fps, o.speed, o.slowmo);
+  video.frame_rate = plan.clock.video_fps;
   if (o.png_every < 0)
     throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0)
     throw core::InputError("--no-movie without --png-every would record nothing");
-  if (o.fps < 1 || o.fps > 240)
-    throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
-  render::Style style;
-  style.palette = render::parse_palette(o.palette);
-  style.color = render::parse_color_mode(o.color);
-  style.transparent = o.transparent;
+  plan.style.palette = render::parse_palette(o.palette);
+  plan.style.color = render::parse_color_mode(o.color);
+  plan.style.transparent = o.transparent;
+  plan.overlay = render::parse_overlay(o.overlay);
+  const render::CameraSpec camera = render::parse_camera(o.camera);
+  double top = 0;
   if (!o.color_max.empty()) {
-    double top = 0;
     if (o.color_max != "auto") {
       char* end = nullptr;
       top = std::strtod(o.color_max.c_str(), &end);
@@ -153,21 +183,11 @@ int record_movie(const RecordOptions& o) {
         throw core::InputError("--color-max " + o.color_max +
                                ": expected a positive number (m/s or N) or auto");
     }
-    if (style.color == render::ColorMode::Species)
+    if (plan.style.color == render::ColorMode::Species)
       throw core::InputError("--color-max applies to --color speed or force, not species");
-    if (o.color_max == "auto") {
-      // The same scale in every panel: the largest of the panels' own.
-      for (const auto& p : panels)
-        top = std::max(top, color_scale_from_data(p.scene, style.color == render::ColorMode::Force, 2.0));
-      if (!o.quiet)
-        std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
-                     num6(top).c_str(), style.color == render::ColorMode::Force ? "N" : "m/s");
-    }
-    if (top > 0) (style.color == render::ColorMode::Speed ? style.speed_max : style.force_max) = top;
   }
-  const render::OverlayOptions overlay = render::parse_overlay(o.overlay);
-  const render::CameraSpec camera = render::parse_camera(o.camera);
   // Panels side by side, equal widths, the same camera (and so the same scales) in each.
+  const size_t n_panels = panels.size();
   const int panel_w = video.width / static_cast<int>(n_panels);
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
@@ -181,6 +201,105 @@ int record_movie(const RecordOptions& o) {
       p.odata.panel_w = panel_w;
     }
   }
+  // The look-ahead last: everything it could be refused for has been checked.
+  if (o.color_max == "auto") {
+    // The same scale in every panel: the largest of the panels' own.
+    for (const auto& p : panels)
+      top = std::max(top, color_scale_from_data(p.scene, plan.style.color == render::ColorMode::Force, 2.0));
+    if (!o.quiet)
+      std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
+                   num6(top).c_str(), plan.style.color == render::ColorMode::Force ? "N" : "m/s");
+  }
+  if (top > 0)
+    (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
+  return plan;
+}
+
+// The movie's sink: each frame tick becomes one picture of every panel with its annotations, pushed to the
+// render and encode stages; the time between pushes is the simulation's share.
+class MovieSink : public Sink {
+ public:
+  MovieSink(FramePipeline& pipeline, std::vector<Panel>& panels, const FrameClock& clock, double speed)
+      : pipeline_(pipeline), panels_(panels), clock_(clock), speed_(speed), t0_(Clock::now()) {}
+  void frame(const FrameTick& tick) override {
+    PipelineFrame pf;
+    pf.frames = tick.frames;
+    for (size_t i = 0; i < panels_.size(); ++i) {
+      render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.frames[i].t);
+      notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
+      pf.notes.push_back(std::move(notes));
+    }
+    last_t = tick.frames[0].t;
+    slow_frames += tick.slow;
+    sim_seconds += since(t0_);
+    open_ = pipeline_.push(std::move(pf));
+    t0_ = Clock::now();
+  }
+  bool wants_arch() const override { return true; }
+  bool wants_forces() const override {
+    return true;
+  }  // the trajectory keeps them, force colouring shows them
+  bool done() const override { return !open_; }
+  double last_t = 0, sim_seconds = 0;
+  long slow_frames = 0;
+
+ private:
+  FramePipeline& pipeline_;
+  std::vector<Panel>& panels_;
+  const FrameClock& clock_;
+  double speed_;
+  Clock::time_point t0_;
+  bool open_ = true;
+};
+
+// The facts each panel's metadata carries about the recording.
+io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel& p, const sim::Hopper& h,
+                          const Stages& st, long encoded, long slow_frames, size_t n_panels,
+                          bool interrupted_run, const std::string& gl_renderer, double wall,
+                          const fs::path& movie_path) {
+  const double per = 1e3 / std::max(1L, encoded);
+  return {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
+          {"frames", encoded},
+          {"trajectory", "trajectory.sstraj"},
+          {"trajectory_bytes_per_frame",
+           io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(h.particle_count()))},
+          {"size", std::to_string(plan.video.width) + "x" + std::to_string(plan.video.height)},
+          {"fps", o.fps},
+          {"steps_per_frame", plan.clock.steps},
+          {"frame_interval_s", plan.clock.frame_interval},
+          {"video_fps", plan.clock.video_fps},
+          {"slowmo_effective", plan.clock.effective_slowmo},
+          {"speed_sim_s_per_video_s", o.speed, 6},
+          {"slowmo", o.slowmo, 6},
+          {"slowmo_frames", slow_frames},
+          {"camera", o.camera},
+          {"palette", o.palette},
+          {"color", o.color},
+          {"color_scale_max",
+           plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max},
+          {"overlay", o.overlay},
+          {"crf", o.crf},
+          {"preset", o.preset},
+          {"png_every", o.png_every},
+          {"panels", n_panels},
+          {"panel_label", p.label},
+          {"interrupted", interrupted_run},
+          {"simulated_s", h.time(), 6},
+          {"gl_renderer", gl_renderer},
+          {"wall_s", wall, 6},
+          {"ms_per_frame_sim", st.sim * per, 6},
+          {"ms_per_frame_draw", st.draw * per, 6},
+          {"ms_per_frame_readback", st.readback * per, 6},
+          {"ms_per_frame_convert", st.convert * per, 6},
+          {"ms_per_frame_encode", st.encode * per, 6},
+          {"ms_per_frame_png", st.png * per, 6}};
+}
+
+int record_movie(const RecordOptions& o) {
+  std::vector<Panel> panels = make_panels(o);
+  const Plan plan = plan_recording(o, panels);
+  const core::Scene& scene = panels.front().scene;
+  const size_t n_panels = panels.size();
 
   fs::path base = o.out;
   if (base.extension() == ".mp4") base.replace_extension();
@@ -196,13 +315,13 @@ int record_movie(const RecordOptions& o) {
   if (o.png_every > 0) fs::create_directory(dir.file("frames"));
   for (const auto& p : panels)
     if (!p.subdir.empty()) fs::create_directory(dir.file(p.subdir));
-
   io::RunInfo info;
   info.command = command_line();
   install_interrupt_handler();
 
   // --- the back half: render and encode stages on threads of their own (app/pipeline.h) ---
   Stages st;
+  record::VideoSettings video = plan.video;
   std::unique_ptr<record::Mp4Writer> mp4;
   if (!o.no_movie) {
     video.comment = io::metadata_toml(scene, info);
@@ -214,74 +333,37 @@ int record_movie(const RecordOptions& o) {
   outputs.mp4 = mp4.get();
   outputs.png_every = o.png_every;
   if (o.png_every > 0) outputs.png_dir = dir.file("frames");
-  FramePipeline pipeline(std::move(layouts), style, overlay, video.width, video.height, outputs, o.quiet);
+  FramePipeline pipeline(std::move(layouts), plan.style, plan.overlay, video.width, video.height, outputs,
+                         o.quiet);
 
-  // --- the simulations, on this thread (the other panels' on threads of their own, in step) ---
+  // --- the front half: one session steps every panel's world on one clock ---
   Progress progress("record", scene.duration, !o.quiet);
-  double last_t = 0;
-  long slow_frames = 0;
   auto wall0 = Clock::now();
-  bool was_interrupted = false;
+  bool completed = false;
   std::exception_ptr sim_error;
-  auto in_parallel = [&](const std::function<void(Panel&)>& job) {
-    std::vector<std::future<void>> others;
-    for (size_t k = 1; k < n_panels; ++k)
-      others.push_back(std::async(std::launch::async, [&, k] { job(panels[k]); }));
-    job(panels[0]);
-    for (auto& f : others) f.get();  // rethrows a panel's error
-  };
+  std::unique_ptr<Session> session;
+  std::vector<std::unique_ptr<TrajectorySink>> trajectories;
+  std::unique_ptr<MovieSink> movie;
   try {
-    auto t0 = Clock::now();
-    in_parallel([&](Panel& p) {
-      p.hopper = std::make_unique<sim::Hopper>(p.scene);
+    std::vector<core::Scene> scenes;
+    for (const auto& p : panels) scenes.push_back(p.scene);
+    session = std::make_unique<Session>(scenes);
+    std::vector<Sink*> sinks;
+    for (size_t k = 0; k < n_panels; ++k) {
       const std::string meta =
-          n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(p.scene, info);
-      p.trajectory = std::make_unique<io::TrajectoryWriter>(
-          dir.file(p.subdir + "trajectory.sstraj"), trajectory_info(*p.hopper, clock.frame_interval, meta));
-    });
-    sim::Hopper& lead = *panels[0].hopper;
-    // Frames every clock.steps time steps, or every clock.slow_steps around a long-lasting arch's removal
-    // (from 0.5 s before the clog_timeout rule fires to 1 s after, in any panel), both known from the current
-    // state. Whole steps: every frame shows the state at an exact multiple of dt, and the trajectory and the
-    // MP4 carry that time. Events on screen: see EventMarks.
-    long next_steps = 0;
-    for (long k = 0; lead.time() <= scene.duration - 0.5 * clock.frame_interval + 1e-9 || k == 0; ++k) {
-      if (next_steps > 0)
-        in_parallel([&](Panel& p) {
-          for (long s = 0; s < next_steps; ++s) p.hopper->step();
-        });
-      if (k > 0 && lead.time() > scene.duration - 0.5 * clock.frame_interval + 1e-9) break;
-      std::vector<core::Frame> fs(n_panels);
-      bool slow = false;
-      for (size_t i = 0; i < n_panels; ++i) {
-        Panel& p = panels[i];
-        // Forces are summed only when they are shown or kept (the trajectory keeps them).
-        fs[i] = p.hopper->frame(true, true);
-        const auto& arches = p.hopper->events().arches;
-        slow = slow || (o.slowmo > 1 && (fs[i].since_last_exit >= p.scene.clog_timeout - 0.5 ||
-                                         (!arches.empty() && fs[i].t - arches.back().t < 1.0)));
-      }
-      next_steps = slow ? clock.slow_steps : clock.steps;
-      for (size_t i = 0; i < n_panels; ++i) {
-        Panel& p = panels[i];
-        p.marks.update(*p.hopper, fs[i]);
-        fs[i].marks.slowdown = (1.0 / o.speed) * (slow ? clock.effective_slowmo : 1.0);
-        p.trajectory->add(fs[i], static_cast<int>(p.hopper->events().arches.size()));
-      }
-      last_t = fs[0].t;
-      slow_frames += slow;
-      st.sim += since(t0);
-      if (!pipeline.push(std::move(fs))) break;
-      t0 = Clock::now();
-      if (interrupted()) {
-        was_interrupted = true;
-        break;
-      }
-      char extra[96];
-      std::snprintf(extra, sizeof extra, "t = %.1f s, %ld frames, %zu exits", lead.time(), k + 1,
-                    lead.events().exits.size());
-      progress.update(lead.time(), extra);
+          n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(panels[k].scene, info);
+      trajectories.push_back(std::make_unique<TrajectorySink>(
+          dir.file(panels[k].subdir + "trajectory.sstraj"),
+          trajectory_info(session->world(k), plan.clock.frame_interval, meta), k));
+      sinks.push_back(trajectories.back().get());
     }
+    movie = std::make_unique<MovieSink>(pipeline, panels, plan.clock, o.speed);
+    sinks.push_back(movie.get());
+    completed = session->run(scene.duration, plan.clock, sinks, interrupted, [&](double t) {
+      char extra[96];
+      std::snprintf(extra, sizeof extra, "t = %.1f s, %zu exits", t, session->world(0).events().exits.size());
+      progress.update(t, extra);
+    });
   } catch (...) {
     sim_error = std::current_exception();
   }
@@ -294,65 +376,30 @@ int record_movie(const RecordOptions& o) {
   progress.finish();
   if (sim_error) std::rethrow_exception(sim_error);
   if (stage_error) std::rethrow_exception(stage_error);
+  const bool was_interrupted = !completed && interrupted();
   const long encoded = pipeline.frames_written();
-  const std::string& gl_renderer = pipeline.gl_renderer();
+  st.sim = movie->sim_seconds;
   st.draw = pipeline.draw_seconds();
   st.readback = pipeline.readback_seconds();
   st.png = pipeline.png_seconds();
   const double wall = since(wall0);
 
   // --- finish: movie into place first, then the directory that describes it ---
-  for (auto& p : panels)
-    if (p.trajectory) p.trajectory->close();
+  for (auto& t : trajectories) t->close();
   if (mp4) {
     mp4->finish();
     st.convert = mp4->convert_seconds();
     st.encode = mp4->encode_seconds();
   }
-  const double shown = last_t;  // simulated seconds shown
-  const double per = 1e3 / std::max(1L, encoded);
+  session->finish();
   std::vector<analysis::Measurements> ms;
-  for (auto& p : panels) {
-    sim::Hopper& h = *p.hopper;
-    h.finish();
-    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : p.scene.duration;
+  for (size_t k = 0; k < n_panels; ++k) {
+    const sim::Hopper& h = session->world(k);
+    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].scene.duration;
     io::RunInfo pinfo = info;
-    pinfo.facts = {
-        {"movie", o.no_movie ? std::string() : movie_path.filename().string()},
-        {"frames", encoded},
-        {"trajectory", "trajectory.sstraj"},
-        {"trajectory_bytes_per_frame",
-         io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(p.scene.n_total))},
-        {"size", std::to_string(video.width) + "x" + std::to_string(video.height)},
-        {"fps", o.fps},
-        {"steps_per_frame", clock.steps},
-        {"frame_interval_s", clock.frame_interval},
-        {"video_fps", clock.video_fps},
-        {"slowmo_effective", clock.effective_slowmo},
-        {"speed_sim_s_per_video_s", o.speed, 6},
-        {"slowmo", o.slowmo, 6},
-        {"slowmo_frames", slow_frames},
-        {"camera", o.camera},
-        {"palette", o.palette},
-        {"color", o.color},
-        {"color_scale_max", style.color == render::ColorMode::Speed ? style.speed_max : style.force_max},
-        {"overlay", o.overlay},
-        {"crf", o.crf},
-        {"preset", o.preset},
-        {"png_every", o.png_every},
-        {"panels", n_panels},
-        {"panel_label", p.label},
-        {"interrupted", was_interrupted},
-        {"simulated_s", h.time(), 6},
-        {"gl_renderer", gl_renderer},
-        {"wall_s", wall, 6},
-        {"ms_per_frame_sim", st.sim * per, 6},
-        {"ms_per_frame_draw", st.draw * per, 6},
-        {"ms_per_frame_readback", st.readback * per, 6},
-        {"ms_per_frame_convert", st.convert * per, 6},
-        {"ms_per_frame_encode", st.encode * per, 6},
-        {"ms_per_frame_png", st.png * per, 6}};
-    ms.push_back(write_run_outputs(dir.file(p.subdir), p.scene, h, analysed, pinfo));
+    pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, movie->slow_frames, n_panels,
+                                  was_interrupted, pipeline.gl_renderer(), wall, movie_path);
+    ms.push_back(write_run_outputs(dir.file(panels[k].subdir), panels[k].scene, h, analysed, pinfo));
   }
   if (n_panels > 1) {
     // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
@@ -364,31 +411,16 @@ int record_movie(const RecordOptions& o) {
                    {"panels", n_panels},
                    {"panel_labels", labels},
                    {"interrupted", was_interrupted},
-                   {"simulated_s", panels[0].hopper->time(), 6},
+                   {"simulated_s", session->world(0).time(), 6},
                    {"wall_s", wall, 6}};
     io::write_file_atomic(
         dir.file("metadata.toml"),
         "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));
   }
   dir.commit();
-
-  if (!o.quiet) {
-    std::printf("renderer    %s\n", gl_renderer.c_str());
-    std::printf(
-        "recorded    %ld frames (%.1f s of discharge%s) in %.1f s wall: %.2fx real time, %.1f frames/s\n",
-        encoded, shown, was_interrupted ? ", interrupted" : "", wall, shown / wall, encoded / wall);
-    std::printf(
-        "per frame   sim %.1f ms, draw %.1f ms, readback %.1f ms, convert %.1f ms, encode %.1f ms, png %.1f "
-        "ms"
-        " (stages overlap)\n",
-        st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
-    for (size_t k = 0; k < n_panels; ++k) {
-      if (n_panels > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
-      std::printf("%s", analysis::summary_text(ms[k], panels[k].hopper->setup().species_names(), panels[k].hopper->setup().clog_rule).c_str());
-    }
-    if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
-    std::printf("run data    %s/\n", base.c_str());
-  }
+  if (!o.quiet)
+    print_recording(o, st, encoded, movie->last_t, wall, was_interrupted, pipeline.gl_renderer(), panels,
+                    *session, ms, movie_path, base);
   return was_interrupted ? 130 : 0;
 }
 }  // namespace

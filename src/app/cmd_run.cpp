@@ -4,6 +4,8 @@
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/common.h"
+#include "app/session.h"
+#include "app/sinks.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/scene.h"
@@ -49,50 +51,42 @@ int run(const RunOptions& o) {
 }
 
 int simulate(const RunOptions& o, const core::Scene& scene) {
-  if (o.trajectory_fps < 0 || o.trajectory_fps > 1.0 / scene.dt)
-    throw core::InputError("--trajectory-fps " + std::to_string(o.trajectory_fps) +
-                           ": allowed range is 0 to 1/dt");
+  if (o.trajectory_fps < 0)
+    throw core::InputError("--trajectory-fps " + core::format_g(o.trajectory_fps) + ": must be > 0");
+  // Frames every whole number of steps (the one rule of every command, app/session.h).
+  const FrameClock clock = o.trajectory_fps > 0
+                               ? FrameClock::every(scene.dt, 1.0 / o.trajectory_fps, "--trajectory-fps")
+                               : FrameClock::none();
   io::OutputDir dir(o.out, o.force);  // checked before hours of simulation, not after
   install_interrupt_handler();
 
   Progress progress("run", scene.duration, !o.quiet);
   auto wall0 = std::chrono::steady_clock::now();
-  sim::Hopper hopper(scene);  // deposits, settles, opens: t = 0
+  Session session({scene});  // deposits, settles, opens: t = 0
+  sim::Hopper& hopper = session.world(0);
   auto wall1 = std::chrono::steady_clock::now();
-  std::unique_ptr<io::TrajectoryWriter> trajectory;
-  long traj_frame = 0;
-  if (o.trajectory_fps > 0) {
+  std::unique_ptr<TrajectorySink> trajectory;
+  std::vector<Sink*> sinks;
+  if (clock.steps > 0) {
     io::RunInfo tinfo{command_line(), {}, {}};
-    trajectory = std::make_unique<io::TrajectoryWriter>(
+    trajectory = std::make_unique<TrajectorySink>(
         dir.file("trajectory.sstraj"),
-        trajectory_info(hopper, 1.0 / o.trajectory_fps, io::metadata_toml(scene, tinfo)));
+        trajectory_info(hopper, clock.frame_interval, io::metadata_toml(scene, tinfo)));
+    sinks.push_back(trajectory.get());
   }
-  auto record_frame = [&] {
-    // Frames at k / fps of simulated time, to the nearest step.
-    if (!trajectory || hopper.time() < traj_frame / o.trajectory_fps - 0.5 * scene.dt) return;
-    trajectory->add(hopper.frame(true, true), static_cast<int>(hopper.events().arches.size()));
-    ++traj_frame;
+  auto report = [&](double t) {
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall1).count();
+    char extra[96];
+    std::snprintf(extra, sizeof extra, "t = %.1f s, %zu exits, %.1fx real time", t,
+                  hopper.events().exits.size(), t / std::max(wall, 1e-9));
+    progress.update(t, extra);
   };
-  record_frame();
-  const double report_every = 0.5;
-  for (double next = report_every; hopper.time() < scene.duration - 0.5 * scene.dt;) {
-    hopper.step();
-    record_frame();
-    if (hopper.time() >= next) {
-      next += report_every;
-      if (interrupted()) {
-        progress.finish();
-        std::fprintf(stderr, "siloscope: interrupted at t = %.1f s; nothing written\n", hopper.time());
-        return 130;
-      }
-      double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall1).count();
-      char extra[96];
-      std::snprintf(extra, sizeof extra, "t = %.1f s, %zu exits, %.1fx real time", hopper.time(),
-                    hopper.events().exits.size(), hopper.time() / std::max(wall, 1e-9));
-      progress.update(hopper.time(), extra);
-    }
+  if (!session.run(scene.duration, clock, sinks, interrupted, report)) {
+    progress.finish();
+    std::fprintf(stderr, "siloscope: interrupted at t = %.1f s; nothing written\n", hopper.time());
+    return 130;
   }
-  hopper.finish();
+  session.finish();
   if (trajectory) trajectory->close();
   progress.finish();
   auto wall2 = std::chrono::steady_clock::now();
@@ -107,14 +101,17 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
                 {"wall_time_settle_s", settle_wall},
                 {"wall_time_discharge_s", run_wall},
                 {"speed_vs_real_time", scene.duration / std::max(run_wall, 1e-9)}};
+  if (clock.steps > 0) info.facts.push_back({"trajectory_steps_per_frame", clock.steps});
   const analysis::Measurements m = write_run_outputs(dir.file(""), scene, hopper, scene.duration, info);
   dir.commit();
 
   if (!o.quiet) {
-    std::printf("%s", analysis::summary_text(m, hopper.setup().species_names(), hopper.setup().clog_rule).c_str());
+    std::printf("%s",
+                analysis::summary_text(m, hopper.setup().species_names(), hopper.setup().clog_rule).c_str());
     std::printf("speed       %.2fx real time (%.1f s wall for %.1f s; settling %.1f s wall)\n",
                 scene.duration / std::max(run_wall, 1e-9), run_wall, scene.duration, settle_wall);
-    std::printf("written     %s/{exits,clogs,arches,summary,species,survival}.csv, metadata.toml\n", o.out.c_str());
+    std::printf("written     %s/{exits,clogs,arches,summary,species,survival}.csv, metadata.toml\n",
+                o.out.c_str());
   }
   return 0;
 }

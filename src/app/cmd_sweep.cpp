@@ -24,6 +24,7 @@
 
 #include "app/campaign.h"
 #include "app/common.h"
+#include "app/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"
@@ -46,15 +47,10 @@ struct SweepOptions {
 struct Job {
   size_t point;
   int index;
-  std::string dir;   // relative to the results directory
-  std::string line;  // the shell command, run from the results directory
+  std::string dir;                // relative to the results directory
+  std::vector<std::string> argv;  // the command, run from the results directory (locally: no shell)
+  std::string line;               // the same as one shell line, for jobs.txt (GNU parallel, SLURM)
 };
-
-std::string self_exe() {
-  std::error_code ec;
-  fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("siloscope") : p.string();
-}
 
 // Holds an exclusive lock on RESULTS/.lock for the life of the sweep.
 class ResultsLock {
@@ -156,7 +152,7 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
   const int last = up_to > 0 ? std::min(up_to, c.realizations) : c.realizations;
   for (int k = 0; k < last; ++k) {
     for (size_t p = 0; p < c.points.size(); ++p) {
-      Job j{p, k, "runs/" + c.run_dir(p, k), ""};
+      Job j{p, k, "runs/" + c.run_dir(p, k), {}, ""};
       if (fs::exists(dir / j.dir / "metadata.toml")) {
         ++done;
         continue;
@@ -167,8 +163,16 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
       }
       char scene[48];
       std::snprintf(scene, sizeof scene, "scenes/p%03zu.toml", p);
-      j.line = core::shell_quote(binary) + " run " + scene + " --seed " +
-               std::to_string(c.realization_seed(p, k)) + " --quiet --record-refusal --out " + j.dir;
+      j.argv = {binary,
+                "run",
+                scene,
+                "--seed",
+                std::to_string(c.realization_seed(p, k)),
+                "--quiet",
+                "--record-refusal",
+                "--out",
+                j.dir};
+      for (const auto& a : j.argv) j.line += (j.line.empty() ? "" : " ") + core::shell_quote(a);
       jobs.push_back(j);
     }
   }
@@ -323,15 +327,10 @@ void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& j
 }
 
 pid_t spawn_job(const Job& j, const fs::path& dir) {
-  // The same line a job list holds, run from the results directory, its output kept in logs/.
+  // The command a job list holds, run from the results directory (no shell), its output kept in logs/.
   char log[64];
   std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
-  std::string cmd = "cd " + core::shell_quote(dir.string()) + " && exec " + j.line + " > " + log + " 2>&1";
-  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
-  pid_t pid = 0;
-  int r = posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ);
-  if (r != 0) throw core::RuntimeFault("cannot start a worker process: " + std::string(std::strerror(r)));
-  return pid;
+  return spawn(j.argv, dir.string(), log);
 }
 
 int sweep(const SweepOptions& o) {

@@ -32,8 +32,8 @@ FramePipeline::~FramePipeline() {
   if (encode_thread_.joinable()) encode_thread_.join();
 }
 
-bool FramePipeline::push(std::vector<core::Frame> frames) {
-  return frames_.push(std::move(frames));
+bool FramePipeline::push(PipelineFrame frame) {
+  return frames_.push(std::move(frame));
 }
 
 void FramePipeline::finish() {
@@ -51,11 +51,12 @@ void FramePipeline::render_stage() {
     gl_renderer_ = ctx.description();
     if (!quiet_) std::fprintf(stderr, "siloscope: OpenGL %s\n", gl_renderer_.c_str());
     render::Painter painter;
-    std::vector<core::Frame> fs;
-    while (frames_.pop(fs)) {
+    PipelineFrame pf;
+    while (frames_.pop(pf)) {
       std::vector<render::PanelInput> in;
       for (size_t k = 0; k < panels_.size(); ++k)
-        in.push_back({&fs[k], panels_[k].geometry, panels_[k].views, panels_[k].overlay_data});
+        in.push_back({&pf.frames[k], panels_[k].geometry, panels_[k].views, panels_[k].overlay_data,
+                      k < pf.notes.size() ? &pf.notes[k] : nullptr});
       core::Image img;
       {
         std::lock_guard lock(spare_mutex_);

@@ -33,6 +33,12 @@ struct PanelLayout {
   const render::OverlayData* overlay_data;
 };
 
+// One picture's worth: a frame per panel, and what each panel points out.
+struct PipelineFrame {
+  std::vector<core::Frame> frames;
+  std::vector<render::Annotations> notes;  // one per panel (may be empty: nothing to point out)
+};
+
 struct PipelineOutputs {
   record::Mp4Writer* mp4 = nullptr;  // none: PNG frames only
   std::filesystem::path png_dir;     // frame_NNNNNN.png, every png_every-th frame (0: none)
@@ -49,7 +55,7 @@ class FramePipeline {
   FramePipeline& operator=(const FramePipeline&) = delete;
 
   // One frame per panel, in panel order. Blocks while the queue is full; false once a later stage stopped.
-  bool push(std::vector<core::Frame> frames);
+  bool push(PipelineFrame frame);
   // No more frames: wait for the stages to drain, rethrow the first stage's error.
   void finish();
 
@@ -68,7 +74,7 @@ class FramePipeline {
   int width_, height_;
   PipelineOutputs out_;
   bool quiet_;
-  BoundedQueue<std::vector<core::Frame>> frames_{8};
+  BoundedQueue<PipelineFrame> frames_{8};
   BoundedQueue<core::Image> images_{4};
   // Images the encoder is done with, their buffers reused by the renderer: a fresh 8 MB per 1080p frame
   // would be zero-filled page by page (about a tenth of record's CPU before).

@@ -30,17 +30,6 @@ struct Particle {
 // Circumradius over equal-area radius of a regular polygon of `sides` sides (1 for a disk).
 double polygon_extent(int sides);
 
-// What a movie frame should point out beyond the state itself (filled by the recorder from the events; empty
-// elsewhere): disks a rule removal took away, marked where they stood, a caption, a slow-motion badge.
-struct Marks {
-  struct Ring {
-    float x, y, radius;  // m
-  };
-  std::vector<Ring> removed;  // the members the 5 s rule removed, where they were
-  std::string caption;        // e.g. "arch removed (5 s rule)"
-  double slowdown = 1;        // > 1: the video runs this many times slower than real time
-};
-
 struct Frame {
   double t = 0;                     // s since the aperture opened (negative while settling)
   std::uint64_t step = 0;           // time steps since the start of settling
@@ -50,7 +39,6 @@ struct Frame {
   std::int64_t exits_original = 0;  // exits so far of each species
   std::int64_t exits_added = 0;
   double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
-  Marks marks;
 };
 
 struct ExitEvent {

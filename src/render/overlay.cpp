@@ -139,7 +139,9 @@ void Overlay::ensure_font(int h) {
 
 void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                    const std::vector<View>& views, const Style& style, int w, int h,
-                   const core::Geometry* geo) {
+                   const core::Geometry* geo, const Annotations* notes) {
+  static const Annotations none;
+  const Annotations& marks = notes ? *notes : none;
   if (!o.any()) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
@@ -151,12 +153,12 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   // Auto-sized windows learn their size in their first frame: lay the first one out once without drawing it.
   if (!laid_out_) {
     ImGui::NewFrame();
-    build(f, d, o, views, style, w, h, geo);
+    build(f, d, o, views, style, w, h, geo, marks);
     ImGui::EndFrame();
     laid_out_ = true;
   }
   ImGui::NewFrame();
-  build(f, d, o, views, style, w, h, geo);
+  build(f, d, o, views, style, w, h, geo, marks);
   ImGui::Render();
   glViewport(0, 0, w, h);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -343,7 +345,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
 
 void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                     const std::vector<View>& views, const Style& style, int w, int h,
-                    const core::Geometry* geo) {
+                    const core::Geometry* geo, const Annotations& notes) {
   const float em = static_cast<float>(font_px_);
   info_left_ = false;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
@@ -372,7 +374,7 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       dl->PushClipRect(
           ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
           ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
-      for (const auto& g : f.marks.removed) {
+      for (const auto& g : notes.removed) {
         const core::Vec2 c = v.world_to_pixel({g.x, g.y});
         const float r = static_cast<float>(g.radius * v.px_per_m());
         dl->AddCircle(ImVec2(static_cast<float>(c.x), static_cast<float>(c.y)), r, ring, 0,
@@ -381,12 +383,12 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       dl->PopClipRect();
     }
     const View& zoom = most_zoomed(views);
-    if (!f.marks.caption.empty())
-      boxed_text(dl, zoom.rect.x + 0.5f * zoom.rect.w, zoom.rect.y + 0.8f * em, f.marks.caption.c_str(),
+    if (!notes.caption.empty())
+      boxed_text(dl, zoom.rect.x + 0.5f * zoom.rect.w, zoom.rect.y + 0.8f * em, notes.caption.c_str(),
                  IM_COL32(255, 255, 255, 255), IM_COL32(200, 0, 160, 235), em);
-    if (f.marks.slowdown > 1.0 + 1e-9) {
+    if (notes.slowdown > 1.0 + 1e-9) {
       char badge[48];
-      std::snprintf(badge, sizeof badge, "slow motion %.3gx", f.marks.slowdown);
+      std::snprintf(badge, sizeof badge, "slow motion %.3gx", notes.slowdown);
       const ImVec2 size = ImGui::CalcTextSize(badge);
       const float x = zoom.rect.x + 0.8f * em, y = zoom.rect.y + 0.8f * em;
       dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 0.8f * em, y + size.y + 0.3f * em),

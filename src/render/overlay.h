@@ -44,6 +44,18 @@ struct OverlayOptions {
 // ("all+plot" is all of the default elements and the plot). Throws core::InputError.
 OverlayOptions parse_overlay(const std::string& spec);
 
+// What a frame should point out beyond the state itself, made by whoever knows the run's events (record's
+// EventMarks) and drawn by the overlay; never part of the physics frame: grains a rule removal took away,
+// ringed where they stood, a caption, and a slow-motion badge.
+struct Annotations {
+  struct Ring {
+    float x, y, radius;  // m
+  };
+  std::vector<Ring> removed;  // the members the clog rule removed, where they were
+  std::string caption;        // e.g. "arch removed (5 s rule)"
+  double slowdown = 1;        // > 1: the video runs this many times slower than real time
+};
+
 struct OverlayData {
   double clog_timeout = 5;       // s
   double clog_min_gap = 0.5;     // s
@@ -75,14 +87,15 @@ class Overlay {
   // keeps the information box off.
   void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
             const std::vector<View>& views, const Style& style, int w, int h,
-            const core::Geometry* geo = nullptr);
+            const core::Geometry* geo = nullptr, const Annotations* notes = nullptr);
   // The last draw left the information box out of the picture (place_clear and may_leave, no clear corner).
   bool info_left() const { return info_left_; }
 
  private:
   void ensure_font(int h);
   void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-             const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo);
+             const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
+             const Annotations& notes);
   void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).

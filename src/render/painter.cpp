@@ -28,7 +28,7 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
     while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
     overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, panel_style, overlay_w < 0 ? w : overlay_w, h,
-                       p.geometry);
+                       p.geometry, p.notes);
     if (k == 0) info_left_ = overlays_[k]->info_left();
   }
 }

@@ -25,6 +25,7 @@ struct PanelInput {
   const core::Geometry* geometry;
   const std::vector<View>* views;
   const OverlayData* data;
+  const Annotations* notes = nullptr;  // what to point out (a rule removal, a caption), if anything
 };
 
 struct PaintTiming {

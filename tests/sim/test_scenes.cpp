@@ -23,7 +23,7 @@ core::Scene flat_silo(std::vector<std::string> extra, int n = 80) {
 }
 }  // namespace
 
-TEST_CASE("a flat silo discharges through its floor; arches run from floor to floor", "[sim][scenes]") {
+TEST_CASE("a flat silo discharges through its floor, its arches from floor to floor", "[sim][scenes]") {
   sim::Hopper h(flat_silo({}));
   const auto& g = h.geometry();
   // Settled above the floor, inside the walls.
@@ -135,7 +135,7 @@ TEST_CASE("size distributions: radii within their law, reproducible by seed", "[
   CHECK(*std::min_element(r.begin(), r.begin() + 100) < 0.021);
 }
 
-TEST_CASE("dipoles: the cell list gives the all-pairs forces; moments multiply pair by pair",
+TEST_CASE("dipoles: the cell list gives the all-pairs forces, moments multiply pair by pair",
           "[sim][dipole]") {
   std::vector<core::Vec2> pos;
   std::vector<double> mu;

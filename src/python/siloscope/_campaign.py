@@ -29,10 +29,11 @@ class Campaign:
         if not os.path.exists(os.path.join(analysis, "points.csv")):
             raise SiloscopeError(f"{path} holds no points.csv (run `siloscope analyze` first)")
         self.path = analysis
-        counts = ("n_runs", "clogs", "clogs_vibration", "clogs_rule", "clogs_spontaneous", "ballistic_runs")
-        self.points = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS, counts=counts)
-        if "n_refused" in self.points.columns:
-            self.points = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS, counts=counts + ("n_refused",))
+        # n_runs is required; the other counts are checked where present (a hand-made table may leave them out).
+        counts = ("clogs", "clogs_vibration", "clogs_rule", "clogs_spontaneous", "ballistic_runs", "n_refused")
+        header = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS).columns
+        self.points = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS,
+                                 counts=("n_runs",) + tuple(c for c in counts if c in header))
         if len(self.points) == 0:
             raise SiloscopeError(f"{analysis}/points.csv has no points")
         bad = self.points["n_runs"] < 1

@@ -1,0 +1,83 @@
+#include "app/process.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/error.h"
+
+extern char** environ;
+
+namespace app {
+
+namespace fs = std::filesystem;
+
+std::string self_exe() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("siloscope") : p.string();
+}
+
+fs::path share_dir() {
+  const fs::path bin = fs::path(self_exe()).parent_path();
+  std::error_code ec;
+  for (const fs::path& candidate : {bin / "share" / "siloscope", bin / ".." / "share" / "siloscope"})
+    if (fs::is_directory(candidate / "figures", ec)) return fs::weakly_canonical(candidate, ec);
+  throw core::RuntimeFault(
+      "siloscope's shared files (figures, python, scenes) are not beside the binary: looked in " +
+      (bin / "share/siloscope").string() + " and " + (bin / "../share/siloscope").string() +
+      " (build with cmake, or install with cmake --install)");
+}
+
+std::string script_path(const std::string& name) {
+  return (share_dir() / "figures" / name).string();
+}
+
+pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log) {
+  if (argv.empty()) throw core::RuntimeFault("spawn: no command");
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
+  if (!log.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  pid_t pid = 0;
+  const int r = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (r != 0) throw core::RuntimeFault("cannot start " + argv[0] + ": " + std::strerror(r));
+  return pid;
+}
+
+int wait_child(pid_t pid, bool retry_on_interrupt) {
+  int status = 0;
+  for (;;) {
+    if (::waitpid(pid, &status, 0) == pid) break;
+    if (errno != EINTR) return -1;
+    if (!retry_on_interrupt) return -1;
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return -1;
+}
+
+int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log) {
+  return wait_child(spawn(argv, cwd, log));
+}
+
+int run_python(const std::string& script, const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3",
+                                   script};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return run_process(argv);
+}
+
+}  // namespace app

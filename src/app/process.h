@@ -1,0 +1,37 @@
+// Child processes and the files siloscope ships beside its binary. Processes start from an argument vector
+// (posix_spawn, no shell: no quoting, no injection through a path or title); the figure scripts, the Python
+// package and the preset scenes are found relative to the binary: SHARE = BINDIR/share/siloscope in a build
+// tree, BINDIR/../share/siloscope once installed (`cmake --install`), so a build can be installed or moved.
+#pragma once
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace app {
+
+// This binary's own path.
+std::string self_exe();
+
+// siloscope's shared files (figures/, python/, scenes/, campaigns/); throws core::RuntimeFault naming where
+// it looked when there is none.
+std::filesystem::path share_dir();
+// A figure script: SHARE/figures/NAME.
+std::string script_path(const std::string& name);
+
+// Start argv (argv[0] a path, or a name looked up on PATH) in `cwd` (empty: this one) with stdout and stderr
+// to `log` (empty: inherited). Returns the child's pid; throws core::RuntimeFault if it cannot start.
+pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd = "", const std::string& log = "");
+// Wait for a child: its exit code, 128 + the signal that ended it, or -1 if interrupted (EINTR).
+int wait_child(pid_t pid, bool retry_on_interrupt = true);
+// Start and wait.
+int run_process(const std::vector<std::string>& argv, const std::string& cwd = "",
+                const std::string& log = "");
+
+// Debian's python3 (where python3-matplotlib installs) with the script and its arguments; stdout and stderr
+// inherited. Returns the exit code.
+int run_python(const std::string& script, const std::vector<std::string>& args);
+
+}  // namespace app

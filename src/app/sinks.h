@@ -1,0 +1,30 @@
+// Sinks every command shares (app/session.h): a run's trajectory file.
+#pragma once
+
+#include <filesystem>
+
+#include "app/session.h"
+#include "io/trajectory.h"
+#include "sim/hopper.h"
+
+namespace app {
+
+// Writes world `world`'s frames to a trajectory file (arches and forces included: the inspector shows both).
+class TrajectorySink : public Sink {
+ public:
+  TrajectorySink(const std::filesystem::path& path, const io::TrajectoryInfo& info, size_t world = 0)
+      : writer_(path, info), world_(world) {}
+  void frame(const FrameTick& t) override {
+    writer_.add(t.frames[world_], static_cast<int>(t.worlds[world_]->events().arches.size()));
+  }
+  bool wants_arch() const override { return true; }
+  bool wants_forces() const override { return true; }
+  void close() { writer_.close(); }
+  long frames() const { return writer_.frames(); }
+
+ private:
+  io::TrajectoryWriter writer_;
+  size_t world_;
+};
+
+}  // namespace app

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The build tree installs (cmake --install) and the installed binary finds its scripts, Python package and
+# scenes relative to itself, with the build tree out of reach: figures from a committed analysis, a gallery
+# sheet of a fresh run, and the package imported from the installed share/.
+set -euo pipefail
+build=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
+bin="$tmp/prefix/bin/siloscope"
+test -x "$bin"
+cp -r "$src/docs/campaigns/kicks/analysis" "$tmp/analysis"
+# Run from elsewhere, with the build tree renamed away for the duration: nothing may be found through it.
+mv "$build/share" "$build/share.away"
+trap 'mv "$build/share.away" "$build/share" 2>/dev/null || true; rm -rf "$tmp"' EXIT
+cd "$tmp"
+"$bin" figures analysis --out figs > figs.log
+test -s figs/kicks.png
+"$bin" run "$tmp/prefix/share/siloscope/scenes/paper.toml" --duration 7 --seed 4 --quiet --out run  # a rule at 5.4 s
+"$bin" gallery run --out sheet.png > gallery.log || { cat gallery.log; exit 1; }
+test -s sheet.png
+PYTHONPATH="$tmp/prefix/share/siloscope/python" /usr/bin/python3 -c "import siloscope; print(siloscope.read_run('run'))"
+echo "installed siloscope works from $tmp/prefix"
