@@ -17,6 +17,8 @@ forbid(render "box2d|sim/|libav|libsw|record/" "Box2D, the simulation or the rec
 forbid(record "box2d|GL/|glad|imgui|sim/|render/" "GL, Box2D or the simulation")
 forbid(analysis "box2d|GL/|glad|imgui|libav|sim/|render/|record/" "a library or an upper layer")
 forbid(app "box2d" "Box2D (it stays inside sim)")
+# Inside app: commands use services, never the other way round.
+forbid(app/services "app/commands" "a command (services serve the commands, not the other way)")
 forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")
 forbid(ui "box2d|sim/|analysis/|io/|record/|libav|libsw|stb_"
        "Box2D, the simulation, the analysis or a file format (the app feeds it frames and takes its images)")

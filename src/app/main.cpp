@@ -2,7 +2,7 @@
 // Exit codes: 0 success, 1 a fault while running, 2 bad input (arguments, scene, files), 130 interrupted.
 #include <cstdio>
 
-#include "app/common.h"
+#include "app/services/common.h"
 #include "core/error.h"
 #include "io/metadata.h"
 

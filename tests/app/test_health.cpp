@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "app/accuracy.h"
-#include "app/campaign.h"
+#include "app/services/accuracy.h"
+#include "app/services/campaign.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "sim/hopper.h"

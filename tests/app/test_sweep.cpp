@@ -13,7 +13,7 @@
 #include <sstream>
 #include <thread>
 
-#include "app/campaign.h"
+#include "app/services/campaign.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "helpers.h"

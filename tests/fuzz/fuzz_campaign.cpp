@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "app/campaign.h"
+#include "app/services/campaign.h"
 #include "core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

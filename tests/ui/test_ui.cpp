@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/inspect_files.h"
+#include "app/services/inspect_files.h"
 #include "core/error.h"
 #include "helpers.h"
 #include "io/metadata.h"

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/common.h"
-#include "app/process.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/output.h"

@@ -1,4 +1,4 @@
-#include "app/process.h"
+#include "app/services/process.h"
 
 #include <fcntl.h>
 #include <spawn.h>

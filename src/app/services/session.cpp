@@ -1,4 +1,4 @@
-#include "app/session.h"
+#include "app/services/session.h"
 
 #include <algorithm>
 #include <cmath>

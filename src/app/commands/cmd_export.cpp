@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/common.h"
+#include "app/services/common.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/geometry.h"

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "app/common.h"
-#include "app/process.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"

@@ -3,7 +3,7 @@
 // facts).
 #include <cstdio>
 
-#include "app/common.h"
+#include "app/services/common.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "app/session.h"
+#include "app/services/session.h"
 #include "io/trajectory.h"
 #include "sim/hopper.h"
 

@@ -1,4 +1,4 @@
-#include "app/campaign.h"
+#include "app/services/campaign.h"
 
 #include <algorithm>
 
@@ -52,8 +52,9 @@ core::Scene apply(const core::Scene& base, const std::vector<Assignment>& set, c
   }
   if (ratio) {
     if (!s.shorthand())
-      throw core::InputError(where + ": dipole_force_ratio applies to the paper's two-species shorthand; with "
-                                     "[[species]] set species.NAME.dipole (A*m^2)");
+      throw core::InputError(where +
+                             ": dipole_force_ratio applies to the paper's two-species shorthand; with "
+                             "[[species]] set species.NAME.dipole (A*m^2)");
     char* end = nullptr;
     double r = std::strtod(ratio->c_str(), &end);
     if (ratio->empty() || *end || !(r >= 0) || !std::isfinite(r))
@@ -206,7 +207,8 @@ std::vector<std::string> Campaign::extra_point_keys() const {
   std::vector<std::string> keys;
   for (const auto& p : points)
     for (const auto& [k, v] : p.set) {
-      if (k == "size_ratio" || k == "chi" || k == "mu" || k == "kick_impulse_max" || k == kForceRatio) continue;
+      if (k == "size_ratio" || k == "chi" || k == "mu" || k == "kick_impulse_max" || k == kForceRatio)
+        continue;
       if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
     }
   return keys;

@@ -1,10 +1,10 @@
-#include "app/recording.h"
+#include "app/services/recording.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "app/session.h"
+#include "app/services/session.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "sim/hopper.h"

@@ -6,10 +6,10 @@
 #include <filesystem>
 
 #include "analysis/stats.h"
-#include "app/accuracy.h"
-#include "app/campaign.h"
-#include "app/common.h"
-#include "app/process.h"
+#include "app/services/accuracy.h"
+#include "app/services/campaign.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/physics.h"

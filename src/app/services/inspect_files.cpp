@@ -1,4 +1,4 @@
-#include "app/inspect_files.h"
+#include "app/services/inspect_files.h"
 
 #include "record/mp4.h"
 #include "record/png.h"

@@ -1,6 +1,6 @@
-#include "app/accuracy.h"
+#include "app/services/accuracy.h"
 
-#include "app/session.h"
+#include "app/services/session.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,4 +1,4 @@
-#include "app/pipeline.h"
+#include "app/services/pipeline.h"
 
 #include <chrono>
 #include <cstdio>

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/common.h"
-#include "app/process.h"
-#include "app/session.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
+#include "app/services/session.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"

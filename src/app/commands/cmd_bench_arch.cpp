@@ -4,8 +4,8 @@
 #include <cstdio>
 
 #include "analysis/stats.h"
-#include "app/common.h"
-#include "app/session.h"
+#include "app/services/common.h"
+#include "app/services/session.h"
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/output.h"

@@ -22,9 +22,9 @@
 
 #include <toml++/toml.h>
 
-#include "app/campaign.h"
-#include "app/common.h"
-#include "app/process.h"
+#include "app/services/campaign.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "analysis/aggregate.h"
-#include "app/common.h"
+#include "app/services/common.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"
@@ -132,8 +132,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
   out.commit();
   if (quiet) return 0;
-  std::printf("%zu runs, %zu points -> %s/{points,realizations,survival,avalanches,species,clog_survival}.csv\n",
-              runs.size(), points.size(), o.out.c_str());
+  std::printf(
+      "%zu runs, %zu points -> %s/{points,realizations,survival,avalanches,species,clog_survival}.csv\n",
+      runs.size(), points.size(), o.out.c_str());
   if (!runs.front().scene.shorthand()) {
     // A scene of its own species: the --by keys, Q and each species' flow.
     std::printf("%-32s %4s %18s   %s\n", "point", "runs", "Q [1/s]", "per species [1/s]");

@@ -1,4 +1,4 @@
-#include "app/common.h"
+#include "app/services/common.h"
 
 #include <unistd.h>
 

@@ -3,9 +3,9 @@
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
-#include "app/common.h"
-#include "app/session.h"
-#include "app/sinks.h"
+#include "app/services/common.h"
+#include "app/services/session.h"
+#include "app/services/sinks.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/scene.h"

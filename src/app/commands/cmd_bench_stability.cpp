@@ -8,10 +8,10 @@
 #include <mutex>
 #include <thread>
 
-#include "app/campaign.h"
-#include "app/common.h"
-#include "app/process.h"
-#include "app/session.h"
+#include "app/services/campaign.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
+#include "app/services/session.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "core/setup.h"

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/queue.h"
+#include "app/services/queue.h"
 #include "core/frame.h"
 #include "core/geometry.h"
 #include "core/image.h"

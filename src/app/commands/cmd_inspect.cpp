@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/common.h"
-#include "app/inspect_files.h"
-#include "app/session.h"
+#include "app/services/common.h"
+#include "app/services/inspect_files.h"
+#include "app/services/session.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "io/metadata.h"

@@ -15,8 +15,8 @@
 #include <toml++/toml.h>
 
 #include "analysis/stats.h"
-#include "app/common.h"
-#include "app/process.h"
+#include "app/services/common.h"
+#include "app/services/process.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "analysis/stats.h"
-#include "app/common.h"
+#include "app/services/common.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/physics.h"
