@@ -62,6 +62,61 @@ Estimate estimate_of(const std::vector<const Run*>& runs, double Measurements::*
   for (const Run* r : runs) v.push_back(r->m.*field);
   return estimate(v);
 }
+// A point's estimates over its realizations: the means and intervals, each species' flow, the clogs'
+// survival, and Q~/Q_p against `qp` (the pure system's Q at the same kick; NaN mean: none).
+void estimate_point(Point& p, const Estimate& qp) {
+  p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
+  p.avalanche_mean = estimate_of(p.runs, &Measurements::avalanche_mean);
+  // Each species' flow, and the survival of clogs (durations; the rule and the run's end censor them).
+  const core::Setup st = core::resolve(p.scene);
+  for (size_t k = 0; k < st.species.size(); ++k) {
+    SpeciesEstimate e;
+    e.name = st.species[k].name;
+    e.count = st.species[k].count;
+    std::vector<double> q, frac;
+    for (const Run* r : p.runs) {
+      const long n = k < r->m.exits_by_species.size() ? r->m.exits_by_species[k] : 0;
+      q.push_back(r->m.duration > 0 ? n / r->m.duration : NAN);
+      frac.push_back(r->m.exits > 0 ? static_cast<double>(n) / r->m.exits : NAN);
+    }
+    e.q = estimate(q);
+    e.exit_fraction = estimate(frac);
+    p.species.push_back(e);
+  }
+  std::vector<Duration> durations;
+  for (const Run* r : p.runs)
+    for (const auto& c : r->events.clogs) {
+      if (c.start > r->m.duration) continue;
+      const bool broke = c.ended_by == core::ClogEnd::Spontaneous || c.ended_by == core::ClogEnd::Vibration;
+      durations.push_back({c.end - c.start, broke});
+      p.clogs_run_end += c.ended_by == core::ClogEnd::RunEnd;
+    }
+  p.clog_survival = kaplan_meier(durations);
+  for (const Run* r : p.runs) {
+    p.clogs += r->m.clogs;
+    p.clogs_vibration += r->m.clogs_vibration;
+    p.clogs_rule += r->m.clogs_rule;
+    p.clogs_spontaneous += r->m.clogs_spontaneous;
+    p.ballistic_runs += r->m.ballistic;
+  }
+  p.q = estimate_of(p.runs, &Measurements::q);
+  p.q_tilde = estimate_of(p.runs, &Measurements::q_tilde);
+  p.chi_eff = estimate_of(p.runs, &Measurements::chi_eff);
+  p.long_arches_per_min = estimate_of(p.runs, &Measurements::long_arches_per_minute);
+  p.added_per_long_arch = estimate_of(p.runs, &Measurements::added_per_long_arch);
+  p.fraction_broken_by_vibration = estimate_of(p.runs, &Measurements::fraction_broken_by_vibration);
+  p.q_tilde_over_qp.mean = NAN;
+  if (qp.n > 0 && qp.mean > 0) {  // a pure point exists (an empty Estimate has n = 0)
+    // Ratio of two independent means; relative half-widths add in quadrature (first-order propagation).
+    p.q_tilde_over_qp.mean = p.q_tilde.mean / qp.mean;
+    // NaN when either side has a single realization: no interval.
+    double rel =
+        std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
+    p.q_tilde_over_qp.half_width = p.q_tilde_over_qp.mean * rel;
+    p.q_tilde_over_qp.n = p.q_tilde.n;
+  }
+}
+
 }  // namespace
 
 std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Refused>& refused,
@@ -89,8 +144,8 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
     }
     for (const auto& [k, b] : values)
       if (!first_values.count(k) && !is_point_key(k, by))
-        throw core::InputError("analyze: runs of different scenes are mixed: " + source + " has " + k + " = " + b +
-                               " but " + first.source + " has no such key");
+        throw core::InputError("analyze: runs of different scenes are mixed: " + source + " has " + k +
+                               " = " + b + " but " + first.source + " has no such key");
   };
   for (const Run& r : runs) same_campaign(r.scene, r.source);
   for (const Refused& r : refused) same_campaign(r.scene, r.source);
@@ -141,56 +196,7 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
     Estimate qp;
     if (pure) qp = estimate_of(pure->runs, &Measurements::q);
     p.q_p = qp;
-    p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
-    p.avalanche_mean = estimate_of(p.runs, &Measurements::avalanche_mean);
-    // Each species' flow, and the survival of clogs (durations; the rule and the run's end censor them).
-    const core::Setup st = core::resolve(p.scene);
-    for (size_t k = 0; k < st.species.size(); ++k) {
-      SpeciesEstimate e;
-      e.name = st.species[k].name;
-      e.count = st.species[k].count;
-      std::vector<double> q, frac;
-      for (const Run* r : p.runs) {
-        const long n = k < r->m.exits_by_species.size() ? r->m.exits_by_species[k] : 0;
-        q.push_back(r->m.duration > 0 ? n / r->m.duration : NAN);
-        frac.push_back(r->m.exits > 0 ? static_cast<double>(n) / r->m.exits : NAN);
-      }
-      e.q = estimate(q);
-      e.exit_fraction = estimate(frac);
-      p.species.push_back(e);
-    }
-    std::vector<Duration> durations;
-    for (const Run* r : p.runs)
-      for (const auto& c : r->events.clogs) {
-        if (c.start > r->m.duration) continue;
-        const bool broke = c.ended_by == core::ClogEnd::Spontaneous || c.ended_by == core::ClogEnd::Vibration;
-        durations.push_back({c.end - c.start, broke});
-        p.clogs_run_end += c.ended_by == core::ClogEnd::RunEnd;
-      }
-    p.clog_survival = kaplan_meier(durations);
-    for (const Run* r : p.runs) {
-      p.clogs += r->m.clogs;
-      p.clogs_vibration += r->m.clogs_vibration;
-      p.clogs_rule += r->m.clogs_rule;
-      p.clogs_spontaneous += r->m.clogs_spontaneous;
-      p.ballistic_runs += r->m.ballistic;
-    }
-    p.q = estimate_of(p.runs, &Measurements::q);
-    p.q_tilde = estimate_of(p.runs, &Measurements::q_tilde);
-    p.chi_eff = estimate_of(p.runs, &Measurements::chi_eff);
-    p.long_arches_per_min = estimate_of(p.runs, &Measurements::long_arches_per_minute);
-    p.added_per_long_arch = estimate_of(p.runs, &Measurements::added_per_long_arch);
-    p.fraction_broken_by_vibration = estimate_of(p.runs, &Measurements::fraction_broken_by_vibration);
-    p.q_tilde_over_qp.mean = NAN;
-    if (pure && qp.mean > 0) {
-      // Ratio of two independent means; relative half-widths add in quadrature (first-order propagation).
-      p.q_tilde_over_qp.mean = p.q_tilde.mean / qp.mean;
-      // NaN when either side has a single realization: no interval.
-      double rel =
-          std::hypot(p.q_tilde.mean > 0 ? p.q_tilde.half_width / p.q_tilde.mean : 0, qp.half_width / qp.mean);
-      p.q_tilde_over_qp.half_width = p.q_tilde_over_qp.mean * rel;
-      p.q_tilde_over_qp.n = p.q_tilde.n;
-    }
+    estimate_point(p, qp);
     out.push_back(std::move(p));
   }
   return out;
@@ -297,24 +303,27 @@ std::string pooled_avalanches_csv(const std::vector<Point>& points) {
 }
 
 std::string species_points_csv(const std::vector<Point>& points) {
-  std::string s = key_header(points) + "species,count,n_runs,q_per_s,q_per_s_ci95,exit_fraction,exit_fraction_ci95\n";
+  std::string s =
+      key_header(points) + "species,count,n_runs,q_per_s,q_per_s_ci95,exit_fraction,exit_fraction_ci95\n";
   for (const auto& p : points)
     for (const auto& e : p.species)
-      s += key_values(p) + e.name + "," + std::to_string(e.count) + "," + std::to_string(p.runs.size()) + "," +
-           core::format_g(e.q.mean) + "," + core::format_g(e.q.half_width) + "," + core::format_g(e.exit_fraction.mean) +
-           "," + core::format_g(e.exit_fraction.half_width) + "\n";
+      s += key_values(p) + e.name + "," + std::to_string(e.count) + "," + std::to_string(p.runs.size()) +
+           "," + core::format_g(e.q.mean) + "," + core::format_g(e.q.half_width) + "," +
+           core::format_g(e.exit_fraction.mean) + "," + core::format_g(e.exit_fraction.half_width) + "\n";
   return s;
 }
 
 std::string clog_survival_csv(const std::vector<Point>& points) {
-  std::string s = key_header(points) +
-                  "t_s,survival,survival_lo95,survival_hi95,at_risk,clogs,clogs_broken,clogs_rule,clogs_run_end\n";
+  std::string s =
+      key_header(points) +
+      "t_s,survival,survival_lo95,survival_hi95,at_risk,clogs,clogs_broken,clogs_rule,clogs_run_end\n";
   for (const auto& p : points) {
     const long broken = p.clogs_spontaneous + p.clogs_vibration;
     for (const auto& step : p.clog_survival)
-      s += key_values(p) + core::format_g(step.t) + "," + core::format_g(step.s) + "," + core::format_g(step.lo) + "," +
-           core::format_g(step.hi) + "," + std::to_string(step.at_risk) + "," + std::to_string(p.clogs) + "," +
-           std::to_string(broken) + "," + std::to_string(p.clogs_rule) + "," + std::to_string(p.clogs_run_end) + "\n";
+      s += key_values(p) + core::format_g(step.t) + "," + core::format_g(step.s) + "," +
+           core::format_g(step.lo) + "," + core::format_g(step.hi) + "," + std::to_string(step.at_risk) +
+           "," + std::to_string(p.clogs) + "," + std::to_string(broken) + "," + std::to_string(p.clogs_rule) +
+           "," + std::to_string(p.clogs_run_end) + "\n";
   }
   return s;
 }

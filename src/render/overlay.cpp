@@ -343,14 +343,9 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
   }
 }
 
-void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
-                    const std::vector<View>& views, const Style& style, int w, int h,
-                    const core::Geometry* geo, const Annotations& notes) {
-  const float em = static_cast<float>(font_px_);
-  info_left_ = false;
+void Overlay::draw_zoombox(const std::vector<View>& views, int h) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-
-  if (o.zoombox && views.size() > 1) {
+  {
     // The outlet panel's world window, outlined on the whole-hopper panel.
     const View& zoom = most_zoomed(views);
     for (const auto& v : views) {
@@ -367,7 +362,11 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       dl->PopClipRect();
     }
   }
-  if (o.events) {
+}
+
+void Overlay::draw_events(const Annotations& notes, const std::vector<View>& views, float em) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  {
     // Disks the rule removed, ringed where they stood, in every view; the caption over the most zoomed view.
     const ImU32 ring = IM_COL32(200, 0, 160, 255);
     for (const auto& v : views) {
@@ -396,7 +395,10 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
       dl->AddText(ImVec2(x + 0.4f * em, y + 0.15f * em), IM_COL32(255, 220, 0, 255), badge);
     }
   }
-  if (o.plot) plot(f, d, views, style);
+}
+
+void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style,
+                            float em) {
   if (o.colorbar && !o.legend && style.color != ColorMode::Species) {
     const View& zoom = most_zoomed(views);
     ImGui::SetNextWindowPos(ImVec2(zoom.rect.x + zoom.rect.w - 0.6f * em, zoom.rect.y + 0.6f * em), 0,
@@ -409,7 +411,11 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     colour_bar(style, em);
     ImGui::End();
   }
+}
 
+void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                        const std::vector<View>& views, const Style& style, int w, int h,
+                        const core::Geometry* geo, float em) {
   // The information panel, top-left of the first view.
   const bool panel = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   if (panel) {
@@ -485,9 +491,12 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     info_h_ = ImGui::GetWindowSize().y;
     ImGui::End();
   }
+}
 
+void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, float em) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
   // Scale bar: one original diameter, bottom-left of the most zoomed view.
-  if (o.scale) {
+  {
     const View* v = &views.front();
     for (const auto& c : views)
       if (c.px_per_m() > v->px_per_m()) v = &c;
@@ -499,6 +508,21 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
     std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
     dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
   }
+}
+
+void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                    const std::vector<View>& views, const Style& style, int w, int h,
+                    const core::Geometry* geo, const Annotations& notes) {
+  const float em = static_cast<float>(font_px_);
+  info_left_ = false;
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+
+  if (o.zoombox && views.size() > 1) draw_zoombox(views, h);
+  if (o.events) draw_events(notes, views, em);
+  if (o.plot) plot(f, d, views, style);
+  draw_colorbar(o, views, style, em);
+  draw_info(f, d, o, views, style, w, h, geo, em);
+  if (o.scale) draw_scale(d, views, em);
   // A bold line between panels of a comparison, thin separators between views.
   if (d.panel_x > 0)
     dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0),

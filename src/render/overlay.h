@@ -97,6 +97,13 @@ class Overlay {
              const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
              const Annotations& notes);
   void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
+  void draw_zoombox(const std::vector<View>& views, int h);
+  void draw_events(const Annotations& notes, const std::vector<View>& views, float em);
+  void draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style, float em);
+  void draw_info(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                 const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
+                 float em);
+  void draw_scale(const OverlayData& d, const std::vector<View>& views, float em);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
   struct Sample {

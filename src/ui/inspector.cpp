@@ -90,181 +90,270 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   return p.paint(current(), geo_, views(w, h), style, overlay, overlay_data, w, h);
 }
 
-void Inspector::execute(const std::string& line, Painter* painter) {
+long Inspector::in_range(long k) const {
+  if (k < 0 || k >= traj_.size())
+    throw core::InputError("frame " + std::to_string(k) + " is out of range (0 to " +
+                           std::to_string(traj_.size() - 1) + ")");
+  return k;
+}
+
+void Inspector::log(const std::string& command) {
+  history_.push_back(command);
+}
+
+void Inspector::goto_frame(long k) {
+  frame_ = in_range(k);
+  log("goto frame " + std::to_string(k));
+}
+
+void Inspector::goto_time(double t) {
+  if (t < traj_.time(0) - 1e-9 || t > traj_.time(traj_.size() - 1) + 1e-9)
+    throw core::InputError("time " + std::to_string(t) + " s is outside the trajectory (" +
+                           std::to_string(traj_.time(0)) + " to " +
+                           std::to_string(traj_.time(traj_.size() - 1)) + " s)");
+  long best = 0;
+  for (long k = 0; k < traj_.size(); ++k)
+    if (std::abs(traj_.time(k) - t) < std::abs(traj_.time(best) - t)) best = k;
+  frame_ = best;
+  log("goto time " + std::to_string(t));
+}
+
+void Inspector::goto_clog(long k) {
+  if (k < 1 || k > static_cast<long>(clogs_.size()))
+    throw core::InputError("clog " + std::to_string(k) + " does not exist; the trajectory has " +
+                           std::to_string(clogs_.size()) + " clogs (numbered from 1)");
+  frame_ = clogs_[static_cast<size_t>(k - 1)].last;
+  log("goto clog " + std::to_string(k));
+}
+
+void Inspector::goto_arch(long k) {
+  long found = -1;
+  for (long f = 1; f < traj_.size() && found < 0; ++f)
+    if (traj_.long_arches(f) >= k && traj_.long_arches(f - 1) < k) found = f - 1;
+  if (k < 1 || found < 0)
+    throw core::InputError("long-lasting arch " + std::to_string(k) + " is not in the trajectory (it has " +
+                           std::to_string(traj_.long_arches(traj_.size() - 1)) + ")");
+  frame_ = found;
+  log("goto arch " + std::to_string(k));
+}
+
+void Inspector::goto_start() {
+  frame_ = 0;
+  log("goto start");
+}
+
+void Inspector::goto_end() {
+  frame_ = traj_.size() - 1;
+  log("goto end");
+}
+
+void Inspector::step_frames(long n) {
+  frame_ = in_range(frame_ + n);
+  log("step " + std::to_string(n));
+}
+
+void Inspector::next_clog(bool later) {
+  const ClogSpan* hit = nullptr;
+  if (later) {
+    for (const auto& c : clogs_)
+      if (c.last > frame_) {
+        hit = &c;
+        break;
+      }
+  } else {
+    for (auto it = clogs_.rbegin(); it != clogs_.rend(); ++it)
+      if (it->last < frame_) {
+        hit = &*it;
+        break;
+      }
+  }
+  if (!hit) throw core::InputError(std::string("there is no ") + (later ? "later" : "earlier") + " clog");
+  frame_ = hit->last;
+  log(later ? "next clog" : "prev clog");
+}
+
+void Inspector::set_camera(const render::CameraSpec& c) {
+  camera = c;
+  zoom = 1.0;
+  pan = {0, 0};
+  log("zoom " + c.text);
+}
+
+void Inspector::zoom_by(double f) {
+  if (!(f > 0)) throw core::InputError("the zoom factor must be > 0");
+  zoom = std::clamp(zoom * f, 0.1, 100.0);
+  log("zoom by " + std::to_string(f));
+}
+
+void Inspector::pan_by(double dx, double dy) {
+  pan.x += dx;
+  pan.y += dy;
+  log("pan " + std::to_string(dx) + " " + std::to_string(dy));
+}
+
+void Inspector::set_color(render::ColorMode m, const std::string& name) {
+  style.color = m;
+  log("color " + name);
+}
+
+void Inspector::set_palette(render::Palette p, const std::string& name) {
+  style.palette = p;
+  log("palette " + name);
+}
+
+void Inspector::set_overlay(const std::string& spec) {
+  overlay = render::parse_overlay(spec);
+  log("overlay " + spec);
+}
+
+void Inspector::show_arch(bool on) {
+  style.show_arch = on;
+  log(on ? "arch on" : "arch off");
+}
+
+std::string Inspector::print_frame() {
+  const core::Frame f = current();
+  std::ostringstream o;
+  o << "frame " << frame_ << " t = " << f.t << " s, clog timer " << f.since_last_exit << " s, arch [";
+  for (size_t k = 0; k < f.arch.size(); ++k) o << (k ? " " : "") << f.arch[k];
+  o << "]";
+  last_output = o.str();
+  std::printf("%s\n", last_output.c_str());
+  return last_output;
+}
+
+std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
+  if (!painter || !files_) throw core::InputError("snapshot needs a renderer and files");
+  const std::string path = output_name(pattern, "snapshot " + pattern);
+  files_->write_png(path, render_current(*painter, w, h));
+  last_output = path;
+  log("snapshot " + pattern + " " + std::to_string(w) + "x" + std::to_string(h));
+  return path;
+}
+
+std::string Inspector::export_frames(const std::string& pattern, long from, long to, int width, int height,
+                                     int fps, Painter* painter) {
+  in_range(from);
+  in_range(to);
+  if (to < from) throw core::InputError("TO must not be before FROM");
+  if (!painter || !files_) throw core::InputError("export needs a renderer and files");
+  files_->check_movie(width, height, fps);
+  const std::string path = output_name(pattern, "export " + pattern);
+  auto movie = files_->open_movie(path, width, height, fps);
+  const long keep = frame_;
+  for (long k = from; k <= to; ++k) {
+    frame_ = k;
+    movie->add(render_current(*painter, width, height));
+  }
+  frame_ = keep;
+  movie->finish();
+  last_output = path + " (frames " + std::to_string(from) + " to " + std::to_string(to) + ")";
+  log("export " + pattern + " " + std::to_string(from) + " " + std::to_string(to) + " " +
+      std::to_string(width) + "x" + std::to_string(height) + " " + std::to_string(fps));
+  return path;
+}
+
+std::string Inspector::export_clog(const std::string& pattern, int width, int height, int fps,
+                                   Painter* painter) {
+  // The clog at (or after) this frame, from 1 s before it forms to 0.5 s after it ends.
+  const ClogSpan* hit = nullptr;
+  for (const auto& c : clogs_)
+    if (c.last >= frame_) {
+      hit = &c;
+      break;
+    }
+  if (!hit) throw core::InputError("there is no clog at or after frame " + std::to_string(frame_));
+  const double dt = traj_.frame_interval();
+  const long from = std::max(0L, hit->first - std::lround(1.0 / dt));
+  const long to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
+  return export_frames(pattern, from, to, width, height, fps, painter);
+}
+
+namespace {
+// A script line's words, a comment cut off.
+std::vector<std::string> words_of(const std::string& line) {
   std::stringstream ss(line);
   std::vector<std::string> a;
   for (std::string word; ss >> word;) {
     if (word[0] == '#') break;
     a.push_back(word);
   }
+  return a;
+}
+}  // namespace
+
+void Inspector::execute(const std::string& line, Painter* painter) {
+  const std::vector<std::string> a = words_of(line);
   if (a.empty()) return;
   const std::string& cmd = a[0];
   auto need = [&](size_t n, const char* usage) {
-    if (a.size() < n + 1 || a.size() > n + 1) throw core::InputError("'" + line + "': usage: " + usage);
+    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
   };
-  auto in_range = [&](long k) {
-    if (k < 0 || k >= traj_.size())
-      throw core::InputError("'" + line + "': frame " + std::to_string(k) + " is out of range (0 to " +
-                             std::to_string(traj_.size() - 1) + ")");
-    return k;
-  };
-  if (cmd == "goto") {
-    if (a.size() == 2 && (a[1] == "start" || a[1] == "end")) {
-      frame_ = a[1] == "start" ? 0 : traj_.size() - 1;
-      return;
+  try {
+    if (cmd == "goto") {
+      if (a.size() == 2 && a[1] == "start") return goto_start();
+      if (a.size() == 2 && a[1] == "end") return goto_end();
+      need(2, "goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end");
+      if (a[1] == "frame") return goto_frame(to_long(a[2], "frame"));
+      if (a[1] == "time") return goto_time(to_double(a[2], "time"));
+      if (a[1] == "clog") return goto_clog(to_long(a[2], "clog"));
+      if (a[1] == "arch") return goto_arch(to_long(a[2], "arch"));
+      throw core::InputError("goto frame|time|clog|arch|start|end");
     }
-    need(2, "goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end");
-    if (a[1] == "frame") {
-      frame_ = in_range(to_long(a[2], "frame"));
-    } else if (a[1] == "time") {
-      const double t = to_double(a[2], "time");
-      if (t < traj_.time(0) - 1e-9 || t > traj_.time(traj_.size() - 1) + 1e-9)
-        throw core::InputError("'" + line + "': time " + a[2] + " s is outside the trajectory (" +
-                               std::to_string(traj_.time(0)) + " to " +
-                               std::to_string(traj_.time(traj_.size() - 1)) + " s)");
-      long best = 0;
-      for (long k = 0; k < traj_.size(); ++k)
-        if (std::abs(traj_.time(k) - t) < std::abs(traj_.time(best) - t)) best = k;
-      frame_ = best;
-    } else if (a[1] == "clog") {
-      const long k = to_long(a[2], "clog");
-      if (k < 1 || k > static_cast<long>(clogs_.size()))
-        throw core::InputError("'" + line + "': clog " + a[2] + " does not exist; the trajectory has " +
-                               std::to_string(clogs_.size()) + " clogs (numbered from 1)");
-      frame_ = clogs_[k - 1].last;
-    } else if (a[1] == "arch") {
-      const long k = to_long(a[2], "arch");
-      long found = -1;
-      for (long f = 1; f < traj_.size() && found < 0; ++f)
-        if (traj_.long_arches(f) >= k && traj_.long_arches(f - 1) < k) found = f - 1;
-      if (k < 1 || found < 0)
-        throw core::InputError("'" + line + "': long-lasting arch " + a[2] +
-                               " is not in the trajectory (it has " +
-                               std::to_string(traj_.long_arches(traj_.size() - 1)) + ")");
-      frame_ = found;
-    } else {
-      throw core::InputError("'" + line + "': goto frame|time|clog|arch|start|end");
+    if (cmd == "step") return need(1, "step N"), step_frames(to_long(a[1], "step"));
+    if (cmd == "next" || cmd == "prev") {
+      need(1, "next clog | prev clog");
+      if (a[1] != "clog") throw core::InputError("usage: next clog | prev clog");
+      return next_clog(cmd == "next");
     }
-  } else if (cmd == "step") {
-    need(1, "step N");
-    frame_ = in_range(frame_ + to_long(a[1], "step"));
-  } else if (cmd == "next" || cmd == "prev") {
-    need(1, "next clog | prev clog");
-    if (a[1] != "clog") throw core::InputError("'" + line + "': usage: next clog | prev clog");
-    const ClogSpan* hit = nullptr;
-    if (cmd == "next") {
-      for (const auto& c : clogs_)
-        if (c.last > frame_) {
-          hit = &c;
-          break;
-        }
-    } else {
-      for (auto it = clogs_.rbegin(); it != clogs_.rend(); ++it)
-        if (it->last < frame_) {
-          hit = &*it;
-          break;
-        }
+    if (cmd == "zoom") {
+      if (a.size() == 3 && a[1] == "by") return zoom_by(to_double(a[2], "zoom factor"));
+      need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
+      return set_camera(render::parse_camera(a[1]));
     }
-    if (!hit)
-      throw core::InputError("'" + line + "': there is no " + (cmd == "next" ? "later" : "earlier") +
-                             " clog");
-    frame_ = hit->last;
-  } else if (cmd == "zoom") {
-    if (a.size() == 3 && a[1] == "by") {
-      const double f = to_double(a[2], "zoom factor");
-      if (!(f > 0)) throw core::InputError("'" + line + "': the zoom factor must be > 0");
-      zoom = std::clamp(zoom * f, 0.1, 100.0);
-      return;
+    if (cmd == "pan")
+      return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
+    if (cmd == "color")
+      return need(1, "color species|speed|force"), set_color(render::parse_color_mode(a[1]), a[1]);
+    if (cmd == "palette")
+      return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]);
+    if (cmd == "overlay")
+      return need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale"), set_overlay(a[1]);
+    if (cmd == "arch") {
+      need(1, "arch on|off");
+      if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
+      return show_arch(a[1] == "on");
     }
-    need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
-    camera = render::parse_camera(a[1]);
-    zoom = 1.0;
-    pan = {0, 0};
-  } else if (cmd == "pan") {
-    need(2, "pan DX DY (metres)");
-    pan.x += to_double(a[1], "DX");
-    pan.y += to_double(a[2], "DY");
-  } else if (cmd == "color") {
-    need(1, "color species|speed|force");
-    style.color = render::parse_color_mode(a[1]);
-  } else if (cmd == "palette") {
-    need(1, "palette paper|colorblind");
-    style.palette = render::parse_palette(a[1]);
-  } else if (cmd == "overlay") {
-    need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale");
-    overlay = render::parse_overlay(a[1]);
-  } else if (cmd == "arch") {
-    need(1, "arch on|off");
-    if (a[1] != "on" && a[1] != "off") throw core::InputError("'" + line + "': usage: arch on|off");
-    style.show_arch = a[1] == "on";
-  } else if (cmd == "print") {
-    const core::Frame f = current();
-    std::ostringstream o;
-    o << "frame " << frame_ << " t = " << f.t << " s, clog timer " << f.since_last_exit << " s, arch [";
-    for (size_t k = 0; k < f.arch.size(); ++k) o << (k ? " " : "") << f.arch[k];
-    o << "]";
-    last_output = o.str();
-    std::printf("%s\n", last_output.c_str());
-  } else if (cmd == "snapshot") {
-    if (a.size() < 2 || a.size() > 3)
-      throw core::InputError("'" + line + "': usage: snapshot FILE.png [WxH]");
-    int w = 1920, h = 1080;
-    if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
-    if (!painter || !files_) throw core::InputError("'" + line + "': snapshot needs a renderer and files");
-    const std::string path = output_name(a[1], line);
-    files_->write_png(path, render_current(*painter, w, h));
-    last_output = path;
-  } else if (cmd == "export") {
-    // export clog FILE.mp4 [WxH] [FPS]: the clog at (or after) this frame, from 1 s before it forms to 0.5 s
-    // after it ends.
-    long from = 0, to = 0;
-    size_t opt = 4;  // index of the first optional argument
-    std::string file;
-    if (a.size() >= 3 && a[1] == "clog") {
-      if (a.size() > 5) throw core::InputError("'" + line + "': usage: export clog FILE.mp4 [WxH] [FPS]");
-      const ClogSpan* hit = nullptr;
-      for (const auto& c : clogs_)
-        if (c.last >= frame_) {
-          hit = &c;
-          break;
-        }
-      if (!hit)
-        throw core::InputError("'" + line + "': there is no clog at or after frame " +
-                               std::to_string(frame_));
-      const double dt = traj_.frame_interval();
-      from = std::max(0L, hit->first - std::lround(1.0 / dt));
-      to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
-      file = a[2];
-      opt = 3;
-    } else {
-      if (a.size() < 4 || a.size() > 6)
-        throw core::InputError(
-            "'" + line + "': usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
-      from = in_range(to_long(a[2], "FROM"));
-      to = in_range(to_long(a[3], "TO"));
-      if (to < from) throw core::InputError("'" + line + "': TO must not be before FROM");
-      file = a[1];
+    if (cmd == "print") return (void)print_frame();
+    if (cmd == "snapshot") {
+      if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png [WxH]");
+      int w = 1920, h = 1080;
+      if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
+      return (void)snapshot(a[1], w, h, painter);
     }
-    int width = 1280, height = 720;
-    if (a.size() > opt) render::parse_size(a[opt], "export size", width, height);
-    const int fps = a.size() > opt + 1
-                        ? static_cast<int>(to_long(a[opt + 1], "FPS"))
-                        : std::max(1, static_cast<int>(std::lround(1.0 / traj_.frame_interval())));
-    if (!painter || !files_) throw core::InputError("'" + line + "': export needs a renderer and files");
-    files_->check_movie(width, height, fps);
-    const std::string path = output_name(file, line);
-    auto movie = files_->open_movie(path, width, height, fps);
-    const long keep = frame_;
-    for (long k = from; k <= to; ++k) {
-      frame_ = k;
-      movie->add(render_current(*painter, width, height));
-    }
-    frame_ = keep;
-    movie->finish();
-    last_output = path + " (frames " + std::to_string(from) + " to " + std::to_string(to) + ")";
-  } else {
-    throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
+    if (cmd == "export") return export_command(a, painter);
+  } catch (const core::InputError& e) {
+    throw core::InputError("'" + line + "': " + e.what());
   }
+  throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
+}
+
+void Inspector::export_command(const std::vector<std::string>& a, Painter* painter) {
+  const bool clog = a.size() >= 3 && a[1] == "clog";
+  if (clog ? a.size() > 5 : (a.size() < 4 || a.size() > 6))
+    throw core::InputError(
+        clog ? "usage: export clog FILE.mp4 [WxH] [FPS]"
+             : "usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
+  const size_t opt = clog ? 3 : 4;  // index of the first optional argument
+  int width = 1280, height = 720;
+  if (a.size() > opt) render::parse_size(a[opt], "export size", width, height);
+  const int fps = a.size() > opt + 1
+                      ? static_cast<int>(to_long(a[opt + 1], "FPS"))
+                      : std::max(1, static_cast<int>(std::lround(1.0 / traj_.frame_interval())));
+  if (clog)
+    export_clog(a[2], width, height, fps, painter);
+  else
+    export_frames(a[1], to_long(a[2], "FROM"), to_long(a[3], "TO"), width, height, fps, painter);
 }
 
 int run_script(Inspector& insp, Painter& painter, const std::string& path) {

@@ -42,9 +42,36 @@ class Inspector {
   // `files` (may be null: snapshot and export then refuse) is where snapshots and clips go.
   Inspector(const FrameSource& frames, const core::Scene& scene, const ImageFiles* files = nullptr);
 
-  // Run one command; throws core::InputError naming the problem (unknown command, frame out of range...).
-  // `painter` is needed by snapshot and export only.
+  // Run one command line of the script language: parsed here, then the typed action below; throws
+  // core::InputError naming the line and the problem (unknown command, frame out of range...). `painter` is
+  // needed by snapshot and export only.
   void execute(const std::string& line, Painter* painter = nullptr);
+
+  // The actions, typed: what the window's buttons and keys call and what each script command does. Each
+  // throws core::InputError naming the problem, and appends the script line that repeats it to history().
+  void goto_frame(long k);
+  void goto_time(double t);
+  void goto_clog(long k);  // numbered from 1
+  void goto_arch(long k);  // the k-th long-lasting arch, numbered from 1
+  void goto_start();
+  void goto_end();
+  void step_frames(long n);
+  void next_clog(bool later);  // the last frame of the next (later) or previous clog
+  void set_camera(const render::CameraSpec& c);
+  void zoom_by(double f);
+  void pan_by(double dx, double dy);  // m
+  void set_color(render::ColorMode m, const std::string& name);
+  void set_palette(render::Palette p, const std::string& name);
+  void set_overlay(const std::string& spec);
+  void show_arch(bool on);
+  std::string print_frame();
+  // Files are never written over; patterns may hold {frame} and {t}. Return the path written.
+  std::string snapshot(const std::string& pattern, int w, int h, Painter* painter);
+  std::string export_frames(const std::string& pattern, long from, long to, int w, int h, int fps,
+                            Painter* painter);
+  std::string export_clog(const std::string& pattern, int w, int h, int fps, Painter* painter);
+  // Every action so far as script lines: what the window did, written down to be made again.
+  const std::vector<std::string>& history() const { return history_; }
 
   long frame_index() const { return frame_; }
   void set_frame(long k);  // clamps to the trajectory
@@ -70,6 +97,10 @@ class Inspector {
  private:
   // FILE with {frame} and {t} filled in; throws core::InputError if it exists.
   std::string output_name(const std::string& pattern, const std::string& line) const;
+  long in_range(long k) const;
+  void log(const std::string& command);
+  void export_command(const std::vector<std::string>& words, Painter* painter);
+  std::vector<std::string> history_;
   const FrameSource& traj_;
   const ImageFiles* files_;
   core::Scene scene_;

@@ -1,5 +1,8 @@
 #include "ui/panels.h"
 
+#include <cmath>
+#include <functional>
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -20,35 +23,30 @@ void remember(PanelState& ps, const char* name) {
 const char* kSizes[] = {"1920x1080", "3840x2160", "1280x720", "2048x2048"};
 }  // namespace
 
-void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command) {
+void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, bool writes) {
   try {
     insp.last_output.clear();
-    insp.execute(command, painter);
-    const bool wrote = command.rfind("snapshot", 0) == 0 || command.rfind("export", 0) == 0;
-    ps.message = wrote && !insp.last_output.empty() ? "wrote " + insp.last_output : command;
+    action();
+    // What it did, as the script line that repeats it (or the file it wrote).
+    ps.message = writes && !insp.last_output.empty() ? "wrote " + insp.last_output
+                 : insp.history().empty()            ? ""
+                                                     : insp.history().back();
   } catch (const std::exception& e) {
     ps.message = e.what();
   }
 }
 
-void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h,
-                 float timeline_y, float timeline_w, float timeline_h) {
-  const long n = insp.trajectory().size();
-  ImGui::SetNextWindowPos(ImVec2(x, 0));
-  ImGui::SetNextWindowSize(ImVec2(w, h));
-  ImGui::Begin("siloscope inspect", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-  const core::Frame f = insp.current();
-
+namespace {
+void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& f) {
   // Transport.
   int frame = static_cast<int>(insp.frame_index());
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderInt("##frame", &frame, 0, static_cast<int>(n - 1), "frame %d")) insp.set_frame(frame);
   remember(ps, "frame");
   ImGui::Text("t = %.3f s   clog timer %.2f s", f.t, f.since_last_exit);
-  if (ImGui::Button("|<")) run_command(insp, ps, painter, "goto start");
+  if (ImGui::Button("|<")) act(insp, ps, [&] { insp.goto_start(); });
   ImGui::SameLine();
-  if (ImGui::Button("< clog")) run_command(insp, ps, painter, "prev clog");
+  if (ImGui::Button("< clog")) act(insp, ps, [&] { insp.next_clog(false); });
   remember(ps, "prev clog");
   ImGui::SameLine();
   if (ImGui::Button("<")) insp.set_frame(insp.frame_index() - 1);
@@ -60,19 +58,21 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   if (ImGui::Button(">")) insp.set_frame(insp.frame_index() + 1);
   remember(ps, "step forward");
   ImGui::SameLine();
-  if (ImGui::Button("clog >")) run_command(insp, ps, painter, "next clog");
+  if (ImGui::Button("clog >")) act(insp, ps, [&] { insp.next_clog(true); });
   remember(ps, "next clog");
   ImGui::SameLine();
-  if (ImGui::Button(">|")) run_command(insp, ps, painter, "goto end");
+  if (ImGui::Button(">|")) act(insp, ps, [&] { insp.goto_end(); });
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderFloat("##speed", &ps.speed, 0.05f, 10.0f, "playback %.2fx", ImGuiSliderFlags_Logarithmic);
+}
 
+void draw_view(Inspector& insp, PanelState& ps) {
   // View.
   ImGui::Separator();
   const char* cams[] = {"split", "outlet", "hopper"};
   for (const char* c : cams) {
     if (ImGui::RadioButton(c, insp.camera.text == c))
-      run_command(insp, ps, painter, std::string("zoom ") + c);
+      act(insp, ps, [&] { insp.set_camera(render::parse_camera(c)); });
     ImGui::SameLine();
   }
   ImGui::NewLine();
@@ -81,14 +81,14 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic))
     insp.zoom = zoom;
   remember(ps, "zoom");
-  // Each choice runs the command it stands for (color species|speed|force), no int casts.
+  // Each choice calls the action it stands for (the script line `color species|speed|force`).
   const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
                                                               {"speed", render::ColorMode::Speed},
                                                               {"force", render::ColorMode::Force}};
   for (size_t k = 0; k < 3; ++k) {
     if (k > 0) ImGui::SameLine();
     if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
-      run_command(insp, ps, painter, std::string("color ") + colors[k].first);
+      act(insp, ps, [&] { insp.set_color(colors[k].second, colors[k].first); });
   }
   bool cb = insp.style.palette == render::Palette::ColorBlind;
   if (ImGui::Checkbox("colour-blind palette", &cb))
@@ -108,7 +108,9 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::Checkbox("scale", &o.scale);
   ImGui::SameLine();
   ImGui::Checkbox("arch info", &o.arch);
+}
 
+void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
   // The arch of this frame.
   ImGui::Separator();
   if (f.arch.empty()) {
@@ -144,7 +146,9 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
     ImGui::Separator();
     render::info_contents(f, insp.overlay_data, insp.overlay, insp.style, ImGui::GetFontSize());
   }
+}
 
+void draw_outputs(Inspector& insp, PanelState& ps, Painter* painter, float w) {
   // Outputs.
   ImGui::Separator();
   ImGui::SetNextItemWidth(0.55f * w);
@@ -153,8 +157,14 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::SetNextItemWidth(-1);
   ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
   if (ImGui::Button("snapshot this frame"))
-    run_command(insp, ps, painter,
-                std::string("snapshot ") + ps.snapshot_path + " " + kSizes[ps.snapshot_size]);
+    act(
+        insp, ps,
+        [&] {
+          int sw = 0, sh = 0;
+          render::parse_size(kSizes[ps.snapshot_size], "snapshot size", sw, sh);
+          insp.snapshot(ps.snapshot_path, sw, sh, painter);
+        },
+        true);
   remember(ps, "snapshot");
   ImGui::SetNextItemWidth(0.3f * w);
   ImGui::InputInt("from", &ps.export_from, 0);
@@ -163,13 +173,18 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::InputInt("to", &ps.export_to, 0);
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##clip", ps.export_path, sizeof ps.export_path);
+  const int clip_fps = std::max(1, static_cast<int>(std::lround(1.0 / insp.trajectory().frame_interval())));
   if (ImGui::Button("export from..to"))
-    run_command(insp, ps, painter,
-                std::string("export ") + ps.export_path + " " + std::to_string(ps.export_from) + " " +
-                    std::to_string(ps.export_to));
+    act(
+        insp, ps,
+        [&] {
+          insp.export_frames(ps.export_path, ps.export_from, ps.export_to, 1280, 720, clip_fps, painter);
+        },
+        true);
   ImGui::SameLine();
   if (ImGui::Button("export this clog"))
-    run_command(insp, ps, painter, std::string("export clog ") + ps.export_path);
+    act(
+        insp, ps, [&] { insp.export_clog(ps.export_path, 1280, 720, clip_fps, painter); }, true);
   remember(ps, "export clog");
   ImGui::Separator();
   ImGui::TextWrapped("%s", ps.message.c_str());
@@ -180,7 +195,10 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::PopStyleColor();
   if (ps.last_redraw_ms > 0) ImGui::TextDisabled("last redraw %.1f ms", ps.last_redraw_ms);
   ImGui::End();
+}
 
+void draw_timeline(Inspector& insp, PanelState& ps, long n, float timeline_y, float timeline_w,
+                   float timeline_h) {
   // Timeline: clogs in orange (red when the rule removed the arch), the current frame as a line; click to
   // seek.
   ImGui::SetNextWindowPos(ImVec2(0, timeline_y));
@@ -224,6 +242,23 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
     }
   }
   ImGui::End();
+}
+}  // namespace
+
+void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h,
+                 float timeline_y, float timeline_w, float timeline_h) {
+  const long n = insp.trajectory().size();
+  ImGui::SetNextWindowPos(ImVec2(x, 0));
+  ImGui::SetNextWindowSize(ImVec2(w, h));
+  ImGui::Begin("siloscope inspect", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  const core::Frame f = insp.current();
+
+  draw_transport(insp, ps, n, f);
+  draw_view(insp, ps);
+  draw_arch(insp, painter, f);
+  draw_outputs(insp, ps, painter, w);
+  draw_timeline(insp, ps, n, timeline_y, timeline_w, timeline_h);
 }
 
 }  // namespace ui

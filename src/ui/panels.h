@@ -2,6 +2,8 @@
 // tests. Every control runs an Inspector command (see inspector.h).
 #pragma once
 
+#include <functional>
+
 #include <array>
 #include <map>
 #include <string>
@@ -29,6 +31,8 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
                  float timeline_y, float timeline_w, float timeline_h);
 
 // Run a command and put its outcome (or error) in ps.message instead of throwing.
-void run_command(Inspector& insp, PanelState& ps, Painter* painter, const std::string& command);
+// Run a typed inspector action from a button or key; the panel's message says what it did (the script line
+// that repeats it, or the file it wrote) or why it could not.
+void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, bool writes = false);
 
 }  // namespace ui

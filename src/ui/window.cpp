@@ -1,4 +1,6 @@
 #include "ui/window.h"
+#include "core/format.h"
+#include "core/physics.h"
 
 #include "render/gl.h"  // glad first: GLFW must not pull in a GL header
 #define GLFW_INCLUDE_NONE
@@ -142,13 +144,13 @@ void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
     else if (key == GLFW_KEY_SPACE)
       ps.playing = !ps.playing;
     else if (key == GLFW_KEY_N)
-      run_command(insp, ps, painter, "next clog");
+      act(insp, ps, [&] { insp.next_clog(true); });
     else if (key == GLFW_KEY_P)
-      run_command(insp, ps, painter, "prev clog");
+      act(insp, ps, [&] { insp.next_clog(false); });
     else if (key == GLFW_KEY_HOME)
-      run_command(insp, ps, painter, "goto start");
+      act(insp, ps, [&] { insp.goto_start(); });
     else if (key == GLFW_KEY_END)
-      run_command(insp, ps, painter, "goto end");
+      act(insp, ps, [&] { insp.goto_end(); });
     else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
       glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
   }
@@ -263,132 +265,174 @@ std::string free_snapshot_name(double t) {
 }
 }  // namespace
 
-void run_live_window(LiveSource& source, const WindowOptions& o) {
-  Window win(o.width, o.height, "siloscope live");
-  Painter painter;
-  LiveParams params = source.params();
-  float r = static_cast<float>(params.size_ratio), chi = static_cast<float>(params.chi);
-  float ratio = static_cast<float>(params.force_ratio), kick = static_cast<float>(params.kick_impulse_max);
+namespace {
+// A slider for one scene key, with its field's range (logarithmic where it spans decades) and unit; edits
+// `s`.
+void key_slider(core::Scene& s, const std::string& key) {
+  double lo = 0, hi = 1;
+  const char* unit = "";
+  if (const core::Field* f = core::find_field(key)) {
+    lo = f->min, hi = f->max, unit = f->unit;
+  } else if (key.rfind("species.", 0) == 0) {
+    if (const core::SpeciesField* sf = core::find_species_field(key.substr(key.rfind('.') + 1)))
+      lo = sf->min, hi = sf->max, unit = sf->unit;
+  }
+  const auto values = core::scene_values(s);
+  const auto it = values.find(key);
+  if (it == values.end()) return;
+  float v = static_cast<float>(std::strtod(it->second.c_str(), nullptr));
+  const bool log = hi > 100 * std::max(lo, 1e-12);
+  const std::string label =
+      key + (unit && *unit && std::string(unit) != "1" ? " [" + std::string(unit) + "]" : "");
+  ImGui::SetNextItemWidth(0.5f * ImGui::GetContentRegionAvail().x);
+  if (ImGui::SliderFloat(label.c_str(), &v, static_cast<float>(lo), static_cast<float>(hi),
+                         log ? "%.3g" : "%.3f", log ? ImGuiSliderFlags_Logarithmic : 0)) {
+    try {
+      core::set_field(s, key, core::format_shortest(v), "the live panel");
+    } catch (const std::exception&) {
+      // a whole-number field: the slider shows it, set_field keeps it whole on the next edit
+    }
+  }
+}
+
+struct LiveState {
   float speed = 1.0f, zoom = 1.0f;
   bool paused = false, snapshot = false;
   double step_pending = 0;  // s to advance while paused (single steps)
-  constexpr double kStep = 1.0 / 30.0;
   std::string message = "running";
   render::Style style;
   render::OverlayOptions overlay;
-  overlay.place_clear = overlay.may_leave = true;
   render::CameraSpec camera;  // split
+  core::Scene edit;           // the panel's values, applied on restart
+};
+constexpr double kLiveStep = 1.0 / 30.0;
+
+void live_keys_pressed(Window& win, LiveState& st) {
+  for (int k : win.take_keys()) {
+    if (ImGui::GetIO().WantTextInput) break;
+    const int key = k < 0 ? -k : k;
+    if (key == GLFW_KEY_RIGHT && st.paused)
+      st.step_pending += kLiveStep;
+    else if (k < 0)
+      continue;
+    else if (key == GLFW_KEY_SPACE)
+      st.paused = !st.paused;
+    else if (key == GLFW_KEY_S)
+      st.snapshot = true;
+    else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
+      glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
+  }
+}
+
+void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
+                Painter& painter) {
+  ImGui::Text("t = %.2f s, %lld exits", f.t, static_cast<long long>(f.exits_original + f.exits_added));
+  if (ImGui::Button(st.paused ? "resume (space)" : "pause (space)")) st.paused = !st.paused;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!st.paused);
+  if (ImGui::Button("step 1/30 s (right)")) st.step_pending += kLiveStep;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("snapshot (s)")) st.snapshot = true;
+  ImGui::SliderFloat("speed", &st.speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
+  ImGui::Separator();
+  ImGui::TextUnformatted("scene (applies on restart)");
+  for (const auto& key : source.live_keys()) key_slider(st.edit, key);
+  if (st.edit.shorthand()) {
+    const double weight = core::mass_of(st.edit.radius_added(), st.edit.density) * st.edit.gravity;
+    ImGui::Text("dipole contact force / weight = %.3g",
+                weight > 0 ? core::dipole_contact_force(st.edit) / weight : 0.0);
+  }
+  if (ImGui::Button("restart (settles first)")) {
+    try {
+      source.restart(st.edit);
+      st.message = "restarted";
+    } catch (const std::exception& e) {
+      st.message = e.what();
+    }
+  }
+  ImGui::Separator();
+  for (const char* c : {"split", "outlet", "hopper"}) {
+    if (ImGui::RadioButton(c, st.camera.text == c)) st.camera = render::parse_camera(c);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+  ImGui::SliderFloat("zoom", &st.zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+  const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
+                                                              {"speed", render::ColorMode::Speed},
+                                                              {"force", render::ColorMode::Force}};
+  for (const auto& [label, mode] : colors) {
+    if (ImGui::RadioButton(label, st.style.color == mode)) st.style.color = mode;
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+  ImGui::Checkbox("arch", &st.style.show_arch);
+  if (painter.info_left()) {  // no corner of the picture is clear of the container
+    ImGui::Separator();
+    render::info_contents(f, od, st.overlay, st.style, ImGui::GetFontSize());
+  }
+  ImGui::TextWrapped("%s", st.message.c_str());
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
+  ImGui::TextWrapped("keys: space pause, right step (paused), s snapshot, q close");
+  ImGui::PopStyleColor();
+}
+}  // namespace
+
+void run_live_window(LiveSource& source, const WindowOptions& o) {
+  Window win(o.width, o.height, "siloscope live");
+  Painter painter;
+  LiveState st;
+  st.edit = source.scene();
+  st.overlay.place_clear = st.overlay.may_leave = true;
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
-    win.wait_or_poll(!paused || o.frames > 0);
+    win.wait_or_poll(!st.paused || o.frames > 0);
     const auto now = Clock::now();
     const double wall = std::min(0.1, std::chrono::duration<double>(now - last).count());
     last = now;
-    for (int k : win.take_keys()) {
-      if (ImGui::GetIO().WantTextInput) break;
-      const int key = k < 0 ? -k : k;
-      if (key == GLFW_KEY_RIGHT && paused)
-        step_pending += kStep;
-      else if (k < 0)
-        continue;
-      else if (key == GLFW_KEY_SPACE)
-        paused = !paused;
-      else if (key == GLFW_KEY_S)
-        snapshot = true;
-      else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
-        glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
-    }
+    live_keys_pressed(win, st);
     try {
-      const double advance = paused ? std::exchange(step_pending, 0.0) : speed * wall;
+      const double advance = st.paused ? std::exchange(st.step_pending, 0.0) : st.speed * wall;
       if (advance > 0) source.advance(advance);
     } catch (const std::exception& e) {
-      message = e.what();
-      paused = true;
+      st.message = e.what();
+      st.paused = true;
     }
-    const core::Frame f = source.frame(style.color == render::ColorMode::Force);
+    const core::Frame f = source.frame(st.style.color == render::ColorMode::Force);
     const render::OverlayData od = source.overlay_data();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);
     const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
     auto views_for = [&](int w, int h) {
-      auto views = render::layout_views(camera, source.geometry(), w, h);
+      auto views = render::layout_views(st.camera, source.geometry(), w, h);
       for (auto& v : views)
-        if (v.name != "hopper") v.cam.height /= zoom;
+        if (v.name != "hopper") v.cam.height /= st.zoom;
       return views;
     };
-    if (snapshot) {
-      snapshot = false;
+    if (st.snapshot) {
+      st.snapshot = false;
       try {
         const auto views = views_for(1920, 1080);
         const std::string name = free_snapshot_name(f.t);
-        render::OverlayOptions in_picture = overlay;  // a snapshot has no side panel to hold the box
+        render::OverlayOptions in_picture = st.overlay;  // a snapshot has no side panel to hold the box
         in_picture.may_leave = false;
         if (!o.files) throw core::InputError("this window has nowhere to write files");
         o.files->write_png(
-            name, painter.paint({{&f, &source.geometry(), &views, &od}}, style, in_picture, 1920, 1080));
-        message = "snapshot " + name;
+            name, painter.paint({{&f, &source.geometry(), &views, &od}}, st.style, in_picture, 1920, 1080));
+        st.message = "snapshot " + name;
       } catch (const std::exception& e) {
-        message = std::string("snapshot failed: ") + e.what();
+        st.message = std::string("snapshot failed: ") + e.what();
       }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const auto views = views_for(scene_w, fh);
-    painter.draw({{&f, &source.geometry(), &views, &od}}, style, overlay, fw, fh, scene_w);
+    painter.draw({{&f, &source.geometry(), &views, &od}}, st.style, st.overlay, fw, fh, scene_w);
     imgui_frame(win, fw, fh, [&] {
       ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
       ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
       ImGui::Begin("siloscope live", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-      ImGui::Text("t = %.2f s, %lld original and %lld added exits", f.t,
-                  static_cast<long long>(f.exits_original), static_cast<long long>(f.exits_added));
-      if (ImGui::Button(paused ? "resume (space)" : "pause (space)")) paused = !paused;
-      ImGui::SameLine();
-      ImGui::BeginDisabled(!paused);
-      if (ImGui::Button("step 1/30 s (right)")) step_pending += kStep;
-      ImGui::EndDisabled();
-      ImGui::SameLine();
-      if (ImGui::Button("snapshot (s)")) snapshot = true;
-      ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
-      ImGui::Separator();
-      ImGui::TextUnformatted("scene (applies on restart)");
-      ImGui::SliderFloat("r", &r, 0.2f, 1.0f, "%.2f");
-      ImGui::SliderFloat("chi", &chi, 0.0f, 1.0f, "%.2f");
-      ImGui::SliderFloat("F_dip / W", &ratio, 0.0f, 30.0f, "%.1f");
-      ImGui::SliderFloat("kick [N s]", &kick, 1e-6f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
-      params = {r, chi, ratio, kick};
-      ImGui::Text("mu = %.3g A m^2", source.mu_for(params));
-      if (ImGui::Button("restart (settles first)")) {
-        try {
-          source.restart(params);
-          message = "restarted";
-        } catch (const std::exception& e) {
-          message = e.what();
-        }
-      }
-      ImGui::Separator();
-      for (const char* c : {"split", "outlet", "hopper"}) {
-        if (ImGui::RadioButton(c, camera.text == c)) camera = render::parse_camera(c);
-        ImGui::SameLine();
-      }
-      ImGui::NewLine();
-      ImGui::SliderFloat("zoom", &zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-      const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
-                                                                  {"speed", render::ColorMode::Speed},
-                                                                  {"force", render::ColorMode::Force}};
-      for (const auto& [label, mode] : colors) {
-        if (ImGui::RadioButton(label, style.color == mode)) style.color = mode;
-        ImGui::SameLine();
-      }
-      ImGui::NewLine();
-      ImGui::Checkbox("arch", &style.show_arch);
-      if (painter.info_left()) {  // no corner of the picture is clear of the container
-        ImGui::Separator();
-        render::info_contents(f, od, overlay, style, ImGui::GetFontSize());
-      }
-      ImGui::TextWrapped("%s", message.c_str());
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
-      ImGui::TextWrapped("keys: space pause, right step (paused), s snapshot, q close");
-      ImGui::PopStyleColor();
+      live_panel(source, st, f, od, painter);
       ImGui::End();
     });
     if (o.frames > 0 && n + 1 >= o.frames) {

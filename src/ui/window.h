@@ -6,6 +6,7 @@
 
 #include "core/frame.h"
 #include "core/geometry.h"
+#include "core/scene.h"
 #include "render/overlay.h"
 #include "ui/inspector.h"
 
@@ -21,15 +22,10 @@ struct WindowOptions {
 // Returns the median redraw time (ms) of frames where the shown frame changed, 0 if none.
 double run_inspector_window(Inspector& insp, const WindowOptions& o);
 
-// The scene values the live window's panel changes; they apply on restart.
-struct LiveParams {
-  double size_ratio = 0.4, chi = 0.4;
-  double force_ratio = 0;          // dipole contact force between two added disks over an added disk's weight
-  double kick_impulse_max = 5e-5;  // N s
-};
-
 // What the live window needs of a running simulation. The app owns the simulation and implements this; the
-// window sees frames, the container and these numbers, never the simulation itself.
+// window sees frames, the container and the scene's values, never the simulation itself. The panel edits the
+// scene keys `live_keys()` names (scene keys or species.NAME.KEY), each as its field in the scene's field
+// table says (range, unit, meaning); they apply on restart.
 class LiveSource {
  public:
   virtual ~LiveSource() = default;
@@ -37,9 +33,9 @@ class LiveSource {
   virtual core::Frame frame(bool forces) const = 0;
   virtual const core::Geometry& geometry() const = 0;
   virtual render::OverlayData overlay_data() const = 0;
-  virtual LiveParams params() const = 0;
-  virtual double mu_for(const LiveParams& p) const = 0;  // A m^2: the dipole moment that gives p.force_ratio
-  virtual void restart(const LiveParams& p) = 0;  // validates; throws core::InputError naming the value
+  virtual const core::Scene& scene() const = 0;
+  virtual std::vector<std::string> live_keys() const = 0;
+  virtual void restart(const core::Scene& s) = 0;  // validates; throws core::InputError naming the value
 };
 
 // Space pauses and resumes, the right arrow steps one frame (1/30 s) while paused, S saves a snapshot

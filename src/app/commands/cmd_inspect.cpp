@@ -85,31 +85,26 @@ class LiveHopper final : public ui::LiveSource {
   core::Frame frame(bool forces) const override { return session_->world(0).frame(true, forces); }
   const core::Geometry& geometry() const override { return session_->world(0).geometry(); }
   render::OverlayData overlay_data() const override { return render::overlay_data_for(scene_); }
-  ui::LiveParams params() const override {
-    // The dipole force grows with mu^2: the ratio of this mu is (mu / mu at ratio 1)^2.
-    const double unit = core::mu_for_force_ratio(scene_, 1.0);
-    const double ratio = unit > 0 ? (scene_.mu / unit) * (scene_.mu / unit) : 0.0;
-    return {scene_.size_ratio, scene_.chi, ratio, scene_.kick_impulse_max};
+  const core::Scene& scene() const override { return scene_; }
+  // The keys worth changing live: the paper's shorthand (r, chi, mu, the kick), or a scene's drive, outlet,
+  // obstacle, tilt and each species' dipole.
+  std::vector<std::string> live_keys() const override {
+    if (scene_.shorthand()) return {"size_ratio", "chi", "mu", "kick_impulse_max"};
+    std::vector<std::string> keys = {"kick_impulse_max", "aperture", "tilt"};
+    if (scene_.vibration_amplitude > 0) keys.push_back("vibration_amplitude");
+    if (scene_.vibration_gamma > 0) keys.push_back("vibration_gamma");
+    if (scene_.vibration_amplitude > 0 || scene_.vibration_gamma > 0) keys.push_back("vibration_frequency");
+    if (scene_.obstacle != "none") keys.push_back("obstacle_height");
+    for (const auto& sp : scene_.species) keys.push_back("species." + sp.name + ".dipole");
+    return keys;
   }
-  double mu_for(const ui::LiveParams& p) const override {
-    return core::mu_for_force_ratio(with(p), p.force_ratio);
-  }
-  void restart(const ui::LiveParams& p) override {
-    core::Scene s = with(p);
-    s.mu = core::mu_for_force_ratio(s, p.force_ratio);
+  void restart(const core::Scene& s) override {
     core::validate(s);
     session_ = std::make_unique<Session>(std::vector{s});
     scene_ = s;
   }
 
  private:
-  core::Scene with(const ui::LiveParams& p) const {
-    core::Scene s = scene_;
-    s.size_ratio = p.size_ratio;
-    s.chi = p.chi;
-    s.kick_impulse_max = p.kick_impulse_max;
-    return s;
-  }
   core::Scene scene_;
   std::unique_ptr<Session> session_;
 };

@@ -295,6 +295,42 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
           {"ms_per_frame_png", st.png * per, 6}};
 }
 
+// Each panel's events, measurements and metadata (with the recording's facts); for a comparison, the whole's
+// metadata too. Returns each panel's measurements.
+std::vector<analysis::Measurements> write_recording_outputs(
+    const RecordOptions& o, const Plan& plan, const std::vector<Panel>& panels, const Session& session,
+    const io::OutputDir& dir, const io::RunInfo& info, const Stages& st, long encoded, long slow_frames,
+    bool was_interrupted, const std::string& gl_renderer, double wall, const fs::path& movie_path) {
+  const size_t n_panels = panels.size();
+  const core::Scene& scene = panels.front().scene;
+  std::vector<analysis::Measurements> ms;
+  for (size_t k = 0; k < n_panels; ++k) {
+    const sim::Hopper& h = session.world(k);
+    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].scene.duration;
+    io::RunInfo pinfo = info;
+    pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, n_panels, was_interrupted,
+                                  gl_renderer, wall, movie_path);
+    ms.push_back(write_run_outputs(dir.file(panels[k].subdir), panels[k].scene, h, analysed, pinfo));
+  }
+  if (n_panels > 1) {
+    // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
+    io::RunInfo cinfo = info;
+    std::vector<std::string> labels;
+    for (const auto& p : panels) labels.push_back(p.label);
+    cinfo.facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
+                   {"frames", encoded},
+                   {"panels", n_panels},
+                   {"panel_labels", labels},
+                   {"interrupted", was_interrupted},
+                   {"simulated_s", session.world(0).time(), 6},
+                   {"wall_s", wall, 6}};
+    io::write_file_atomic(
+        dir.file("metadata.toml"),
+        "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));
+  }
+  return ms;
+}
+
 int record_movie(const RecordOptions& o) {
   std::vector<Panel> panels = make_panels(o);
   const Plan plan = plan_recording(o, panels);
@@ -392,31 +428,9 @@ int record_movie(const RecordOptions& o) {
     st.encode = mp4->encode_seconds();
   }
   session->finish();
-  std::vector<analysis::Measurements> ms;
-  for (size_t k = 0; k < n_panels; ++k) {
-    const sim::Hopper& h = session->world(k);
-    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].scene.duration;
-    io::RunInfo pinfo = info;
-    pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, movie->slow_frames, n_panels,
-                                  was_interrupted, pipeline.gl_renderer(), wall, movie_path);
-    ms.push_back(write_run_outputs(dir.file(panels[k].subdir), panels[k].scene, h, analysed, pinfo));
-  }
-  if (n_panels > 1) {
-    // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
-    io::RunInfo cinfo = info;
-    std::vector<std::string> labels;
-    for (const auto& p : panels) labels.push_back(p.label);
-    cinfo.facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
-                   {"frames", encoded},
-                   {"panels", n_panels},
-                   {"panel_labels", labels},
-                   {"interrupted", was_interrupted},
-                   {"simulated_s", session->world(0).time(), 6},
-                   {"wall_s", wall, 6}};
-    io::write_file_atomic(
-        dir.file("metadata.toml"),
-        "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));
-  }
+  const std::vector<analysis::Measurements> ms =
+      write_recording_outputs(o, plan, panels, *session, dir, info, st, encoded, movie->slow_frames,
+                              was_interrupted, pipeline.gl_renderer(), wall, movie_path);
   dir.commit();
   if (!o.quiet)
     print_recording(o, st, encoded, movie->last_t, wall, was_interrupted, pipeline.gl_renderer(), panels,

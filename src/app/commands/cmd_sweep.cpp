@@ -333,6 +333,78 @@ pid_t spawn_job(const Job& j, const fs::path& dir) {
   return spawn(j.argv, dir.string(), log);
 }
 
+// Run the jobs on `workers` processes: a worker per job, its output in logs/; a refusal by the health monitor
+// is counted, a failure named in `failures`; Ctrl-C is passed on to the workers (their finished runs stay).
+void run_jobs(const std::vector<Job>& jobs, const fs::path& dir, int workers, bool quiet, size_t done,
+              size_t total, size_t& refused, std::vector<std::string>& failures) {
+  install_interrupt_handler();
+  Progress progress("sweep", static_cast<double>(jobs.size()), !quiet);
+  std::map<pid_t, size_t> running;
+  size_t next = 0, finished = 0;
+  bool forwarded = false;
+  while (next < jobs.size() || !running.empty()) {
+    if (interrupted() && !forwarded) {
+      // Ctrl-C from a terminal reaches the workers already; a signal sent to the sweep alone is passed on.
+      for (const auto& [pid, job] : running) ::kill(pid, SIGINT);
+      forwarded = true;
+    }
+    while (!interrupted() && next < jobs.size() && static_cast<int>(running.size()) < workers) {
+      running[spawn_job(jobs[next], dir)] = next;
+      ++next;
+    }
+    int status = 0;
+    pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const size_t job_index = it->second;
+    const Job& j = jobs[job_index];
+    running.erase(it);
+    bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit
+    // 75) or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run
+    // again.
+    if (!ok && !interrupted() && fs::exists(dir / j.dir / "metadata.toml")) ok = true;
+    if (!ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 75) {
+      if (!quiet)
+        std::fprintf(stderr,
+                     "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n",
+                     j.dir.c_str());
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      if (fs::exists(dir / j.dir / "metadata.toml")) {
+        ok = true;
+      } else {
+        running[spawn_job(j, dir)] = job_index;  // the orphan may have died: try again
+        continue;
+      }
+    }
+    // Exit 3: the health monitor refused the realization and the run recorded it (--record-refusal).
+    const bool unstable = !ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 3 &&
+                          fs::exists(refused_marker(dir, j));
+    if (unstable) {
+      ++refused;
+      if (!quiet)
+        std::fprintf(stderr, "\nsiloscope: realization %s refused by the health monitor (recorded in %s)\n",
+                     j.dir.c_str(), refused_marker(dir, j).c_str());
+    } else if (!ok && !interrupted()) {
+      char log[64];
+      std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
+      failures.push_back(j.dir + " (exit " +
+                         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) +
+                         ", see " + (dir / log).string() + ")");
+      std::fprintf(stderr, "\nsiloscope: realization %s failed; the others go on\n", failures.back().c_str());
+    }
+    ++finished;
+    char extra[64];
+    std::snprintf(extra, sizeof extra, "%zu/%zu realizations", done + finished, total);
+    progress.update(static_cast<double>(finished), extra);
+  }
+  progress.finish();
+}
+
 int sweep(const SweepOptions& o) {
   Campaign c = load_campaign(o.campaign);
   const fs::path dir = fs::absolute(o.results.empty() ? fs::path("results") / c.name : fs::path(o.results));
@@ -369,73 +441,8 @@ int sweep(const SweepOptions& o) {
         "runs/*/*.refused.toml), %zu to run on %d workers -> %s\n",
         c.name.c_str(), c.points.size(), c.realizations, done, refused, jobs.size(), workers, dir.c_str());
 
-  install_interrupt_handler();
-  Progress progress("sweep", static_cast<double>(jobs.size()), !o.quiet);
-  std::map<pid_t, size_t> running;
   std::vector<std::string> failures;
-  size_t next = 0, finished = 0;
-  bool forwarded = false;
-  while (next < jobs.size() || !running.empty()) {
-    if (interrupted() && !forwarded) {
-      // Ctrl-C from a terminal reaches the workers already; a signal sent to the sweep alone is passed on.
-      for (const auto& [pid, job] : running) ::kill(pid, SIGINT);
-      forwarded = true;
-    }
-    while (!interrupted() && next < jobs.size() && static_cast<int>(running.size()) < workers) {
-      running[spawn_job(jobs[next], dir)] = next;
-      ++next;
-    }
-    int status = 0;
-    pid_t pid = ::waitpid(-1, &status, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    auto it = running.find(pid);
-    if (it == running.end()) continue;
-    const size_t job_index = it->second;
-    const Job& j = jobs[job_index];
-    running.erase(it);
-    bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit
-    // 75) or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run
-    // again.
-    if (!ok && !interrupted() && fs::exists(dir / j.dir / "metadata.toml")) ok = true;
-    if (!ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 75) {
-      if (!o.quiet)
-        std::fprintf(stderr,
-                     "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n",
-                     j.dir.c_str());
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
-      if (fs::exists(dir / j.dir / "metadata.toml")) {
-        ok = true;
-      } else {
-        running[spawn_job(j, dir)] = job_index;  // the orphan may have died: try again
-        continue;
-      }
-    }
-    // Exit 3: the health monitor refused the realization and the run recorded it (--record-refusal).
-    const bool unstable = !ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 3 &&
-                          fs::exists(refused_marker(dir, j));
-    if (unstable) {
-      ++refused;
-      if (!o.quiet)
-        std::fprintf(stderr, "\nsiloscope: realization %s refused by the health monitor (recorded in %s)\n",
-                     j.dir.c_str(), refused_marker(dir, j).c_str());
-    } else if (!ok && !interrupted()) {
-      char log[64];
-      std::snprintf(log, sizeof log, "logs/p%03zu_r%03d.log", j.point, j.index);
-      failures.push_back(j.dir + " (exit " +
-                         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) +
-                         ", see " + (dir / log).string() + ")");
-      std::fprintf(stderr, "\nsiloscope: realization %s failed; the others go on\n", failures.back().c_str());
-    }
-    ++finished;
-    char extra[64];
-    std::snprintf(extra, sizeof extra, "%zu/%zu realizations", done + finished, total);
-    progress.update(static_cast<double>(finished), extra);
-  }
-  progress.finish();
+  run_jobs(jobs, dir, workers, o.quiet, done, total, refused, failures);
   if (refused > 0)
     std::fprintf(
         stderr,
