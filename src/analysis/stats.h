@@ -39,6 +39,13 @@ struct SurvivalStep {
 // The Kaplan-Meier estimate of the survival of `samples`: the survival function of durations when some were
 // censored (the 5 s rule censors every clog at 5 s; the run's end censors the last one).
 std::vector<SurvivalStep> kaplan_meier(std::vector<Duration> samples);
+// The two-sample Kolmogorov-Smirnov distance: the largest gap between the empirical distributions of `a` and
+// `b` (NaN when either is empty).
+double ks_distance(std::vector<double> a, std::vector<double> b);
+// The distance two samples of sizes n and m of one distribution exceed 5% of the time (asymptotic, 1.358
+// sqrt((n + m) / (n m))).
+double ks_critical_95(size_t n, size_t m);
+
 // S(t) of an estimate (a step function, right-continuous).
 double survival_at(const std::vector<SurvivalStep>& km, double t);
 

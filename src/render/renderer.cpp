@@ -45,10 +45,6 @@ GLuint link(const char* vs, const char* fs, const char* name) {
   return p;
 }
 
-void copy(float* dst, Rgba c) {
-  dst[0] = c.r, dst[1] = c.g, dst[2] = c.b, dst[3] = c.a;
-}
-
 // Attribute `loc` of `count` floats at `offset` in instances of `stride` bytes, advancing once per instance.
 void instance_attrib(GLuint loc, int count, size_t stride, size_t offset) {
   glEnableVertexAttribArray(loc);
@@ -73,10 +69,10 @@ Renderer::Renderer() {
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindBuffer(GL_ARRAY_BUFFER, disk_vbo_);
-  instance_attrib(1, 3, sizeof(DiskInstance), offsetof(DiskInstance, x));
-  instance_attrib(2, 4, sizeof(DiskInstance), offsetof(DiskInstance, fill));
-  instance_attrib(3, 4, sizeof(DiskInstance), offsetof(DiskInstance, halo));
-  instance_attrib(4, 4, sizeof(DiskInstance), offsetof(DiskInstance, shape));
+  instance_attrib(1, 3, sizeof(ShapeInstance), offsetof(ShapeInstance, x));
+  instance_attrib(2, 4, sizeof(ShapeInstance), offsetof(ShapeInstance, fill));
+  instance_attrib(3, 4, sizeof(ShapeInstance), offsetof(ShapeInstance, halo));
+  instance_attrib(4, 4, sizeof(ShapeInstance), offsetof(ShapeInstance, shape));
 
   glGenVertexArrays(1, &segment_vao_);
   glGenBuffers(1, &segment_vbo_);
@@ -104,72 +100,17 @@ Renderer::~Renderer() {
 
 void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const std::vector<View>& views,
                     const Style& style, int w, int h, const ArchStyle& arch) {
-  // Instances in world units, shared by all views.
-  disks_.clear();
-  disks_.reserve(frame.particles.size());
-  std::vector<bool> member(frame.particles.size(), false);
-  const bool show_arch = style.show_arch && !frame.arch.empty();
-  const float arch_alpha = frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
-  if (show_arch)
-    for (int id : frame.arch) member[id] = true;
-  Rgba halo = arch_color(style.palette);
-  // Circumradius over equal-area radius of each polygon (0-2: a disk).
-  float extent[9];
-  for (int k = 0; k < 9; ++k) extent[k] = static_cast<float>(core::polygon_extent(k));
-  for (size_t i = 0; i < frame.particles.size(); ++i) {
-    const auto& p = frame.particles[i];
-    const int sides = p.sides <= 8 ? p.sides : 0;
-    DiskInstance d{p.x, p.y, p.radius * extent[sides], {}, {}, {p.angle, static_cast<float>(sides), 0, 0}};
-    copy(d.fill, particle_color(style, p));
-    copy(d.halo, member[i] ? Rgba{halo.r, halo.g, halo.b, arch_alpha} : Rgba{0, 0, 0, 0});
-    disks_.push_back(d);
-  }
-  // The container where it is now: a vibrating container carries its walls and obstacle along.
-  const float ox = static_cast<float>(frame.container_x), oy = static_cast<float>(frame.container_y);
-  walls_.clear();
-  const Rgba wc = wall_color(style.palette);
-  for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft,
-                       core::Wall::SiloRight, core::Wall::Top}) {
-    const auto& s = geo.walls[static_cast<int>(k)];
-    SegmentInstance seg{static_cast<float>(s.a.x) + ox,
-                        static_cast<float>(s.a.y) + oy,
-                        static_cast<float>(s.b.x) + ox,
-                        static_cast<float>(s.b.y) + oy,
-                        {},
-                        0};
-    copy(seg.color, wc);
-    walls_.push_back(seg);
-  }
-  if (geo.obstacle.present()) {
-    const core::Obstacle& ob = geo.obstacle;
-    const float cx = static_cast<float>(ob.centre.x) + ox, cy = static_cast<float>(ob.centre.y) + oy;
-    const float hw = static_cast<float>(0.5 * ob.width), hh = static_cast<float>(0.5 * ob.height);
-    DiskInstance d{cx, cy, std::hypot(hw, hh), {}, {}, {0, 0, 0, 0}};
-    if (ob.kind == core::Obstacle::Kind::Disk)
-      d.r = hw;
-    else
-      d.shape[1] = 100, d.shape[2] = hw, d.shape[3] = hh;
-    copy(d.fill, wc);
-    disks_.push_back(d);
-  }
-  bonds_.clear();
-  if (show_arch) {
-    for (size_t k = 0; k + 1 < frame.arch.size(); ++k) {
-      const auto& a = frame.particles[frame.arch[k]];
-      const auto& b = frame.particles[frame.arch[k + 1]];
-      // Neighbours in the arch that do not touch lean on an obstacle between them: no bond across it.
-      const float reach = 1.05f * (a.radius * extent[a.sides <= 8 ? a.sides : 0] +
-                                   b.radius * extent[b.sides <= 8 ? b.sides : 0]);
-      if (std::hypot(a.x - b.x, a.y - b.y) > reach) continue;
-      SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
-      copy(seg.color, Rgba{0.1f, 0.1f, 0.1f, arch_alpha});
-      bonds_.push_back(seg);
-    }
-  }
+  paint(build_draw_list(frame, geo, style, arch), views, style, w, h);
+}
 
+void Renderer::paint(const DrawList& list, const std::vector<View>& views, const Style& style, int w, int h) {
+  disks_ = list.shapes;
+  walls_ = list.walls;
+  bonds_ = list.bonds;
+  halo_m_ = list.halo_m;
+  bond_m_ = list.bond_m;
+  wall_m_ = list.wall_m;
   // Draws into whatever framebuffer the caller bound (an off-screen Target, or a window's).
-  halo_m_ = static_cast<float>(arch.halo_m);
-  bond_m_ = static_cast<float>(arch.bond_m);
   glViewport(0, 0, w, h);
   glDisable(GL_SCISSOR_TEST);
   const Rgba bg = background_color(style);
@@ -180,7 +121,7 @@ void Renderer::draw(const core::Frame& frame, const core::Geometry& geo, const s
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glBindBuffer(GL_ARRAY_BUFFER, disk_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(disks_.size() * sizeof(DiskInstance)), disks_.data(),
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(disks_.size() * sizeof(ShapeInstance)), disks_.data(),
                GL_STREAM_DRAW);
   for (const auto& v : views) draw_view(v, h);
   glDisable(GL_SCISSOR_TEST);

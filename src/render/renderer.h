@@ -9,15 +9,10 @@
 #include "core/frame.h"
 #include "core/geometry.h"
 #include "render/camera.h"
+#include "render/draw_list.h"
 #include "render/palette.h"
 
 namespace render {
-
-struct ArchStyle {
-  double fade_below = 0.5;  // s; while the outlet has flowed more recently than this, the arch is drawn faint
-  double halo_m = 0.012;    // halo width, m (at least 2 px)
-  double bond_m = 0.012;    // bond width, m (at least 2 px)
-};
 
 class Renderer {
  public:
@@ -26,26 +21,17 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Clears the w x h framebuffer and draws every view.
+  // Clears the w x h framebuffer and draws every view: build_draw_list, then paint.
   void draw(const core::Frame& frame, const core::Geometry& geo, const std::vector<View>& views,
             const Style& style, int w, int h, const ArchStyle& arch = {});
+  // Paints a draw list in every view (the second stage; the style gives the background and palette).
+  void paint(const DrawList& list, const std::vector<View>& views, const Style& style, int w, int h);
 
  private:
-  struct DiskInstance {
-    float x, y, r;  // m: centre, bounding radius
-    float fill[4];
-    float halo[4];
-    float shape[4];  // angle (rad), sides (0 disk, 3-8 polygon, 100 box), box half width and height (m)
-  };
-  struct SegmentInstance {
-    float ax, ay, bx, by;
-    float color[4];
-    float width_px;
-  };
   void draw_view(const View& v, int image_h);
   unsigned disk_program_ = 0, segment_program_ = 0;
   unsigned quad_vbo_ = 0, disk_vao_ = 0, disk_vbo_ = 0, segment_vao_ = 0, segment_vbo_ = 0;
-  std::vector<DiskInstance> disks_;
+  std::vector<ShapeInstance> disks_;
   std::vector<SegmentInstance> walls_, bonds_;
   float halo_m_ = 0.012f, bond_m_ = 0.012f, wall_m_ = 0.012f;
 };

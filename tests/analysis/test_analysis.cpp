@@ -238,3 +238,27 @@ TEST_CASE("with several kick strengths, Q~/Q_p compares each point with the pure
   CHECK_THAT(csv,
              Catch::Matchers::Contains("kick_dv_over_sqrt_g_ro") && Catch::Matchers::Contains("q_p_per_s"));
 }
+
+TEST_CASE("Kolmogorov-Smirnov distance and its 5% critical value", "[analysis]") {
+  CHECK(analysis::ks_distance({1, 2, 3}, {1, 2, 3}) == 0.0);
+  CHECK(analysis::ks_distance({1, 2, 3}, {4, 5, 6}) == 1.0);
+  // F_a jumps to 0.5 at 1, F_b is still 0 until 2: the largest gap is 0.5.
+  CHECK(analysis::ks_distance({1, 3}, {2, 4}) == Approx(0.5));
+  CHECK(std::isnan(analysis::ks_distance({}, {1.0})));
+  CHECK(analysis::ks_critical_95(100, 100) == Approx(1.358 * std::sqrt(200.0 / 10000)));
+}
+
+TEST_CASE("Kaplan-Meier survival: the empirical survival without censoring, by hand with it", "[analysis]") {
+  // No censoring: S(t) = the fraction of durations longer than t.
+  auto km = analysis::kaplan_meier({{1, true}, {2, true}, {3, true}, {4, true}});
+  CHECK(analysis::survival_at(km, 0.5) == 1.0);
+  CHECK(analysis::survival_at(km, 2.0) == Approx(0.5));
+  CHECK(analysis::survival_at(km, 4.0) == 0.0);
+  // 1 event, 2 censored at 2 (still at risk just before 2), 1 event at 3: S(1) = 3/4, S(3) = 3/4 * 0 = 0
+  // after the last one at risk goes.
+  km = analysis::kaplan_meier({{1, true}, {2, false}, {2, false}, {3, true}});
+  CHECK(analysis::survival_at(km, 1.5) == Approx(0.75));
+  CHECK(analysis::survival_at(km, 2.5) == Approx(0.75));  // censoring drops the risk set, not S
+  CHECK(analysis::survival_at(km, 3.0) == Approx(0.0));
+  for (const auto& s : km) CHECK((s.lo <= s.s && s.s <= s.hi));
+}

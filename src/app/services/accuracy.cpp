@@ -112,24 +112,4 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   return std::abs(energy() - e0) / e0;
 }
 
-double ks_distance(std::vector<double> a, std::vector<double> b) {
-  if (a.empty() || b.empty()) return NAN;
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  size_t i = 0, j = 0;
-  double d = 0;
-  while (i < a.size() && j < b.size()) {
-    const double x = std::min(a[i], b[j]);
-    while (i < a.size() && a[i] <= x) ++i;
-    while (j < b.size() && b[j] <= x) ++j;
-    d = std::max(d, std::abs(static_cast<double>(i) / a.size() - static_cast<double>(j) / b.size()));
-  }
-  return d;
-}
-
-double ks_critical_95(size_t n, size_t m) {
-  if (n == 0 || m == 0) return NAN;
-  return 1.358 * std::sqrt(static_cast<double>(n + m) / (static_cast<double>(n) * static_cast<double>(m)));
-}
-
 }  // namespace app

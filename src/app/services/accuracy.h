@@ -2,6 +2,8 @@
 // continuous collision, dipole cutoff) over several realizations and measure what the setting costs and buys.
 #pragma once
 
+#include "analysis/stats.h"
+
 #include <string>
 #include <vector>
 
@@ -9,6 +11,9 @@
 #include "core/scene.h"
 
 namespace app {
+
+using analysis::ks_critical_95;
+using analysis::ks_distance;
 
 struct NumericSetting {
   std::string name;
@@ -40,13 +45,5 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
 // gravity, no kicks) over `seconds` or until a disk nears a wall, integrated at `setting`; the dipole sets
 // the energy.
 double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting, double seconds);
-
-// Two-sample Kolmogorov-Smirnov distance sup |F_a - F_b|.
-double ks_distance(std::vector<double> a, std::vector<double> b);
-
-// The distance two samples of sizes n and m drawn from one distribution exceed with probability 5%
-// (asymptotic two-sample KS, c(0.05) = 1.358): a KS distance below it cannot tell the two apart. NaN if
-// either is empty.
-double ks_critical_95(size_t n, size_t m);
 
 }  // namespace app

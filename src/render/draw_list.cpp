@@ -1,0 +1,79 @@
+#include "render/draw_list.h"
+
+#include <cmath>
+
+namespace render {
+
+namespace {
+void copy(float* dst, Rgba c) {
+  dst[0] = c.r, dst[1] = c.g, dst[2] = c.b, dst[3] = c.a;
+}
+}  // namespace
+
+DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
+                         const ArchStyle& arch) {
+  DrawList out;
+  out.halo_m = static_cast<float>(arch.halo_m);
+  out.bond_m = static_cast<float>(arch.bond_m);
+  out.shapes.reserve(frame.particles.size() + 1);
+  std::vector<bool> member(frame.particles.size(), false);
+  const bool show_arch = style.show_arch && !frame.arch.empty();
+  const float arch_alpha = frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
+  if (show_arch)
+    for (int id : frame.arch) member[static_cast<size_t>(id)] = true;
+  const Rgba halo = arch_color(style.palette);
+  // Circumradius over equal-area radius of each polygon (0-2: a disk).
+  float extent[9];
+  for (int k = 0; k < 9; ++k) extent[k] = static_cast<float>(core::polygon_extent(k));
+  for (size_t i = 0; i < frame.particles.size(); ++i) {
+    const auto& p = frame.particles[i];
+    const int sides = p.sides <= 8 ? p.sides : 0;
+    ShapeInstance d{p.x, p.y, p.radius * extent[sides], {}, {}, {p.angle, static_cast<float>(sides), 0, 0}};
+    copy(d.fill, particle_color(style, p));
+    copy(d.halo, member[i] ? Rgba{halo.r, halo.g, halo.b, arch_alpha} : Rgba{0, 0, 0, 0});
+    out.shapes.push_back(d);
+  }
+  // The container where it is now: a vibrating container carries its walls and obstacle along.
+  const float ox = static_cast<float>(frame.container_x), oy = static_cast<float>(frame.container_y);
+  const Rgba wc = wall_color(style.palette);
+  for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft,
+                       core::Wall::SiloRight, core::Wall::Top}) {
+    const auto& s = geo.walls[static_cast<int>(k)];
+    SegmentInstance seg{static_cast<float>(s.a.x) + ox,
+                        static_cast<float>(s.a.y) + oy,
+                        static_cast<float>(s.b.x) + ox,
+                        static_cast<float>(s.b.y) + oy,
+                        {},
+                        0};
+    copy(seg.color, wc);
+    out.walls.push_back(seg);
+  }
+  if (geo.obstacle.present()) {
+    const core::Obstacle& ob = geo.obstacle;
+    const float cx = static_cast<float>(ob.centre.x) + ox, cy = static_cast<float>(ob.centre.y) + oy;
+    const float hw = static_cast<float>(0.5 * ob.width), hh = static_cast<float>(0.5 * ob.height);
+    ShapeInstance d{cx, cy, std::hypot(hw, hh), {}, {}, {0, 0, 0, 0}};
+    if (ob.kind == core::Obstacle::Kind::Disk)
+      d.r = hw;
+    else
+      d.shape[1] = 100, d.shape[2] = hw, d.shape[3] = hh;
+    copy(d.fill, wc);
+    out.shapes.push_back(d);
+  }
+  if (show_arch) {
+    for (size_t k = 0; k + 1 < frame.arch.size(); ++k) {
+      const auto& a = frame.particles[static_cast<size_t>(frame.arch[k])];
+      const auto& b = frame.particles[static_cast<size_t>(frame.arch[k + 1])];
+      // Neighbours in the arch that do not touch lean on an obstacle between them: no bond across it.
+      const float reach = 1.05f * (a.radius * extent[a.sides <= 8 ? a.sides : 0] +
+                                   b.radius * extent[b.sides <= 8 ? b.sides : 0]);
+      if (std::hypot(a.x - b.x, a.y - b.y) > reach) continue;
+      SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
+      copy(seg.color, Rgba{0.1f, 0.1f, 0.1f, arch_alpha});
+      out.bonds.push_back(seg);
+    }
+  }
+  return out;
+}
+
+}  // namespace render

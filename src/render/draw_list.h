@@ -1,0 +1,48 @@
+// What will be drawn, built from a frame in one stage and painted by the Renderer in the next (as MuJoCo's
+// mjv_updateScene fills an mjvScene that mjr_render paints): every grain as a shape instance with its fill
+// and halo, the walls and the arch's bonds as segments, all in world units. Pure data, no GL: it can be
+// built, tested and extended (force chains, trails) without a context.
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+#include "core/geometry.h"
+#include "render/palette.h"
+
+namespace render {
+
+struct ArchStyle {
+  double fade_below = 0.5;  // s; while the outlet has flowed more recently than this, the arch is drawn faint
+  double halo_m = 0.012;    // halo width, m (at least 2 px)
+  double bond_m = 0.012;    // bond width, m (at least 2 px)
+};
+
+// One shape: a disk, a regular polygon or an axis-aligned box (the obstacle). Laid out as the shader reads
+// it.
+struct ShapeInstance {
+  float x, y, r;   // m: centre, bounding radius
+  float fill[4];   // straight alpha
+  float halo[4];   // alpha 0: no halo
+  float shape[4];  // angle (rad), sides (0 disk, 3-8 polygon, 100 box), box half width and height (m)
+};
+
+// A segment with round caps; width in metres (drawn at least a few pixels wide).
+struct SegmentInstance {
+  float ax, ay, bx, by;
+  float color[4];
+  float width_px;  // set per view by the renderer from `width_m`
+};
+
+struct DrawList {
+  std::vector<ShapeInstance> shapes;   // grains, then the obstacle
+  std::vector<SegmentInstance> walls;  // drawn under the grains
+  std::vector<SegmentInstance> bonds;  // drawn over them
+  float wall_m = 0.012f, bond_m = 0.012f, halo_m = 0.012f;
+};
+
+// The draw list of a frame in its container, as the style says.
+DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
+                         const ArchStyle& arch = {});
+
+}  // namespace render
