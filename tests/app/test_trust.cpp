@@ -200,32 +200,6 @@ TEST_CASE("scene and campaign readers accept only regular files of bounded size"
   CHECK_THAT(r.output, Catch::Matchers::Contains("is a directory"));
 }
 
-TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame number", "[trust][io]") {
-  fs::path d = temp_dir("traj_nan");
-  REQUIRE(cli("run " + kScene + kShort + " --trajectory-fps 10 --out " + (d / "r").string()).code == 0);
-  const std::string path = (d / "r" / "trajectory.sstraj").string();
-  std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  io::Trajectory good(data, "good");
-  REQUIRE(good.size() >= 5);
-  // The y coordinate of particle 3 in frame 4 (frames follow the header; see docs/trajectory.md).
-  const size_t n = good.info().n_particles,
-               fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
-  const size_t header = data.size() - fb * static_cast<size_t>(good.size());
-  const size_t at = header + 4 * fb + 40 + 4 * io::kTrajectoryMaxArch + 4 * (n + 3);
-  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
-    std::vector<unsigned char> broken = data;
-    std::memcpy(&broken[at], &bad, 4);
-    try {
-      io::Trajectory t(broken, "broken.sstraj");
-      FAIL("a non-finite coordinate was accepted");
-    } catch (const std::exception& e) {
-      CHECK_THAT(e.what(),
-                 Catch::Matchers::Contains("frame 4") && Catch::Matchers::Contains("y of particle 3"));
-    }
-  }
-}
-
 TEST_CASE("metadata round-trips any output path, quotes included", "[trust][app]") {
   fs::path d = temp_dir("quote_path");
   const fs::path odd = d / "a \"quoted\" \\ name";

@@ -122,65 +122,6 @@ TEST_CASE("contacts rebuilt from positions match the geometry", "[arch]") {
   CHECK(g.neighbours[2].empty());
 }
 
-namespace {
-// Three original disks in an arch over the aperture, loaded by two more resting on it (an unloaded 3-disk
-// arch rolls off the walls; with a load it holds, as in a real column). Kicks off.
-struct StagedArch {
-  core::Scene scene;
-  std::unique_ptr<sim::Hopper> hopper;
-  double y_top = 0;
-  StagedArch() {
-    core::apply_overrides(scene, {"n_total=5", "chi=0", "settle_time=0", "kick_impulse_max=0"});
-    hopper = std::make_unique<sim::Hopper>(scene);
-    const auto& g = hopper->geometry();
-    const double r = scene.radius_original, ya = 0.12;
-    const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());
-    core::Vec2 a{-x0, ya}, b{0, ya + std::sqrt(4 * r * r - x0 * x0) + 1e-4}, c{x0, ya};
-    y_top = b.y;
-    auto above = [r](core::Vec2 p, core::Vec2 q) {
-      core::Vec2 m = 0.5 * (p + q), d = q - p;
-      double len = core::length(d), h = std::sqrt(4 * r * r - 0.25 * len * len) + 1e-4;
-      return m + h * core::Vec2{-d.y / len, d.x / len};
-    };
-    hopper->place(0, a);
-    hopper->place(1, b);
-    hopper->place(2, c);
-    hopper->place(3, above(a, b));
-    hopper->place(4, above(b, c));
-  }
-};
-}  // namespace
-
-TEST_CASE("a real Box2D arch of 3 disks holds under gravity and is detected", "[arch][sim]") {
-  StagedArch s;
-  s.hopper->advance_to(2.0);
-  auto p = s.hopper->positions();
-  CHECK(std::abs(p[1].y - s.y_top) < 1e-3);  // the keystone has not moved by a millimetre
-  CHECK(s.hopper->events().exits.empty());
-  CHECK(s.hopper->current_arch() == std::vector<int>{0, 1, 2});
-  CHECK(s.hopper->frame(true).arch == std::vector<int>{0, 1, 2});
-}
-
-TEST_CASE("the clog rule fires at clog_timeout, removes exactly the arch and re-injects it", "[arch][sim]") {
-  StagedArch s;
-  auto& h = *s.hopper;
-  while (h.events().arches.empty() && h.time() < 6.0) h.step();
-  REQUIRE(h.events().arches.size() == 1);
-  const auto& ev = h.events().arches[0];
-  CHECK(ev.t == Approx(s.scene.clog_timeout).margin(s.scene.dt));
-  CHECK(ev.clog_duration == Approx(5.0).margin(s.scene.dt));
-  CHECK(ev.ids == std::vector<int>{0, 1, 2});
-  CHECK(ev.method == core::ArchMethod::ContactPath);
-  CHECK(ev.geometry.span > 0.3);
-  auto p = h.positions();
-  for (int id : {0, 1, 2}) CHECK(p[id].y > 0.4);  // re-injected above the (tiny) column
-  for (int id : {3, 4}) CHECK(p[id].y < 0.4);     // the load stayed where it was
-  h.finish();
-  REQUIRE(h.events().clogs.size() >= 1);
-  CHECK(h.events().clogs[0].ended_by == core::ClogEnd::Rule);
-  CHECK(h.events().clogs[0].arrested);
-}
-
 TEST_CASE("an obstacle supports an arch: a path may pass through it without counting it as a grain",
           "[arch]") {
   // Left wall - 0 - 1 | obstacle | 2 - 3 - right wall; 1 and 2 touch the obstacle, not each other. Above, a

@@ -7,35 +7,15 @@
 
 #include "analysis/measure.h"
 #include "core/geometry.h"
+#include "fixtures.h"
 #include "sim/clog.h"
 #include "sim/hopper.h"
 
 namespace {
-// Three original disks in an arch over the aperture, loaded by two more (as in tests/test_arch.cpp), kicks
-// off until the clog has been arrested; then kicks of the given strength.
-struct KickedArch {
-  core::Scene scene;
-  std::unique_ptr<sim::Hopper> hopper;
-  explicit KickedArch(std::uint64_t seed) {
-    core::apply_overrides(scene, {"n_total=5", "chi=0", "settle_time=0", "kick_impulse_max=0"});
-    scene.seed = seed;
-    hopper = std::make_unique<sim::Hopper>(scene);
-    const auto& g = hopper->geometry();
-    const double r = scene.radius_original, ya = 0.12;
-    const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());
-    core::Vec2 a{-x0, ya}, b{0, ya + std::sqrt(4 * r * r - x0 * x0) + 1e-4}, c{x0, ya};
-    auto above = [r](core::Vec2 p, core::Vec2 q) {
-      core::Vec2 m = 0.5 * (p + q), d = q - p;
-      double len = core::length(d), h = std::sqrt(4 * r * r - 0.25 * len * len) + 1e-4;
-      return m + h * core::Vec2{-d.y / len, d.x / len};
-    };
-    hopper->place(0, a);
-    hopper->place(1, b);
-    hopper->place(2, c);
-    hopper->place(3, above(a, b));
-    hopper->place(4, above(b, c));
-  }
-  // Hold still for one second (ten kick checks), then kick with `impulse` until the clog ends.
+// The staged arch of tests/fixtures.h, held still for a second (ten kick checks), then kicked with `impulse`
+// until the clog ends.
+struct KickedArch : test::StagedArch {
+  explicit KickedArch(std::uint64_t seed) : StagedArch(seed) {}
   const core::ClogEvent& run(double impulse) {
     hopper->advance_to(1.0);
     hopper->set_kick_impulse_max(impulse);

@@ -13,6 +13,7 @@
 
 #include "app/services/inspect_files.h"
 #include "core/error.h"
+#include "fixtures.h"
 #include "helpers.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
@@ -35,37 +36,6 @@ fs::path temp_dir(const std::string& name) {
   return test::temp_dir("ui_" + name);
 }
 
-core::Scene two_disk_scene() {
-  core::Scene s;
-  core::apply_overrides(s, {"n_total=2", "chi=0.5"});
-  return s;
-}
-
-// Five frames: an original disk moving right along y = 0.5 (x = -0.2 + 0.1 k), an added disk resting at
-// (0.2, 0.8). Frames 2 and 3 are clogged (timer >= 0.5 s) and hold the arch [0, 1].
-fs::path synthetic_trajectory(const fs::path& dir) {
-  core::Scene s = two_disk_scene();
-  io::TrajectoryInfo info;
-  info.n_particles = 2;
-  info.frame_interval = 1.0 / 30;
-  info.radius = {0.065f, 0.026f};
-  info.species = {core::Species::Original, core::Species::Added};
-  info.metadata = io::metadata_toml(s, {"test", {}, {}});
-  fs::path p = dir / "trajectory.sstraj";
-  io::TrajectoryWriter w(p, info);
-  for (int k = 0; k < 5; ++k) {
-    core::Frame f;
-    f.t = k / 30.0;
-    f.particles = {{static_cast<float>(-0.2 + 0.1 * k), 0.5f, 0, 0, 0, 0.065f, 0, core::Species::Original},
-                   {0.2f, 0.8f, 0, 0, 0, 0.026f, 0, core::Species::Added}};
-    f.since_last_exit = (k == 2 || k == 3) ? 1.0 + k : 0.0;
-    if (k >= 2 && k <= 3) f.arch = {0, 1};
-    w.add(f, k == 4 ? 1 : 0);
-  }
-  w.close();
-  return p;
-}
-
 struct Png {
   int w = 0, h = 0;
   std::vector<unsigned char> px;
@@ -85,49 +55,22 @@ bool near(const unsigned char* px, render::Rgba c, int tol = 10) {
          std::abs(px[2] - c.b * 255) <= tol;
 }
 
+core::Scene two_disk_scene() {
+  core::Scene s;
+  core::apply_overrides(s, {"n_total=2", "chi=0.5"});
+  return s;
+}
+
 render::OffscreenContext& gl() {
   static render::OffscreenContext ctx;
   return ctx;
 }
 }  // namespace
 
-TEST_CASE(
-    "trajectories round-trip, a cut-off file reads up to its last whole frame, foreign files are refused",
-    "[ui]") {
-  fs::path d = temp_dir("traj");
-  fs::path p = synthetic_trajectory(d);
-  io::Trajectory t(p);
-  REQUIRE(t.size() == 5);
-  CHECK_FALSE(t.truncated());
-  CHECK(t.frame(3).particles[0].x == Approx(0.1f));
-  CHECK(t.frame(3).arch == std::vector<int>{0, 1});
-  CHECK(t.frame(1).particles[1].species == core::Species::Added);
-  CHECK(t.long_arches(4) == 1);
-  // Cut it in the middle of frame 3.
-  const auto size = fs::file_size(p);
-  fs::resize_file(p, size - io::TrajectoryWriter::frame_bytes(2) - 100);
-  io::Trajectory cut(p);
-  CHECK(cut.size() == 3);
-  CHECK(cut.truncated());
-  std::ofstream(d / "foreign.sstraj") << "this is not a trajectory at all, just text";
-  CHECK_THROWS_WITH(io::Trajectory(d / "foreign.sstraj"), Contains("not a siloscope trajectory"));
-  CHECK_THROWS_WITH(io::Trajectory(d / "missing.sstraj"), Contains("cannot open"));
-  // A header whose frame interval is zero would make playback divide by zero: refused.
-  {
-    std::vector<unsigned char> bytes;
-    std::ifstream in(p, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    std::fill(bytes.begin() + 32, bytes.begin() + 40, 0);
-    CHECK_THROWS_WITH(io::Trajectory(bytes, "zero.sstraj"), Contains("out of range"));
-  }
-  fs::resize_file(p, 40);
-  CHECK_THROWS_AS(io::Trajectory(p), core::InputError);
-}
-
 TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   gl();
   fs::path d = temp_dir("script");
-  io::Trajectory t(synthetic_trajectory(d));
+  io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
   ui::Inspector insp(frames, two_disk_scene(), &files);
@@ -162,7 +105,7 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
 TEST_CASE("script errors name the line, frames out of range are refused", "[ui]") {
   gl();
   fs::path d = temp_dir("script_err");
-  io::Trajectory t(synthetic_trajectory(d));
+  io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
   ui::Inspector insp(frames, two_disk_scene(), &files);
@@ -182,7 +125,7 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
           "[ui]") {
   gl();
   fs::path d = temp_dir("names");
-  io::Trajectory t(synthetic_trajectory(d));
+  io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
   ui::Inspector insp(frames, two_disk_scene(), &files);
@@ -215,7 +158,7 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
 TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a slider zooms", "[ui]") {
   gl();
   fs::path d = temp_dir("panels");
-  io::Trajectory t(synthetic_trajectory(d));
+  io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
   ui::Inspector insp(frames, two_disk_scene(), &files);

@@ -78,7 +78,7 @@ TEST_CASE("health: time steps the integration cannot survive are refused with th
   CHECK(h.health_warnings() >= 1);
 }
 
-TEST_CASE("health: the default scene runs 150 s without a single warning", "[sim][health]") {
+TEST_CASE("health: the default scene runs 150 s without a single warning", "[sim][health][slow]") {
   core::Scene s;
   s.unsafe = true;  // count instead of stopping, so the assertion sees every problem
   sim::Hopper h(s);

@@ -1,0 +1,83 @@
+// Trajectory files (io/trajectory.h): written, read back, cut off, corrupted, foreign.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "fixtures.h"
+#include "helpers.h"
+#include "io/metadata.h"
+#include "io/trajectory.h"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using test::cli;
+using test::kScene;
+
+namespace {
+const std::string kShort = " --duration 1 --set settle_time=2 --quiet";
+fs::path temp_dir(const std::string& name) {
+  return test::temp_dir("io_" + name);
+}
+}  // namespace
+
+TEST_CASE(
+    "trajectories round-trip, a cut-off file reads up to its last whole frame, foreign files are refused",
+    "[io]") {
+  fs::path d = temp_dir("traj");
+  fs::path p = test::synthetic_trajectory(d);
+  io::Trajectory t(p);
+  REQUIRE(t.size() == 5);
+  CHECK_FALSE(t.truncated());
+  CHECK(t.frame(3).particles[0].x == Approx(0.1f));
+  CHECK(t.frame(3).arch == std::vector<int>{0, 1});
+  CHECK(t.frame(1).particles[1].species == core::Species::Added);
+  CHECK(t.long_arches(4) == 1);
+  // Cut it in the middle of frame 3.
+  const auto size = fs::file_size(p);
+  fs::resize_file(p, size - io::TrajectoryWriter::frame_bytes(2) - 100);
+  io::Trajectory cut(p);
+  CHECK(cut.size() == 3);
+  CHECK(cut.truncated());
+  std::ofstream(d / "foreign.sstraj") << "this is not a trajectory at all, just text";
+  CHECK_THROWS_WITH(io::Trajectory(d / "foreign.sstraj"), Contains("not a siloscope trajectory"));
+  CHECK_THROWS_WITH(io::Trajectory(d / "missing.sstraj"), Contains("cannot open"));
+  // A header whose frame interval is zero would make playback divide by zero: refused.
+  {
+    std::vector<unsigned char> bytes;
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    std::fill(bytes.begin() + 32, bytes.begin() + 40, 0);
+    CHECK_THROWS_WITH(io::Trajectory(bytes, "zero.sstraj"), Contains("out of range"));
+  }
+  fs::resize_file(p, 40);
+  CHECK_THROWS_AS(io::Trajectory(p), core::InputError);
+}
+
+TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame number", "[trust][io]") {
+  fs::path d = temp_dir("traj_nan");
+  REQUIRE(cli("run " + kScene + kShort + " --trajectory-fps 10 --out " + (d / "r").string()).code == 0);
+  const std::string path = (d / "r" / "trajectory.sstraj").string();
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  io::Trajectory good(data, "good");
+  REQUIRE(good.size() >= 5);
+  // The y coordinate of particle 3 in frame 4 (frames follow the header; see docs/trajectory.md).
+  const size_t n = good.info().n_particles,
+               fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
+  const size_t header = data.size() - fb * static_cast<size_t>(good.size());
+  const size_t at = header + 4 * fb + 40 + 4 * io::kTrajectoryMaxArch + 4 * (n + 3);
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    std::vector<unsigned char> broken = data;
+    std::memcpy(&broken[at], &bad, 4);
+    try {
+      io::Trajectory t(broken, "broken.sstraj");
+      FAIL("a non-finite coordinate was accepted");
+    } catch (const std::exception& e) {
+      CHECK_THAT(e.what(),
+                 Catch::Matchers::Contains("frame 4") && Catch::Matchers::Contains("y of particle 3"));
+    }
+  }
+}
