@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/physics.h"
 #include "sim/dipole.h"
+#include "sim/hopper_internal.h"
 #include "sim/kicks.h"
 
 // The metadata states the contact slop as 0.005 Box2D units (io/metadata.cpp); fail the build if this Box2D
@@ -21,24 +22,13 @@ static_assert(b2_linearSlop == 0.005f && b2_lengthUnitsPerMeter == 1.0f,
 namespace sim {
 
 namespace {
-std::string fmt4(double v) {
-  return core::format_g(v, 4);
-}
-// Fixture user data: particle id + 1, or kWallTag + wall index.
-constexpr std::uintptr_t kWallTag = 1u << 30;
-// Overlap (fraction of the smaller radius of a pair) past which the integration is considered broken.
-constexpr double kMaxOverlapFraction = 0.5;
+using internal::decode;
+using internal::fmt4;
+using internal::kWallTag;
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Decode a fixture: particle id (>= 0), or -1 - wall index.
-int decode(const b2Fixture* f) {
-  std::uintptr_t u = const_cast<b2Fixture*>(f)->GetUserData().pointer;
-  if (u >= kWallTag) return -1 - static_cast<int>(u - kWallTag);
-  return static_cast<int>(u) - 1;
 }
 }  // namespace
 
@@ -178,11 +168,6 @@ void Hopper::set_velocity(int id, core::Vec2 v) {
   bodies_[id]->SetLinearVelocity(b2Vec2(static_cast<float>(v.x * L_), static_cast<float>(v.y * L_)));
 }
 
-void Hopper::check_health() {
-  for (int i = 0; i < particle_count(); ++i) check_health_fast(i, pos(i), vel(i));
-  check_overlaps();
-}
-
 void Hopper::apply_kicks() {
   draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
@@ -259,76 +244,6 @@ void Hopper::step() {
 
 void Hopper::advance_to(double t) {
   while (t_ < t - 0.01 * scene_.dt) step();
-}
-
-void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
-  const char* cause = nullptr;
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) || !std::isfinite(v.y))
-    cause = "a non-finite position or velocity";
-  else if (p.y > (open_ ? geo_.total_height : deposit_height_) + extent_[id] ||
-           (p.y > 0 && (p.x < geo_.left_at(p.y) - extent_[id] || p.x > geo_.right_at(p.y) + extent_[id])))
-    cause = "a grain outside the container";
-  else if (core::length(v) > 10.0 * (std::sqrt(2.0 * scene_.gravity * geo_.total_height) + 1.0 +
-                                     setup_.drive.amplitude * setup_.drive.omega))
-    cause = "a grain faster than 10x (the free-fall speed from the top + 1 m/s)";
-  if (!cause) return;
-  std::ostringstream o;
-  o << "unstable integration at t = " << fmt4(t_) << " s: " << cause << " (particle " << id
-    << " at x = " << fmt4(p.x) << " m, y = " << fmt4(p.y) << " m, speed " << fmt4(core::length(v))
-    << " m/s); try dt <= " << fmt4(0.5 * scene_.dt) << " s (now " << fmt4(scene_.dt)
-    << " s), more iterations, or continuous = true";
-  if (scene_.unsafe && std::isfinite(p.x) && std::isfinite(p.y)) {
-    warn_unsafe(o.str());
-    return;
-  }
-  throw core::Unstable(o.str());
-}
-
-void Hopper::check_overlaps() {
-  double worst = 0;
-  int wa = -1, wb = -1;
-  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
-    if (!c->IsTouching()) continue;
-    int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
-    if (a < 0 || b < 0) continue;
-    double overlap;
-    if (sides_[a] == 0 && sides_[b] == 0) {
-      core::Vec2 d = pos(a) - pos(b);
-      overlap = std::max(0.0, (radius_[a] + radius_[b] - core::length(d)) / std::min(radius_[a], radius_[b]));
-    } else {
-      // Polygons: the deepest penetration of the pair now (the contact's own manifold is from the last step,
-      // and a grain re-injected since then would seem to overlap where it was).
-      const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
-      const b2Transform &xa = fa->GetBody()->GetTransform(), &xb = fb->GetBody()->GetTransform();
-      b2Manifold m;
-      const_cast<b2Contact*>(c)->Evaluate(&m, xa, xb);
-      b2WorldManifold wm;
-      wm.Initialize(&m, xa, fa->GetShape()->m_radius, xb, fb->GetShape()->m_radius);
-      double deepest = 0;
-      for (int k = 0; k < m.pointCount; ++k)
-        deepest = std::min(deepest, static_cast<double>(wm.separations[k]));
-      overlap = -deepest / L_ / std::min(radius_[a], radius_[b]);
-    }
-    overlaps_.sum += overlap;
-    ++overlaps_.samples;
-    if (overlap > worst) worst = overlap, wa = a, wb = b;
-  }
-  overlaps_.max = std::max(overlaps_.max, worst);
-  if (worst <= kMaxOverlapFraction) return;
-  std::ostringstream o;
-  o << "unstable integration at t = " << fmt4(t_) << " s: grains " << wa << " and " << wb << " overlap by "
-    << fmt4(100 * worst) << "% of the smaller radius (bound " << fmt4(100 * kMaxOverlapFraction)
-    << "%); try dt <= " << fmt4(0.5 * scene_.dt) << " s (now " << fmt4(scene_.dt) << " s) or more iterations";
-  if (scene_.unsafe) {
-    warn_unsafe(o.str());
-    return;
-  }
-  throw core::Unstable(o.str());
-}
-
-void Hopper::warn_unsafe(const std::string& msg) const {
-  // Loudly, but not thousands of times: the first three, then a count at the end of the run's metadata.
-  if (health_warnings_++ < 3) std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
 }
 
 void Hopper::handle_exits() {

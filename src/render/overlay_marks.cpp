@@ -1,0 +1,172 @@
+// The overlay's marks on the picture itself: the discharge plot, the zoom box, removed grains and captions,
+// the scale bar, and the shared helpers of overlay_detail.h.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "render/overlay.h"
+#include "render/overlay_detail.h"
+
+namespace render {
+
+namespace overlay_detail {
+
+void colour_bar(const Style& style, float em) {
+  const bool speed = style.color == ColorMode::Speed;
+  ImGui::Text("%s 0", speed ? "speed [m/s]" : "contact force [N]");
+  ImGui::SameLine();
+  ImVec2 p = ImGui::GetCursorScreenPos();
+  const int steps = 32;
+  const float bw = 8 * em, bh = ImGui::GetTextLineHeight();
+  for (int k = 0; k < steps; ++k)
+    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x + bw * k / steps, p.y),
+                                              ImVec2(p.x + bw * (k + 1) / steps, p.y + bh),
+                                              to_u32(colormap((k + 0.5) / steps)));
+  ImGui::Dummy(ImVec2(bw, bh));
+  ImGui::SameLine();
+  ImGui::Text("%g", speed ? style.speed_max : style.force_max);
+}
+
+const View& most_zoomed(const std::vector<View>& views) {
+  const View* v = &views.front();
+  for (const auto& c : views)
+    if (c.px_per_m() > v->px_per_m()) v = &c;
+  return *v;
+}
+
+void boxed_text(ImDrawList* dl, float cx, float y, const char* text, ImU32 ink, ImU32 box, float em) {
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const ImVec2 a(cx - 0.5f * size.x - 0.4f * em, y),
+      b(cx + 0.5f * size.x + 0.4f * em, y + size.y + 0.3f * em);
+  dl->AddRectFilled(a, b, box, 0.3f * em);
+  dl->AddText(ImVec2(a.x + 0.4f * em, a.y + 0.15f * em), ink, text);
+}
+}  // namespace overlay_detail
+
+using overlay_detail::boxed_text;
+using overlay_detail::most_zoomed;
+using overlay_detail::to_u32;
+
+void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views,
+                   const Style& style) {
+  // The discharge staircase: cumulative exits of each species against time, clogs shaded. Bottom-right of the
+  // most zoomed view, below the outlet where there are no disks.
+  if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
+  history_.push_back({f.t, static_cast<long>(f.exits_original), static_cast<long>(f.exits_added),
+                      f.since_last_exit >= d.clog_min_gap});
+  const float em = static_cast<float>(font_px_);
+  const View& v = most_zoomed(views);
+  const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;
+  const float x1 = v.rect.x + v.rect.w - 0.8f * em, y1 = v.rect.y + v.rect.h - 1.6f * em;
+  const float x0 = x1 - pw, y0 = y1 - ph;
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  dl->AddRectFilled(ImVec2(x0 - 2.6f * em, y0 - 1.5f * em), ImVec2(x1 + 0.4f * em, y1 + 1.4f * em),
+                    IM_COL32(255, 255, 255, 215), 0.3f * em);
+  const double tmax = std::max(1.0, history_.back().t);
+  long nmax = 1;
+  for (const auto& s : history_) nmax = std::max(nmax, std::max(s.original, s.added));
+  auto X = [&](double t) { return x0 + static_cast<float>(t / tmax) * pw; };
+  auto Y = [&](double n) { return y1 - static_cast<float>(n / static_cast<double>(nmax)) * ph; };
+  // Clogs: spans where the clog timer ran past clog_min_gap.
+  for (size_t k = 1; k < history_.size(); ++k)
+    if (history_[k].clogged)
+      dl->AddRectFilled(ImVec2(X(history_[k - 1].t), y0), ImVec2(X(history_[k].t) + 0.5f, y1),
+                        IM_COL32(200, 200, 200, 255));
+  for (int sp = 0; sp < 2; ++sp) {
+    const ImU32 ink =
+        to_u32(sp == 0 ? species_color(style, core::Species::Original)
+                       : (d.species_names.size() == 2 ? species_color(style, core::Species::Added)
+                                                      : Rgba{0.35f, 0.35f, 0.35f, 1}));
+    for (size_t k = 1; k < history_.size(); ++k) {
+      const long a = sp == 0 ? history_[k - 1].original : history_[k - 1].added;
+      const long b = sp == 0 ? history_[k].original : history_[k].added;
+      dl->AddLine(ImVec2(X(history_[k - 1].t), Y(static_cast<double>(a))),
+                  ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ink, 2.0f);
+      if (b != a)
+        dl->AddLine(ImVec2(X(history_[k].t), Y(static_cast<double>(a))),
+                    ImVec2(X(history_[k].t), Y(static_cast<double>(b))), ink, 2.0f);
+    }
+  }
+  const ImU32 axis = IM_COL32(40, 40, 40, 255);
+  dl->AddLine(ImVec2(x0, y1), ImVec2(x1, y1), axis);
+  dl->AddLine(ImVec2(x0, y0), ImVec2(x0, y1), axis);
+  char text[64];
+  std::snprintf(text, sizeof text, "%ld", nmax);
+  dl->AddText(ImVec2(x0 - 2.3f * em, y0 - 0.5f * em), axis, text);
+  std::snprintf(text, sizeof text, "exits vs t (0-%.0f s), clogs grey", tmax);
+  dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
+}
+
+void Overlay::draw_zoombox(const std::vector<View>& views, int h) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  {
+    // The outlet panel's world window, outlined on the whole-hopper panel.
+    const View& zoom = most_zoomed(views);
+    for (const auto& v : views) {
+      if (&v == &zoom) continue;
+      const double half_w = 0.5 * zoom.rect.w / zoom.px_per_m(), half_h = 0.5 * zoom.cam.height;
+      const core::Vec2 a = v.world_to_pixel({zoom.cam.cx - half_w, zoom.cam.cy + half_h});
+      const core::Vec2 b = v.world_to_pixel({zoom.cam.cx + half_w, zoom.cam.cy - half_h});
+      dl->PushClipRect(
+          ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
+          ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
+      dl->AddRect(ImVec2(static_cast<float>(a.x), static_cast<float>(a.y)),
+                  ImVec2(static_cast<float>(b.x), static_cast<float>(b.y)), IM_COL32(30, 30, 30, 230), 0, 0,
+                  std::max(1.5f, h / 500.0f));
+      dl->PopClipRect();
+    }
+  }
+}
+
+void Overlay::draw_events(const Annotations& notes, const std::vector<View>& views, float em) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  {
+    // Disks the rule removed, ringed where they stood, in every view; the caption over the most zoomed view.
+    const ImU32 ring = IM_COL32(200, 0, 160, 255);
+    for (const auto& v : views) {
+      dl->PushClipRect(
+          ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
+          ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
+      for (const auto& g : notes.removed) {
+        const core::Vec2 c = v.world_to_pixel({g.x, g.y});
+        const float r = static_cast<float>(g.radius * v.px_per_m());
+        dl->AddCircle(ImVec2(static_cast<float>(c.x), static_cast<float>(c.y)), r, ring, 0,
+                      std::max(2.0f, 0.12f * r));
+      }
+      dl->PopClipRect();
+    }
+    const View& zoom = most_zoomed(views);
+    if (!notes.caption.empty())
+      boxed_text(dl, zoom.rect.x + 0.5f * zoom.rect.w, zoom.rect.y + 0.8f * em, notes.caption.c_str(),
+                 IM_COL32(255, 255, 255, 255), IM_COL32(200, 0, 160, 235), em);
+    if (notes.slowdown > 1.0 + 1e-9) {
+      char badge[48];
+      std::snprintf(badge, sizeof badge, "slow motion %.3gx", notes.slowdown);
+      const ImVec2 size = ImGui::CalcTextSize(badge);
+      const float x = zoom.rect.x + 0.8f * em, y = zoom.rect.y + 0.8f * em;
+      dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 0.8f * em, y + size.y + 0.3f * em),
+                        IM_COL32(20, 20, 20, 220), 0.3f * em);
+      dl->AddText(ImVec2(x + 0.4f * em, y + 0.15f * em), IM_COL32(255, 220, 0, 255), badge);
+    }
+  }
+}
+
+void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, float em) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  // Scale bar: one original diameter, bottom-left of the most zoomed view.
+  {
+    const View* v = &views.front();
+    for (const auto& c : views)
+      if (c.px_per_m() > v->px_per_m()) v = &c;
+    const float len = static_cast<float>(d.diameter * v->px_per_m());
+    const float x0 = v->rect.x + em, y0 = v->rect.y + v->rect.h - 1.2f * em;
+    const ImU32 ink = IM_COL32(20, 20, 20, 255);
+    dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
+    char text[64];
+    std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
+    dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
+  }
+}
+
+}  // namespace render
