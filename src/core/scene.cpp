@@ -1,3 +1,6 @@
+// The scene file: parsing TOML into core::Scene, overrides, validation of each field against its table
+// (scene_fields.cpp), and writing a scene back as TOML. Over 400 lines because reading, validating and writing
+// one format belong together: a field's text form is parsed and printed by the same templates here.
 #include "core/scene.h"
 
 #include <toml++/toml.h>

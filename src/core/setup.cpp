@@ -1,3 +1,7 @@
+// core::resolve: from a validated Scene to the Setup every layer below uses (species, sizes, geometry,
+// obstacle, drive, safe time steps). Over 400 lines because the cross-field checks (obstacle in the
+// container, species that fit the aperture, dipole time steps) need the whole resolved setup at once and
+// must say FILE:LINE of the field at fault; split, they would pass half-built setups around.
 #include "core/setup.h"
 
 #include <algorithm>

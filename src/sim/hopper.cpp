@@ -1,3 +1,6 @@
+// sim::Hopper: the Box2D world of one scene (walls, grains, deposition, kicks, vibration, dipoles) and its
+// step. Over 400 lines because everything that touches the b2World lives here and nowhere else; its health
+// checks are in hopper_health.cpp, filling in hopper_fill.cpp, the dipole forces in dipole.cpp.
 #include "sim/hopper.h"
 #include "core/format.h"
 

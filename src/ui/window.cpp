@@ -1,3 +1,6 @@
+// The GLFW windows: the inspector (timeline, panels) and the live view (edit and restart a running scene).
+// Over 400 lines because both share one Window class, its key queue and frame helpers, which stay private
+// to this file rather than becoming a header only these two functions would include.
 #include "ui/window.h"
 #include "core/format.h"
 #include "core/physics.h"

@@ -1,6 +1,9 @@
 // siloscope record SCENE --out recordings/NAME: a discharge movie (NAME.mp4) and, in NAME/, the events, the
 // measurements, the metadata and optional PNG frames. The simulation produces Frames on this thread;
 // app/pipeline.h renders and encodes them on two more (bounded queues keep memory flat).
+//
+// Over 400 lines because a recording's plan (panels, cameras, colour scale, slow motion), its metadata and
+// its outputs are all decided from RecordOptions; each step is its own function below.
 #include <cmath>
 #include <cstdio>
 #include <exception>

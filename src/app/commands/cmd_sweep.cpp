@@ -4,6 +4,9 @@
 // Each realization is one `siloscope run` process writing its own directory atomically, so a crash loses at
 // most the realizations in flight, a rerun skips what is finished, and results do not depend on how the work
 // was split (seeds come from the campaign, not from the worker).
+//
+// Over 400 lines because resuming, status, job emission and the local worker pool share the campaign's
+// on-disk layout, which is kept private to this file.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/file.h>
