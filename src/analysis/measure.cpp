@@ -27,7 +27,8 @@ Measurements measure(const core::Events& ev, double duration, double clog_min_ga
     if (a.t > duration) continue;
     ++m.long_arches;
     members += static_cast<long>(a.ids.size());
-    added += static_cast<long>(a.species.size()) - std::count(a.species.begin(), a.species.end(), core::Species::Original);
+    added += static_cast<long>(a.species.size()) -
+             std::count(a.species.begin(), a.species.end(), core::Species::Original);
   }
   m.long_arches_per_minute = duration > 0 ? 60.0 * m.long_arches / duration : NAN;
   m.added_per_long_arch = m.long_arches > 0 ? static_cast<double>(added) / m.long_arches : NAN;
@@ -52,6 +53,11 @@ Measurements measure(const core::Events& ev, double duration, double clog_min_ga
   }
   long decided = m.clogs_vibration + m.clogs_rule;
   m.fraction_broken_by_vibration = decided > 0 ? static_cast<double>(m.clogs_vibration) / decided : NAN;
+  for (double g : original_gaps(within)) {
+    ++m.lapses;
+    m.lapses_ge_1s += g >= 1.0;
+    m.lapses_ge_2s += g >= 2.0;
+  }
   const std::vector<double> sizes = avalanche_sizes(within, clog_min_gap);
   m.avalanches = static_cast<long>(sizes.size());
   double sum = 0;

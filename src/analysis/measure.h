@@ -13,10 +13,10 @@ struct Measurements {
   double duration = 0;  // s of discharge analysed
   long exits = 0, exits_original = 0, exits_added = 0;
   std::vector<long> exits_by_species;  // per species index
-  double q = 0;          // exits per second (all species)
-  double q_tilde = 0;    // exits of original disks per second
-  double chi_eff = 0;    // fraction of added disks among the exits (NaN without exits)
-  long long_arches = 0;  // clog_timeout rule firings
+  double q = 0;                        // exits per second (all species)
+  double q_tilde = 0;                  // exits of original disks per second
+  double chi_eff = 0;                  // fraction of added disks among the exits (NaN without exits)
+  long long_arches = 0;                // clog_timeout rule firings
   double long_arches_per_minute = 0;
   double added_per_long_arch = 0;    // mean number of added disks per long-lasting arch (NaN without arches)
   double members_per_long_arch = 0;  // mean arch size (NaN without arches)
@@ -25,6 +25,10 @@ struct Measurements {
   double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
   long avalanches = 0;        // complete avalanches between clogs (avalanche_sizes), within `duration`
   double avalanche_mean = 0;  // mean disks (both species) per complete avalanche (NaN if none)
+  // Time lapses between consecutive exits of original disks (original_gaps), and how many last at least 1 s
+  // and 2 s: per realization, so that the survival P(lapse >= tau) pooled over a point can be resampled by
+  // realization (claims, C6).
+  long lapses = 0, lapses_ge_1s = 0, lapses_ge_2s = 0;
   // Health, from the run's metadata (not from the events): set by the caller.
   long health_warnings = 0;      // --unsafe warnings
   double airborne_fraction = 0;  // mean fraction of disks in flight above the column

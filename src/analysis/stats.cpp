@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/rng.h"
+
 namespace analysis {
 
 namespace {
@@ -155,6 +157,71 @@ double ks_distance(std::vector<double> a, std::vector<double> b) {
 double ks_critical_95(size_t n, size_t m) {
   if (n == 0 || m == 0) return NAN;
   return 1.358 * std::sqrt(static_cast<double>(n + m) / (static_cast<double>(n) * static_cast<double>(m)));
+}
+
+}  // namespace analysis
+
+namespace analysis {
+
+double normal_cdf(double z) {
+  return 0.5 * std::erfc(-z / std::sqrt(2.0));
+}
+
+double normal_quantile(double p) {
+  if (!(p > 0 && p < 1)) throw std::invalid_argument("normal_quantile: p must lie in (0, 1)");
+  double lo = -40, hi = 40;  // Phi is monotone: bisect to the last bit
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(lo)); ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (normal_cdf(mid) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double two_sided_p(double difference, double half95) {
+  if (!std::isfinite(difference) || !(half95 >= 0) || std::isinf(half95)) return 1.0;
+  if (half95 == 0) return difference != 0 ? 0.0 : 1.0;
+  static const double z95 = normal_quantile(0.975);
+  return std::erfc(std::abs(difference) / (half95 / z95) /
+                   std::sqrt(2.0));  // 2 (1 - Phi(z)), without cancellation
+}
+
+std::vector<bool> holm(const std::vector<double>& p, double alpha) {
+  std::vector<size_t> order(p.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return p[a] < p[b]; });
+  std::vector<bool> significant(p.size(), false);
+  for (size_t rank = 0; rank < order.size(); ++rank) {
+    if (!(p[order[rank]] <= alpha / static_cast<double>(order.size() - rank))) break;
+    significant[order[rank]] = true;
+  }
+  return significant;
+}
+
+double quantile(std::vector<double> samples, double q) {
+  samples.erase(std::remove_if(samples.begin(), samples.end(), [](double v) { return std::isnan(v); }),
+                samples.end());
+  if (samples.empty()) return NAN;
+  std::sort(samples.begin(), samples.end());
+  const double at = q * static_cast<double>(samples.size() - 1);
+  const size_t i = static_cast<size_t>(std::floor(at));
+  if (i + 1 >= samples.size()) return samples.back();
+  return samples[i] + (at - static_cast<double>(i)) * (samples[i + 1] - samples[i]);
+}
+
+std::vector<double> bootstrap(const std::vector<size_t>& sizes, int rounds, std::uint64_t seed,
+                              const std::function<double(const std::vector<std::vector<size_t>>&)>& stat) {
+  core::Rng rng(seed, 0x626f6f74);  // "boot"
+  std::vector<std::vector<size_t>> drawn(sizes.size());
+  for (size_t g = 0; g < sizes.size(); ++g) drawn[g].resize(sizes[g]);
+  std::vector<double> out;
+  out.reserve(static_cast<size_t>(std::max(0, rounds)));
+  for (int b = 0; b < rounds; ++b) {
+    for (size_t g = 0; g < sizes.size(); ++g)
+      for (auto& i : drawn[g])
+        i = std::min(sizes[g] - 1, static_cast<size_t>(rng.uniform() * static_cast<double>(sizes[g])));
+    out.push_back(stat(drawn));
+  }
+  return out;
 }
 
 }  // namespace analysis

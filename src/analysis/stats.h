@@ -1,6 +1,8 @@
 // Statistics across realizations: mean and Student-t confidence intervals.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/stats.h"
@@ -48,5 +50,28 @@ double ks_critical_95(size_t n, size_t m);
 
 // S(t) of an estimate (a step function, right-continuous).
 double survival_at(const std::vector<SurvivalStep>& km, double t);
+
+}  // namespace analysis
+
+namespace analysis {
+
+// The standard normal distribution: Phi(z) and its inverse (p in (0, 1)).
+double normal_cdf(double z);
+double normal_quantile(double p);
+// Two-sided p-value of a difference whose 95% half-width is `half95` (normal approximation): 1 without an
+// interval (half95 infinite or NaN), 0 for a non-zero difference known exactly.
+double two_sided_p(double difference, double half95);
+// Holm's step-down correction: which of a family's p-values are significant with a chance `alpha` of any
+// false one in the family (the smallest p judged at alpha / k, the next at alpha / (k - 1), ..., stopping at
+// the first that fails).
+std::vector<bool> holm(const std::vector<double>& p, double alpha = 0.05);
+// The q-quantile of `samples` (linear interpolation between order statistics; NaN samples skipped).
+double quantile(std::vector<double> samples, double q);
+
+// The bootstrap over realizations: `rounds` resamples, each drawing every group's members with replacement
+// (groups: points of a campaign, each of `sizes[g]` realizations), passed to `stat` as, per group, the drawn
+// member indices. A fixed seed makes the intervals reproducible. Returns the statistic of each round.
+std::vector<double> bootstrap(const std::vector<size_t>& sizes, int rounds, std::uint64_t seed,
+                              const std::function<double(const std::vector<std::vector<size_t>>&)>& stat);
 
 }  // namespace analysis

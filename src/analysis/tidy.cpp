@@ -31,7 +31,7 @@ std::string summary_header() {
          "long_arches_per_min,added_per_long_arch,members_per_long_arch,clogs,clogs_spontaneous,clogs_"
          "vibration,"
          "clogs_rule,clogs_run_end,fraction_broken_by_vibration,airborne_fraction,ballistic,health_warnings,"
-         "avalanches,avalanche_mean";
+         "avalanches,avalanche_mean,lapses,lapses_ge_1s,lapses_ge_2s";
 }
 
 std::string summary_row(const core::Scene& s, const Measurements& m) {
@@ -45,7 +45,8 @@ std::string summary_row(const core::Scene& s, const Measurements& m) {
          std::to_string(m.clogs_run_end) + "," + core::format_g(m.fraction_broken_by_vibration) + "," +
          core::format_g(m.airborne_fraction) + "," + (m.ballistic ? "1" : "0") + "," +
          std::to_string(m.health_warnings) + "," + std::to_string(m.avalanches) + "," +
-         core::format_g(m.avalanche_mean);
+         core::format_g(m.avalanche_mean) + "," + std::to_string(m.lapses) + "," +
+         std::to_string(m.lapses_ge_1s) + "," + std::to_string(m.lapses_ge_2s);
 }
 
 std::string species_csv(const core::Setup& st, const Measurements& m) {
@@ -53,8 +54,8 @@ std::string species_csv(const core::Setup& st, const Measurements& m) {
   for (size_t k = 0; k < st.species.size(); ++k) {
     const long exits = k < m.exits_by_species.size() ? m.exits_by_species[k] : 0;
     out += st.species[k].name + "," + std::to_string(st.species[k].count) + "," +
-           core::format_g(static_cast<double>(st.species[k].count) / st.n_total) + "," + std::to_string(exits) +
-           "," + core::format_g(m.duration > 0 ? exits / m.duration : NAN) + "," +
+           core::format_g(static_cast<double>(st.species[k].count) / st.n_total) + "," +
+           std::to_string(exits) + "," + core::format_g(m.duration > 0 ? exits / m.duration : NAN) + "," +
            core::format_g(m.exits > 0 ? static_cast<double>(exits) / m.exits : NAN) + "\n";
   }
   return out;
@@ -89,8 +90,8 @@ std::string summary_text(const Measurements& m, const std::vector<std::string>& 
     exits = std::to_string(m.exits_original) + " original, " + std::to_string(m.exits_added) + " added";
   } else {
     for (size_t k = 0; k < names.size(); ++k)
-      exits += (k ? ", " : "") + std::to_string(k < m.exits_by_species.size() ? m.exits_by_species[k] : 0) + " " +
-               names[k];
+      exits += (k ? ", " : "") + std::to_string(k < m.exits_by_species.size() ? m.exits_by_species[k] : 0) +
+               " " + names[k];
   }
   auto num = [](double v, const char* fmt) {
     if (std::isnan(v)) return std::string("-");
@@ -99,20 +100,22 @@ std::string summary_text(const Measurements& m, const std::vector<std::string>& 
     return std::string(b);
   };
   const std::string first = shorthand ? "originals" : names.empty() ? "first species" : names[0];
-  std::string out = "discharge   " + num(m.duration, "%.1f") + " s: " + std::to_string(m.exits) + " exits (" + exits +
-                    ")\n";
-  out += "Q           " + num(m.q, "%.3f") + " /s   Q~ (" + first + ") " + num(m.q_tilde, "%.3f") + " /s   chi_eff " +
-         (m.exits > 0 ? num(m.chi_eff, "%.3f") : std::string("- (no exits)")) + "\n";
+  std::string out = "discharge   " + num(m.duration, "%.1f") + " s: " + std::to_string(m.exits) + " exits (" +
+                    exits + ")\n";
+  out += "Q           " + num(m.q, "%.3f") + " /s   Q~ (" + first + ") " + num(m.q_tilde, "%.3f") +
+         " /s   chi_eff " + (m.exits > 0 ? num(m.chi_eff, "%.3f") : std::string("- (no exits)")) + "\n";
   if (!clog_rule)
     out += "long arches none: the clog rule is off (clogs end only by the drive or the end of the run)\n";
   else if (m.long_arches == 0)
     out += "long arches none (the clog rule never fired)\n";
   else
-    out += "long arches " + std::to_string(m.long_arches) + " (" + num(m.long_arches_per_minute, "%.2f") + " per minute), " +
-           num(m.added_per_long_arch, "%.2f") + (shorthand ? " added disks" : " grains not " + first) + " per arch, " +
+    out += "long arches " + std::to_string(m.long_arches) + " (" + num(m.long_arches_per_minute, "%.2f") +
+           " per minute), " + num(m.added_per_long_arch, "%.2f") +
+           (shorthand ? " added disks" : " grains not " + first) + " per arch, " +
            num(m.members_per_long_arch, "%.2f") + " members per arch\n";
-  out += "clogs       " + std::to_string(m.clogs) + " >= clog_min_gap: " + std::to_string(m.clogs_spontaneous) +
-         " spontaneous, " + std::to_string(m.clogs_vibration) + " broken by vibration, " + std::to_string(m.clogs_rule) +
+  out += "clogs       " + std::to_string(m.clogs) +
+         " >= clog_min_gap: " + std::to_string(m.clogs_spontaneous) + " spontaneous, " +
+         std::to_string(m.clogs_vibration) + " broken by vibration, " + std::to_string(m.clogs_rule) +
          " by the rule, " + std::to_string(m.clogs_run_end) + " open at the end\n";
   char h[256];
   std::snprintf(h, sizeof h, "health      %s: %.2f%% of grains in flight on average, %ld warnings\n",

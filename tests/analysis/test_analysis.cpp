@@ -262,3 +262,63 @@ TEST_CASE("Kaplan-Meier survival: the empirical survival without censoring, by h
   CHECK(analysis::survival_at(km, 3.0) == Approx(0.0));
   for (const auto& s : km) CHECK((s.lo <= s.s && s.s <= s.hi));
 }
+
+TEST_CASE("normal distribution, p-values and Holm's correction", "[analysis]") {
+  CHECK(analysis::normal_quantile(0.975) == Approx(1.959963985).epsilon(1e-9));
+  CHECK(analysis::normal_quantile(0.5) == Approx(0.0).margin(1e-12));
+  CHECK(analysis::normal_cdf(analysis::normal_quantile(0.01)) == Approx(0.01).epsilon(1e-9));
+  // A difference equal to its 95% half-width has p = 0.05; none without an interval; tiny p do not round
+  // to 0 (erfc, not 1 - Phi).
+  CHECK(analysis::two_sided_p(0.3, 0.3) == Approx(0.05).epsilon(1e-9));
+  CHECK(analysis::two_sided_p(1.0, INFINITY) == 1.0);
+  CHECK(analysis::two_sided_p(1.0, NAN) == 1.0);
+  CHECK(analysis::two_sided_p(12.0, 1.0) > 0);
+  CHECK(analysis::two_sided_p(12.0, 1.0) < 1e-30);
+  // Holm: 0.01 <= 0.05/3 passes, then 0.02 <= 0.05/2 passes, then 0.04 <= 0.05 passes; with 0.03 in the
+  // second place instead, 0.03 > 0.025 stops there and the rest fail too.
+  CHECK(analysis::holm({0.04, 0.01, 0.02}) == std::vector<bool>{true, true, true});
+  CHECK(analysis::holm({0.04, 0.01, 0.03}) == std::vector<bool>{false, true, false});
+  CHECK(analysis::holm({0.2}) == std::vector<bool>{false});
+  CHECK(analysis::holm({}).empty());
+}
+
+TEST_CASE("quantiles and the bootstrap over realizations", "[analysis]") {
+  CHECK(analysis::quantile({3, 1, 2, NAN, 4}, 0.5) == Approx(2.5));
+  CHECK(analysis::quantile({3, 1, 2, 4}, 0.0) == 1);
+  CHECK(analysis::quantile({3, 1, 2, 4}, 1.0) == 4);
+  CHECK(std::isnan(analysis::quantile({}, 0.5)));
+  // The mean of 40 samples 0..39 (sd 11.7): the bootstrap's spread of the mean is sd / sqrt(n) = 1.85, and a
+  // fixed seed gives the same rounds again.
+  std::vector<double> v;
+  for (int i = 0; i < 40; ++i) v.push_back(i);
+  auto mean_of = [&](const std::vector<std::vector<size_t>>& idx) {
+    double s = 0;
+    for (size_t i : idx[0]) s += v[i];
+    return s / static_cast<double>(idx[0].size());
+  };
+  const auto a = analysis::bootstrap({v.size()}, 4000, 7, mean_of);
+  const auto b = analysis::bootstrap({v.size()}, 4000, 7, mean_of);
+  CHECK(a == b);
+  double m = 0, s = 0;
+  for (double x : a) m += x;
+  m /= static_cast<double>(a.size());
+  for (double x : a) s += (x - m) * (x - m);
+  s = std::sqrt(s / static_cast<double>(a.size() - 1));
+  CHECK(m == Approx(19.5).margin(0.15));
+  CHECK(s == Approx(std::sqrt((40.0 * 40 - 1) / 12 / 40)).epsilon(0.06));
+  CHECK(analysis::bootstrap({v.size()}, 10, 8, mean_of) != analysis::bootstrap({v.size()}, 10, 7, mean_of));
+}
+
+TEST_CASE("per-realization lapse counts agree with the pooled survival", "[analysis]") {
+  core::Events ev;
+  for (double t : {0.1, 0.3, 1.6, 1.7, 4.0, 4.2}) ev.exits.push_back({t, 1, Species::Original});
+  ev.exits.push_back({1.65, 2, Species::Added});  // does not cut a lapse of the originals
+  const auto m = analysis::measure(ev, 10.0, 0.5, 2);
+  // Original gaps: 0.2, 1.3, 0.1, 2.3, 0.2: five lapses, two of at least 1 s, one of at least 2 s.
+  CHECK(m.lapses == 5);
+  CHECK(m.lapses_ge_1s == 2);
+  CHECK(m.lapses_ge_2s == 1);
+  const auto s = analysis::survival(analysis::original_gaps(ev.exits), {1.0, 2.0});
+  CHECK(s[0] == Approx(2.0 / 5));
+  CHECK(s[1] == Approx(1.0 / 5));
+}

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "analysis/claims.h"
 #include "app/services/common.h"
 #include "app/services/process.h"
 #include "core/error.h"
@@ -78,22 +79,24 @@ int claims(const ClaimsOptions& o) {
                              " holds no points.csv (run `siloscope analyze` first)");
     specs.push_back(r.substr(0, eq) + "=" + dir.string());
   }
+  std::vector<analysis::claims::Preset> presets;
+  for (const auto& spec : specs) {
+    const auto eq = spec.find('=');
+    presets.push_back(analysis::claims::judge(spec.substr(0, eq), spec.substr(eq + 1)));
+  }
   const fs::path out = o.out;
+  fs::path table = out;
+  table.replace_extension(".csv");
+  if (table == out) table += ".csv";
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "claims table", io::OutputKind::Csv,
                         "# The paper's seven claims against siloscope's results");
-  fs::path partial = out;
-  partial += ".partial";
-  std::vector<std::string> args = {partial.string(), io::version_string()};
-  args.insert(args.end(), specs.begin(), specs.end());
-  const int status = run_python(script_path("claims.py"), args);
-  if (status != 0) {
-    std::error_code ec;
-    fs::remove(partial, ec);
-    if (status == 2) throw core::InputError("claims: the results cannot be judged (the line above says why)");
-    throw core::RuntimeFault("claims: the script claims.py failed");
-  }
-  io::rename_into_place(partial, out);
+  io::check_destination(table, o.force, "claims table (CSV)", io::OutputKind::Csv,
+                        analysis::claims::kCsvHeader);
+  io::write_file_atomic(table, analysis::claims::csv(presets));
+  io::write_file_atomic(out, analysis::claims::markdown(presets, io::version_string()));
+  for (const auto& p : presets) std::printf("%s\n", analysis::claims::summary_line(p).c_str());
+  std::printf("claims per comparison in %s\n", table.c_str());
   std::printf("claims table in %s\n", out.c_str());
   return 0;
 }

@@ -1,0 +1,250 @@
+// The claims' shared machinery (claims_detail.h): reading a campaign's analysis, comparisons with their
+// intervals and p-values, Holm's correction over a claim, and the rules that turn comparisons into verdicts.
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "analysis/claims_detail.h"
+#include "analysis/stats.h"
+#include "core/error.h"
+#include "core/format.h"
+
+namespace analysis::claims {
+
+Est Est::none() {
+  return {NAN, std::numeric_limits<double>::infinity(), 0};
+}
+bool Est::finite() const {
+  return std::isfinite(m);
+}
+
+const char* verdict_text(Verdict v) {
+  switch (v) {
+    case Verdict::Reproduced:
+      return "reproduced";
+    case Verdict::Contradicted:
+      return "contradicted";
+    case Verdict::NotResolved:
+      return "not resolved";
+    case Verdict::Partly:
+      return "partly reproduced";
+    case Verdict::Pinned:
+      return "cannot be tested at this kick";
+    case Verdict::NotTested:
+      return "not tested";
+  }
+  return "?";
+}
+
+namespace detail {
+
+std::string g3(double v) {
+  return core::format_g(v, 3);
+}
+
+Data::Data(const std::string& dir)
+    : points_(io::CsvTable::read(dir + "/points.csv", "points.csv of `siloscope analyze`")) {
+  for (const char* key : {"size_ratio", "chi", "mu", "kick_impulse_max", "n_runs"})
+    if (!points_.has(key))
+      throw core::InputError(points_.path() + ": no column '" + key + "' (not a campaign's points.csv)");
+  std::map<std::string, size_t> by_key;
+  for (size_t i = 0; i < points_.rows(); ++i) {
+    Point p;
+    p.row = i;
+    p.r = points_.num(i, "size_ratio");
+    p.chi = points_.num(i, "chi");
+    p.fr = points_.has("dipole_force_ratio") ? points_.num(i, "dipole_force_ratio") : 0.0;
+    p.n = static_cast<long>(points_.num(i, "n_runs"));
+    by_key[key(points_, i)] = pts_.size();
+    pts_.push_back(p);
+  }
+  const std::string rpath = dir + "/realizations.csv";
+  if (std::filesystem::exists(rpath)) {
+    reals_.emplace(io::CsvTable::read(rpath, "realizations.csv of `siloscope analyze`"));
+    for (size_t i = 0; i < reals_->rows(); ++i) {
+      auto it = by_key.find(key(*reals_, i));
+      if (it != by_key.end()) pts_[it->second].reals.push_back(i);
+    }
+  }
+}
+
+double mean_of(const std::vector<double>& v, const std::vector<size_t>& idx) {
+  double s = 0;
+  long n = 0;
+  for (size_t i : idx)
+    if (std::isfinite(v[i])) s += v[i], ++n;
+  return n ? s / static_cast<double>(n) : NAN;
+}
+std::vector<size_t> all_of(size_t n) {
+  std::vector<size_t> idx(n);
+  for (size_t i = 0; i < n; ++i) idx[i] = i;
+  return idx;
+}
+
+Comparison compare(const std::string& label, Est a, Est b, int expected) {
+  Comparison c{label, a, b, expected};
+  c.diff = a.m - b.m;
+  c.half = std::hypot(a.h, b.h);
+  if (!a.finite() || !b.finite() || std::isnan(c.half)) c.half = std::numeric_limits<double>::infinity();
+  c.p = two_sided_p(c.diff, c.half);
+  return c;
+}
+
+// The mean difference over `per_r` (each of equal weight), its half-width from theirs.
+Comparison pooled(const std::string& label, const std::vector<Comparison>& per_r, int expected) {
+  Comparison c{label, Est::none(), Est::none(), expected};
+  c.pooled = true;
+  double d = 0, h2 = 0;
+  long n = std::numeric_limits<long>::max();
+  for (const auto& x : per_r)
+    d += x.diff, h2 += x.half * x.half, n = std::min({n, x.a.n, x.b.n > 0 ? x.b.n : n});
+  if (per_r.empty()) return c;
+  const double m = static_cast<double>(per_r.size());
+  c.diff = d / m;
+  c.half = std::sqrt(h2) / m;
+  c.a = {c.diff, c.half, n};
+  c.b = Est::exact(0);
+  c.p = two_sided_p(c.diff, c.half);
+  return c;
+}
+
+// Holm over every p-valued comparison of the claim; equality comparisons (expected 0) are judged by
+// interval, Bonferroni-widened over the part's equality comparisons.
+void holm_signs(const std::vector<Comparison*>& fam) {
+  std::vector<double> ps;
+  for (auto* c : fam) ps.push_back(c->p);
+  const auto sig = holm(ps);
+  for (size_t i = 0; i < fam.size(); ++i) {
+    fam[i]->k = static_cast<int>(fam.size());
+    fam[i]->sign = sig[i] ? (fam[i]->diff > 0 ? 1 : -1) : 0;
+  }
+}
+// Parts already pinned or not tested are left out: their measure says nothing about the claim.
+void resolve(Claim& claim) {
+  std::vector<Comparison*> fam;
+  for (auto& part : claim.parts) {
+    if (part.verdict == Verdict::Pinned || part.verdict == Verdict::NotTested) continue;
+    std::vector<Comparison*> own;
+    for (auto& c : part.comparisons)
+      if (c.expected != 0) (part.own_family ? own : fam).push_back(&c);
+    if (part.own_family) holm_signs(own);
+  }
+  holm_signs(fam);
+  for (auto& part : claim.parts) {
+    long eq = std::count_if(part.comparisons.begin(), part.comparisons.end(),
+                            [](const Comparison& c) { return c.expected == 0; });
+    for (auto& c : part.comparisons) {
+      if (c.expected != 0) continue;
+      c.k = static_cast<int>(eq);
+      const double widen = normal_quantile(1 - 0.025 / static_cast<double>(eq)) / normal_quantile(0.975);
+      const double h = c.half * widen;
+      c.sign = std::isfinite(h) && std::abs(c.diff) > h ? (c.diff > 0 ? 1 : -1) : 0;
+    }
+  }
+}
+
+// "for r in a range": the pooled difference decides, no single r resolved against it (a range of one r: that
+// r decides).
+Verdict by_pool(const Part& part) {
+  if (std::none_of(part.comparisons.begin(), part.comparisons.end(),
+                   [](const Comparison& c) { return c.pooled; }))
+    return by_each(part);
+  Verdict v = Verdict::NotResolved;
+  for (const auto& c : part.comparisons) {
+    if (c.sign == -c.expected && c.sign != 0) return Verdict::Contradicted;
+    if (c.pooled && c.sign == c.expected) v = Verdict::Reproduced;
+  }
+  return v;
+}
+// "at every value": each comparison resolved the claim's way.
+Verdict by_each(const Part& part) {
+  bool all = !part.comparisons.empty();
+  for (const auto& c : part.comparisons) {
+    if (c.sign == -c.expected && c.sign != 0) return Verdict::Contradicted;
+    all = all && c.sign == c.expected;
+  }
+  return all ? Verdict::Reproduced : Verdict::NotResolved;
+}
+// Equality within kEquivalence: any resolved difference contradicts; agreement must be shown.
+Verdict by_equality(const Part& part) {
+  bool all = !part.comparisons.empty();
+  for (const auto& c : part.comparisons) {
+    if (c.sign != 0) return Verdict::Contradicted;
+    const double widen = normal_quantile(1 - 0.025 / std::max(1, c.k)) / normal_quantile(0.975);
+    all = all && std::isfinite(c.half) && std::abs(c.diff) + c.half * widen <= kEquivalence * std::abs(c.b.m);
+  }
+  return all ? Verdict::Reproduced : Verdict::NotResolved;
+}
+Verdict by_location(const Located& l) {
+  if (!std::isfinite(l.lo) || !std::isfinite(l.hi) || l.missing > 0.05) return Verdict::NotResolved;
+  const double a = l.paper - l.tolerance, b = l.paper + l.tolerance;
+  if (l.lo >= a - 1e-12 && l.hi <= b + 1e-12) return Verdict::Reproduced;
+  if (l.hi < a || l.lo > b) return Verdict::Contradicted;
+  return Verdict::NotResolved;
+}
+
+Verdict claim_verdict(const std::vector<Part>& parts) {
+  int yes = 0, no = 0, pinned = 0;
+  for (const auto& p : parts) {
+    yes += p.verdict == Verdict::Reproduced;
+    no += p.verdict == Verdict::Contradicted;
+    pinned += p.verdict == Verdict::Pinned;
+  }
+  if (no) return Verdict::Contradicted;
+  if (yes == static_cast<int>(parts.size())) return Verdict::Reproduced;
+  if (yes) return Verdict::Partly;
+  if (pinned == static_cast<int>(parts.size())) return Verdict::Pinned;
+  return Verdict::NotResolved;
+}
+
+std::string list(const std::vector<double>& v, const std::string& sep) {
+  std::string s;
+  for (double x : v) s += (s.empty() ? "" : sep) + core::format_g(x, 3);
+  return s;
+}
+std::string text(const Est& e) {
+  if (!e.finite()) return "n/a";
+  if (std::isinf(e.h)) return g3(e.m) + " (n = " + std::to_string(e.n) + ": no interval)";
+  return g3(e.m) + " +- " + core::format_g(e.h, 2) + " (n = " + std::to_string(e.n) + ")";
+}
+
+Broken broken_by_vibration(const Data& d, const std::vector<const Point*>& pts) {
+  Broken b;
+  if (!d.table().has("clogs_vibration") || !d.table().has("clogs_rule")) return b;
+  for (const Point* p : pts) {
+    if (!p) continue;
+    const double v = d.value(p, "clogs_vibration"), r = d.value(p, "clogs_rule");
+    if (std::isfinite(v) && std::isfinite(r))
+      b.broken += static_cast<long>(v), b.decided += static_cast<long>(v + r);
+  }
+  if (b.decided > 0) b.fraction = static_cast<double>(b.broken) / static_cast<double>(b.decided);
+  return b;
+}
+// Long arches per minute are pinned by the 5 s rule when vibration breaks (almost) no clog.
+bool pin_long_arches(const Data& d, const std::vector<const Point*>& pts, Part& part) {
+  const Broken b = broken_by_vibration(d, pts);
+  if (!(b.fraction < kPinnedVibration)) return false;
+  part.verdict = Verdict::Pinned;
+  part.why = "vibration broke " + std::to_string(b.broken) + " of " + std::to_string(b.decided) + " clogs (" +
+             core::format_g(100 * b.fraction, 2) +
+             "%) at these points; every other clog lasted to the 5 s rule, so the long arches per minute are "
+             "60 / (5 s + the mean flowing time between clogs): they measure the flow between clogs, not how "
+             "long arches last, and no number of realizations changes that";
+  return true;
+}
+
+// The ratio Q~/Q_p at (r, fr) against 1.
+Comparison ratio_vs_one(const Data& d, double r, double fr, int expected) {
+  std::string label = "Q~/Q_p at r = " + g3(r);
+  if (fr != 0) label += ", F/W = " + g3(fr);
+  return compare(label + " against 1", d.est(d.at(r, fr), "q_tilde_over_qp"), Est::exact(1), expected);
+}
+// Q~ (or another column) at F/W = fr against F/W = 0, same r.
+Comparison with_mu(const Data& d, double r, double fr, const std::string& col, const std::string& name,
+                   int expected) {
+  return compare(name + " at r = " + g3(r) + ", F/W = " + g3(fr) + " against 0", d.est(d.at(r, fr), col),
+                 d.est(d.at(r, 0), col), expected);
+}
+
+}  // namespace detail
+}  // namespace analysis::claims

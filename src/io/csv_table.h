@@ -1,0 +1,36 @@
+// A CSV table as siloscope's analysis writes it (points.csv, realizations.csv): one header line of column
+// names, then rows of comma-separated fields without quoting. Read whole, checked as it is read, so a reader
+// of results (the claims) gets numbers or an error that names the file, the line and the column.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace io {
+
+class CsvTable {
+ public:
+  // Reads `path`; `what` names the file in errors ("points.csv of a campaign analysis"). Throws
+  // core::InputError when the file is missing, unreadable, larger than kMaxBytes, has no header, or a row
+  // has another number of fields than the header.
+  static CsvTable read(const std::string& path, const std::string& what);
+  static constexpr std::size_t kMaxBytes = std::size_t{1} << 28;  // 256 MiB: no campaign table comes near
+
+  const std::string& path() const { return path_; }
+  std::size_t rows() const { return cells_.size(); }
+  bool has(const std::string& column) const;
+  // The field as written. Throws core::InputError for a column the table lacks.
+  const std::string& text(std::size_t row, const std::string& column) const;
+  // The field as a number: NaN for an empty field or nan. Throws core::InputError (path:line, column, value)
+  // for a field that is not a number.
+  double num(std::size_t row, const std::string& column) const;
+
+ private:
+  std::size_t column(const std::string& name) const;
+  std::string path_, what_;
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> cells_;
+};
+
+}  // namespace io
