@@ -29,8 +29,8 @@ struct Refused {
 
 struct SpeciesEstimate {
   std::string name;
-  long count = 0;       // grains of the species in the scene
-  Estimate q;           // its exits per second
+  long count = 0;          // grains of the species in the scene
+  Estimate q;              // its exits per second
   Estimate exit_fraction;  // its share of all exits
 };
 
@@ -64,8 +64,8 @@ std::string points_csv(const std::vector<Point>& points);
 std::string pooled_survival_csv(const std::vector<Point>& points);
 // Per point and species: exits per second and share of the exits, with 95% intervals.
 std::string species_points_csv(const std::vector<Point>& points);
-// Per point, the Kaplan-Meier survival S(t) of the clogs' durations with its 95% band; clogs the rule removed or
-// the run's end cut short are censored (clog_survival.csv). With the rule on, S stops at clog_timeout.
+// Per point, the Kaplan-Meier survival S(t) of the clogs' durations with its 95% band; clogs the rule removed
+// or the run's end cut short are censored (clog_survival.csv). With the rule on, S stops at clog_timeout.
 std::string clog_survival_csv(const std::vector<Point>& points);
 // P(S >= s) of the avalanche sizes S (disks between two clogs) pooled over each point's realizations, at
 // s = 1..10 and then about 20 sizes per decade up to the largest; `avalanches` is the number pooled.

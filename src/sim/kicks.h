@@ -11,10 +11,10 @@
 namespace sim {
 
 // One impulse of the kick law, N*s. The direction's sine and cosine are the portable, correctly rounded ones
-// (core/portable_math.h), so a seed gives the same kicks with every libm. They differ from glibc's in the last
-// bit for 0.28% of directions, but the float impulses Box2D receives agreed in all 2e7 draws tested, and 42
-// committed realizations rerun with them (24 literal, 12 vibrated, 6 of the kick study) gave byte-identical
-// events: the committed campaigns stand.
+// (core/portable_math.h), so a seed gives the same kicks with every libm. They differ from glibc's in the
+// last bit for 0.28% of directions, but the float impulses Box2D receives agreed in all 2e7 draws tested, and
+// 42 committed realizations rerun with them (24 literal, 12 vibrated, 6 of the kick study) gave
+// byte-identical events: the committed campaigns stand.
 inline core::Vec2 draw_kick(core::Rng& rng, double j_max) {
   double mag = rng.uniform(0.0, j_max);
   double ang = rng.uniform(0.0, 2.0 * 3.14159265358979323846);

@@ -1,6 +1,6 @@
-// The paper is the regression suite: whatever scenes can do now, the paper's presets give the events they gave
-// before scenes became data (tests/golden/events/, made by the binary of commit 4e8c5b5, the last one before),
-// and every committed campaign analyses to its committed points.csv.
+// The paper is the regression suite: whatever scenes can do now, the paper's presets give the events they
+// gave before scenes became data (tests/golden/events/, made by the binary of commit 4e8c5b5, the last one
+// before), and every committed campaign analyses to its committed points.csv.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -30,7 +30,8 @@ TEST_CASE("the paper's presets give the committed events, byte for byte", "[app]
   const fs::path d = test::temp_dir("paper_equality");
   for (const auto& c : cases) {
     INFO(c.name);
-    const auto r = cli("run " + kSource + "/" + c.args + " --duration 12 --quiet --out " + (d / c.name).string());
+    const auto r =
+        cli("run " + kSource + "/" + c.args + " --duration 12 --quiet --out " + (d / c.name).string());
     REQUIRE(r.code == 0);
     for (const char* f : {"exits.csv", "clogs.csv", "arches.csv"}) {
       INFO(f);
@@ -52,7 +53,8 @@ TEST_CASE("every committed campaign analyses to its committed points.csv", "[app
     INFO(name);
     REQUIRE(test::sh("mkdir -p " + (d / name).string() + " && tar -xJf " + packed.string() + " -C " +
                      (d / name).string()) == 0);
-    const auto r = cli("analyze " + (d / name / "runs").string() + " --out " + (d / name / "analysis").string());
+    const auto r =
+        cli("analyze " + (d / name / "runs").string() + " --out " + (d / name / "analysis").string());
     REQUIRE(r.code == 0);
     CHECK(slurp(d / name / "analysis/points.csv") == slurp(e.path() / "analysis/points.csv"));
     CHECK(slurp(d / name / "analysis/survival.csv") == slurp(e.path() / "analysis/survival.csv"));

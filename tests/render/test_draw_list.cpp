@@ -8,18 +8,21 @@
 namespace {
 core::Particle grain(float x, float y, float r, int species, int sides = 0) {
   core::Particle p{};
-  p.x = x, p.y = y, p.radius = r, p.species = static_cast<core::Species>(species), p.sides = static_cast<std::uint8_t>(sides);
+  p.x = x, p.y = y, p.radius = r, p.species = static_cast<core::Species>(species),
+  p.sides = static_cast<std::uint8_t>(sides);
   return p;
 }
 }  // namespace
 
-TEST_CASE("the draw list: shapes with their colours, halos on arch members, bonds only between touching members",
-          "[render]") {
+TEST_CASE(
+    "the draw list: shapes with their colours, halos on arch members, bonds only between touching members",
+    "[render]") {
   core::Scene s;
   core::apply_overrides(s, {"obstacle=disk", "obstacle_size=0.1", "obstacle_height=0.6"});
   const core::Geometry geo = core::make_geometry(s);
   core::Frame f;
-  f.particles = {grain(-0.2f, 0.1f, 0.065f, 0), grain(-0.07f, 0.1f, 0.065f, 0), grain(0.25f, 0.1f, 0.05f, 1, 5)};
+  f.particles = {grain(-0.2f, 0.1f, 0.065f, 0), grain(-0.07f, 0.1f, 0.065f, 0),
+                 grain(0.25f, 0.1f, 0.05f, 1, 5)};
   f.arch = {0, 1, 2};  // 0 and 1 touch; 1 and 2 are 0.32 m apart (an obstacle between them)
   f.since_last_exit = 2.0;
   render::Style style;
@@ -30,10 +33,10 @@ TEST_CASE("the draw list: shapes with their colours, halos on arch members, bond
   CHECK(d.shapes[0].halo[3] == 1.0f);  // clogged: the arch at full strength
   CHECK(d.shapes[2].shape[1] == 5.0f);
   CHECK(d.shapes[2].r == Approx(0.05 * core::polygon_extent(5)));  // the pentagon's circumradius
-  CHECK(d.shapes[3].shape[1] == 0.0f);  // the obstacle: a disk...
+  CHECK(d.shapes[3].shape[1] == 0.0f);                             // the obstacle: a disk...
   CHECK(d.shapes[3].r == Approx(0.05));
   CHECK(d.shapes[3].halo[3] == 0.0f);  // ...without a halo
-  REQUIRE(d.bonds.size() == 1);  // 0-1 only
+  REQUIRE(d.bonds.size() == 1);        // 0-1 only
   CHECK(d.bonds[0].ax == f.particles[0].x);
   CHECK(d.walls.size() == 5);
   // A scene's own colour wins over the palette's.

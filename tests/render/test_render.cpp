@@ -84,7 +84,7 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
                  disk(0.25f, 0.75f, 0.026f, core::Species::Added),
                  disk(-0.065f, 0.25f, 0.065f, core::Species::Original),
                  disk(0.065f, 0.25f, 0.065f, core::Species::Original)};
-  f.arch = {2, 3};  // two members in contact
+  f.arch = {2, 3};          // two members in contact
   f.since_last_exit = 3.0;  // clogged: the arch is drawn at full strength
   auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
   render::Style style;

@@ -87,9 +87,9 @@ TEST_CASE("golden hash: the default scene's state after 1000 steps is the commit
           "[sim][hopper][determinism]") {
   // Any change to the physics, its order or its numbers changes this hash and must be acknowledged: if the
   // change is intended, write the new value into tests/golden/default_scene.txt and say why in the commit.
-  // The kick directions use the portable sine and cosine (core/portable_math.h), so the hash no longer depends
-  // on libm; it still depends on Box2D's build (its sinf/cosf turn bodies) and on IEEE arithmetic without
-  // contraction (-ffp-contract=off).
+  // The kick directions use the portable sine and cosine (core/portable_math.h), so the hash no longer
+  // depends on libm; it still depends on Box2D's build (its sinf/cosf turn bodies) and on IEEE arithmetic
+  // without contraction (-ffp-contract=off).
   core::Scene s;  // the built-in defaults (= assets/scenes/paper.toml)
   sim::Hopper h(s);
   for (int k = 0; k < 1000; ++k) h.step();
