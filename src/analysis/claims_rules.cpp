@@ -54,6 +54,21 @@ Data::Data(const std::string& dir)
     p.r = points_.num(i, "size_ratio");
     p.chi = points_.num(i, "chi");
     p.fr = points_.has("dipole_force_ratio") ? points_.num(i, "dipole_force_ratio") : 0.0;
+    // Counts are whole and not negative, intervals not negative, the grid's keys finite: a table that says
+    // otherwise was cut or edited, and its verdicts would be numbers with exit 0.
+    auto line = [&] { return points_.path() + ":" + std::to_string(i + 2) + ": "; };
+    for (const char* key :
+         {"n_runs", "n_refused", "clogs", "clogs_vibration", "clogs_rule", "clogs_spontaneous"}) {
+      if (!points_.has(key)) continue;
+      const double v = points_.num(i, key);
+      if (!(v >= 0) || v != std::floor(v) || (std::string(key) == "n_runs" && v < 1))
+        throw core::InputError(
+            line() + key + " = " + points_.text(i, key) + " is not " +
+            (std::string(key) == "n_runs" ? "a whole number from 1" : "a whole number from 0"));
+    }
+    for (const char* key : {"size_ratio", "chi", "mu"})
+      if (!std::isfinite(points_.num(i, key)) || points_.num(i, key) < 0)
+        throw core::InputError(line() + key + " = " + points_.text(i, key) + " is not a finite number >= 0");
     p.n = static_cast<long>(points_.num(i, "n_runs"));
     by_key[key(points_, i)] = pts_.size();
     pts_.push_back(p);

@@ -23,6 +23,22 @@ int main(int argc, char** argv) {
   app::add_gallery_command(cli, action);
   app::add_claims_command(cli, action);
   app::add_inspect_command(cli, action);
+  // A misspelt command: name the nearest one (CLI11 says only that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string given = argv[1];
+    std::string best;
+    size_t best_d = 3;  // at most two edits away
+    for (const auto* sub : cli.get_subcommands({})) {
+      const size_t d = app::edit_distance(given, sub->get_name());
+      if (d == 0) best.clear(), best_d = 0;
+      if (d < best_d) best_d = d, best = sub->get_name();
+    }
+    if (best_d > 0) {
+      std::fprintf(stderr, "siloscope: '%s' is not a command%s (see siloscope --help)\n", given.c_str(),
+                   best.empty() ? "" : ("; did you mean '" + best + "'?").c_str());
+      return 2;
+    }
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

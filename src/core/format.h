@@ -15,6 +15,12 @@ inline std::string format_g(double v, int digits = 9) {
   return b;
 }
 
+// "a run", "an analysis": the indefinite article a message needs before `noun`.
+inline std::string with_article(const std::string& noun) {
+  const bool vowel = !noun.empty() && std::string("aeiouAEIOU").find(noun[0]) != std::string::npos;
+  return (vowel ? "an " : "a ") + noun;
+}
+
 // The same, kept a TOML float: "20" becomes "20.0".
 inline std::string format_toml_float(double v, int digits = 9) {
   std::string s = format_g(v, digits);

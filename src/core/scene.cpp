@@ -1,6 +1,6 @@
 // The scene file: parsing TOML into core::Scene, overrides, validation of each field against its table
-// (scene_fields.cpp), and writing a scene back as TOML. Over 400 lines because reading, validating and writing
-// one format belong together: a field's text form is parsed and printed by the same templates here.
+// (scene_fields.cpp), and writing a scene back as TOML. Over 400 lines because reading, validating and
+// writing one format belong together: a field's text form is parsed and printed by the same templates here.
 #include "core/scene.h"
 
 #include <toml++/toml.h>
@@ -77,6 +77,13 @@ void parse_value(T& v, const std::string& key, const std::string& value, const s
     bool negative_unsigned = std::is_unsigned_v<T> && value.find('-') != std::string::npos;
     if (value.empty() || *end != '\0' || errno != 0 || negative_unsigned)
       bad(origin, key, value, "expected a whole number in " + range_text(min, max));
+    // TOML holds signed 64-bit integers: a larger value could be written into metadata.toml but never read
+    // back, so the run could not be repeated from its metadata.
+    if constexpr (std::is_unsigned_v<T>)
+      if (static_cast<unsigned long long>(i) > 9223372036854775807ULL)
+        bad(origin, key, value,
+            "expected a whole number from 0 to 9223372036854775807 (2^63 - 1: what TOML can "
+            "hold, so the run's metadata.toml repeats it)");
     v = i;
   }
 }
@@ -271,19 +278,25 @@ void validate(const Scene& s) {
 }
 
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
+  check_input_file(path, what, kMaxTextFileBytes, dir_hint);
+}
+
+void check_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes,
+                      const std::string& dir_hint) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path p(path);
   if (fs::is_directory(p, ec))
-    throw InputError(path + " is a directory, not a " + what +
+    throw InputError(path + " is a directory, not " + with_article(what) +
                      (dir_hint.empty() ? "" : "; did you mean " + (p / dir_hint).string() + "?"));
   if (!fs::exists(p, ec)) throw InputError(path + ": cannot open " + what + ": no such file");
   if (!fs::is_regular_file(p, ec))
-    throw InputError(path + ": a " + what + " must be a regular file (this is a device, pipe or socket)");
+    throw InputError(path + ": " + with_article(what) +
+                     " must be a regular file (this is a device, pipe or socket)");
   const auto size = fs::file_size(p, ec);
-  if (!ec && size > kMaxTextFileBytes)
+  if (!ec && size > max_bytes)
     throw InputError(path + ": " + std::to_string(size) + " bytes is too large for a " + what + " (at most " +
-                     std::to_string(kMaxTextFileBytes) + " bytes)");
+                     std::to_string(max_bytes) + " bytes)");
 }
 
 Scene load_scene(const std::string& path) {
@@ -362,6 +375,14 @@ Scene parse_scene(const std::string& text, const std::string& path) {
       << ": malformed TOML: " << e.description();
     throw InputError(o.str());
   }
+  // A campaign file given where a scene belongs: say so, not "unknown key 'grid'".
+  for (const char* key : {"grid", "points", "realizations"})
+    if (tbl.contains(key) && !tbl["scene"].as_table())
+      throw InputError(path + " is a campaign file (it has " +
+                       (std::string(key) == "grid"     ? "[grid]"
+                        : std::string(key) == "points" ? "[[points]]"
+                                                       : "realizations") +
+                       "), not a scene: run it with `siloscope sweep " + path + "`");
   // A run's metadata.toml keeps the scene in a [scene] table: loading it repeats the run.
   if (auto* inner = tbl["scene"].as_table()) {
     toml::table copy = *inner;  // *inner lives inside tbl: copy before replacing
@@ -384,6 +405,14 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     set_field(s, key, node_text(node, where, key, is_text), where);
   }
   return s;
+}
+
+bool scene_is_empty_file(const std::string& path) {
+  try {
+    return toml::parse_file(path).empty();
+  } catch (const toml::parse_error&) {
+    return false;
+  }
 }
 
 void apply_overrides(Scene& s, const std::vector<std::string>& assignments) {

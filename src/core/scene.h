@@ -153,6 +153,10 @@ constexpr std::size_t kMaxSpecies = 16;
 // device or a larger file is refused with a message that says which (a directory: "did you mean DIR/HINT?").
 constexpr std::uintmax_t kMaxTextFileBytes = 1u << 20;
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint);
+// The same for any file siloscope reads, at most `max_bytes` (links are followed: a link to a device is
+// refused as the device), so no input can exhaust memory or block.
+void check_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes,
+                      const std::string& dir_hint = "");
 
 const std::vector<Field>& scene_fields();
 const Field* find_field(const std::string& key);
@@ -180,6 +184,8 @@ void validate(const Scene& s);
 Scene load_scene(const std::string& path);
 // The same from TOML text; `origin` names it in errors.
 Scene parse_scene(const std::string& text, const std::string& origin);
+// True when the (valid) scene file sets no key at all: it runs the built-in defaults.
+bool scene_is_empty_file(const std::string& path);
 // Apply "key=value" overrides from the command line.
 void apply_overrides(Scene& s, const std::vector<std::string>& assignments);
 

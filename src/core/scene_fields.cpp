@@ -97,7 +97,7 @@ const std::vector<Field>& scene_fields() {
       {"continuous", &Scene::continuous, "", 0, 0, nullptr, "Box2D continuous collision for the grains",
        "numerics"},
       {"unsafe", &Scene::unsafe, "", 0, 0, nullptr, "health monitor warns instead of stopping", "numerics"},
-      {"seed", &Scene::seed, "", 0, 1.8446744073709552e19, nullptr, "random seed of the run", "run"},
+      {"seed", &Scene::seed, "", 0, 9223372036854775807.0, nullptr, "random seed of the run", "run"},
   };
   return fields;
 }

@@ -143,6 +143,16 @@ def main(src, out):
     except siloscope.SiloscopeError as e:
         print(f"figures: {e}", file=sys.stderr)
         sys.exit(2)
+    try:
+        draw(campaign, src, out)
+    except KeyError as e:
+        # A points.csv not written by `siloscope analyze` (or by an older one): one line, never a traceback.
+        print(f"figures: {campaign.path}/points.csv has no column {e.args[0]} (written by siloscope analyze?)",
+              file=sys.stderr)
+        sys.exit(2)
+
+
+def draw(campaign, src, out):
     os.makedirs(out, exist_ok=True)
     points = records(campaign.points)
     note = stats_note(points, campaign.planned)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/scene.h"
 #include "io/output.h"
 
 namespace io {
@@ -31,7 +32,10 @@ std::vector<std::string> split(const std::string& s, char sep) {
 class CsvReader {
  public:
   CsvReader(const std::filesystem::path& path, const char* header, const SpeciesNames& names)
-      : path_(path.string()), in_(path), names_(names) {
+      : path_(path.string()), names_(names) {
+    if (std::filesystem::exists(path))
+      core::check_input_file(path_, "events file", std::uintmax_t{1} << 30);  // no device, no link to one
+    in_.open(path);
     if (!in_) throw core::InputError(path_ + ": missing events file (is this a siloscope run directory?)");
     std::string h;
     if (!std::getline(in_, h) || h != header)

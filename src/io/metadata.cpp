@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "core/error.h"
+#include "core/scene.h"
 
 #include "core/geometry.h"
 #include "core/physics.h"
@@ -111,12 +112,22 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
 }
 
 RunRecord read_run_record(const std::string& path) {
+  core::check_text_file(path, "run metadata", "metadata.toml");
   toml::table t;
   try {
     t = toml::parse_file(path);
   } catch (const toml::parse_error& e) {
     throw core::InputError(path + ": malformed TOML: " + std::string(e.description()));
   }
+  // Written whole by siloscope, so every table is there: a missing one means a truncated or hand-cut file,
+  // whose scene would otherwise be read with defaults (a duration or seed the run never had).
+  for (const auto& [table, key] : {std::pair<const char*, const char*>{"siloscope", "version"},
+                                   {"scene", "seed"},
+                                   {"scene", "duration"},
+                                   {"health", "status"}})
+    if (!t[table][key])
+      throw core::InputError(path + ": no " + table + "." + key +
+                             " (a run's metadata.toml always has it: truncated or cut by hand?)");
   RunRecord r;
   r.health_warnings = t["health"]["warnings"].value_or<std::int64_t>(0);
   r.ballistic = t["health"]["ballistic"].value_or(false);

@@ -1,4 +1,5 @@
 #include "io/output.h"
+#include "core/format.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -89,20 +90,12 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
   return "";
 }
 
-void check_destination(const fs::path& path, bool force, const std::string& what, OutputKind kind,
-                       const std::string& csv_header) {
+namespace {
+// Missing parents are created, as `mkdir -p` would; a file in the way or no permission is an error.
+void ensure_parent(const fs::path& path, const std::string& what) {
   std::error_code ec;
-  if (fs::exists(fs::symlink_status(path, ec))) {
-    if (!force)
-      throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
-    const std::string why = foreign_output(path, kind, csv_header);
-    if (!why.empty())
-      throw core::InputError(what + " " + path.string() + " is " + why +
-                             "; --force replaces only what siloscope wrote, so choose another path");
-  }
   fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec)) {
-    // Missing parents are created, as `mkdir -p` would; a file in the way or no permission is an error.
     fs::create_directories(parent, ec);
     if (ec || !fs::is_directory(parent))
       throw core::InputError(what + " " + path.string() + ": cannot create directory " + parent.string() +
@@ -111,6 +104,78 @@ void check_destination(const fs::path& path, bool force, const std::string& what
   if (::access(parent.c_str(), W_OK) != 0)
     throw core::InputError(what + " " + path.string() + ": directory " + parent.string() +
                            " is not writable");
+}
+}  // namespace
+
+std::string foreign_directory(const fs::path& d, DirKind kind) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(d, ec);
+  if (fs::is_symlink(st)) return "a symbolic link";
+  if (fs::is_regular_file(st)) return "a regular file, not a siloscope output directory";
+  if (!fs::is_directory(st)) return "not a regular file or directory";
+  if (fs::is_regular_file(d / "campaign.toml", ec))
+    return "a campaign's results (it holds campaign.toml): no command replaces those";
+  Manifest m;
+  if (!read_manifest(d, m)) {
+    if (siloscope_directory(d))
+      return "a siloscope output without a manifest (written before manifests, or by hand), so what it holds "
+             "cannot be proven to be only siloscope's: remove it yourself if you mean to";
+    return "a directory siloscope did not write (it holds no manifest.toml)";
+  }
+  if (m.kind != dir_kind_name(kind))
+    return std::string("siloscope's ") + m.kind + " output, not " + core::with_article(dir_kind_name(kind)) +
+           " one (--force replaces only an output of the same kind)";
+  const std::string why = manifest_mismatch(d, m);
+  if (!why.empty()) return "siloscope's " + m.kind + " output, but " + why;
+  return "";
+}
+
+fs::path output_path(const std::string& path, const std::string& option) {
+  if (path.empty()) throw core::InputError(option + " is empty: name the output to write");
+  fs::path p(path);
+  std::string last = p.filename().string();
+  if (last.empty()) last = p.parent_path().filename().string();  // "runs/x/" names x
+  if (last.empty() || last == "." || last == "..")
+    throw core::InputError(option + " " + path +
+                           " names a directory that already holds other things (., .., /); name a new one "
+                           "inside it, e.g. " +
+                           option + " " + (fs::path(path) / "out").string());
+  std::error_code ec;
+  fs::path abs = fs::absolute(p, ec).lexically_normal();
+  if (!abs.has_filename()) abs = abs.parent_path();
+  const fs::path parent = fs::weakly_canonical(abs.parent_path(), ec);
+  return (ec ? abs.parent_path() : parent) / abs.filename();
+}
+
+void check_not_input(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& what) {
+  std::error_code ec;
+  const fs::path o = fs::weakly_canonical(out, ec);
+  for (const auto& in : inputs) {
+    const fs::path i = fs::weakly_canonical(in, ec);
+    const auto rel = i.lexically_relative(o);
+    if (!rel.empty() && *rel.begin() != "..")
+      throw core::InputError(what + " " + out.string() + " is " + (rel == "." ? "" : "above ") +
+                             "an input of this command (" + in.string() +
+                             "); writing there would replace "
+                             "what it reads, so choose another path");
+  }
+}
+
+void check_destination(const fs::path& path, bool force, const std::string& what, OutputKind kind,
+                       const std::string& csv_header) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(path, ec))) {
+    const std::string why = foreign_output(path, kind, csv_header);
+    if (!force && !why.empty())
+      throw core::InputError(what + " " + path.string() + " already exists: it is " + why +
+                             "; choose another path");
+    if (!force)
+      throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
+    if (!why.empty())
+      throw core::InputError(what + " " + path.string() + " is " + why +
+                             "; --force replaces only what siloscope wrote, so choose another path");
+  }
+  ensure_parent(path, what);
 }
 
 OutputLock::OutputLock(const fs::path& final_path) {
@@ -165,21 +230,44 @@ void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::st
       if (f == x) dead.push_back(e.path());
   }
   for (const auto& p : dead) {
+    const std::string f = p.filename().string();
+    const bool moved_aside = f.compare(0, name.size() + 5, name + ".old-") == 0;
+    if (moved_aside && !fs::exists(fs::symlink_status(final_path, ec))) {
+      fs::rename(p, final_path, ec);  // its replacement never arrived: put it back
+      std::fprintf(stderr, "siloscope: put %s back as %s: a siloscope process that died had moved it aside\n",
+                   p.c_str(), final_path.c_str());
+      continue;
+    }
     fs::remove_all(p, ec);
     std::fprintf(stderr, "siloscope: removed %s, left by a siloscope process that died\n", p.c_str());
   }
 }
 
-OutputDir::OutputDir(fs::path final_path, bool force) : final_(std::move(final_path)), force_(force) {
-  if (final_.has_filename() == false) final_ = final_.parent_path();  // tolerate a trailing slash
-  check_destination(final_, force, "output directory");
+OutputDir::OutputDir(const std::string& final_path, bool force, DirKind kind)
+    : final_(output_path(final_path)), kind_(kind), force_(force) {
+  std::error_code ec;
+  ensure_parent(final_, "output directory");
   lock_ = std::make_unique<OutputLock>(final_);
-  remove_dead_leftovers(final_);
+  remove_dead_leftovers(
+      final_);  // first: an old output a dead process moved aside goes back before the checks
+  if (fs::exists(fs::symlink_status(final_, ec))) {
+    const std::string why = foreign_directory(final_, kind);
+    // --force is suggested only where it would work.
+    if (!force && !why.empty())
+      throw core::InputError("output directory " + final_path + " already exists: it is " + why +
+                             "; choose another path");
+    if (!force)
+      throw core::InputError("output directory " + final_path +
+                             " already exists; pass --force to replace it");
+    if (!why.empty())
+      throw core::InputError("output directory " + final_path + " is " + why +
+                             "; --force replaces only a siloscope output of the same kind that holds what "
+                             "siloscope wrote, so choose another path");
+  }
   tmp_ = final_;
   tmp_ += ".partial-" + std::to_string(::getpid());
-  std::error_code ec;
   if (!fs::create_directory(tmp_, ec))
-    throw core::InputError("output directory " + final_.string() + ": cannot create " + tmp_.string() + ": " +
+    throw core::InputError("output directory " + final_path + ": cannot create " + tmp_.string() + ": " +
                            ec.message());
 }
 
@@ -190,24 +278,31 @@ OutputDir::~OutputDir() {
 }
 
 void OutputDir::commit() {
+  write_manifest(tmp_, kind_);
   std::error_code ec;
   fs::path old;
-  if (fs::exists(final_, ec)) {
+  if (fs::exists(fs::symlink_status(final_, ec))) {
     if (!force_)
       throw core::RuntimeFault(final_.string() + " appeared while the run was going; not replacing it");
-    const std::string why = foreign_output(final_, OutputKind::Directory);
+    const std::string why = foreign_directory(final_, kind_);
     if (!why.empty())
-      throw core::RuntimeFault(final_.string() + " appeared while the run was going and is " + why +
-                               "; not replacing it");
+      throw core::RuntimeFault(final_.string() + " appeared or changed while the run was going and is " +
+                               why + "; not replacing it");
     old = final_;
     old += ".old-" + std::to_string(::getpid());
     fs::rename(final_, old, ec);
     if (ec) throw core::RuntimeFault("cannot move " + final_.string() + " aside: " + ec.message());
   }
   fs::rename(tmp_, final_, ec);
-  if (ec)
+  if (ec) {
+    std::error_code back;
+    if (!old.empty()) fs::rename(old, final_, back);  // the old output goes back under its own name
     throw core::RuntimeFault("cannot rename " + tmp_.string() + " to " + final_.string() + ": " +
-                             ec.message());
+                             ec.message() +
+                             (old.empty() ? ""
+                              : back      ? "; the old output is in " + old.string()
+                                          : "; the old output is back in place"));
+  }
   committed_ = true;
   if (!old.empty()) fs::remove_all(old, ec);
 }

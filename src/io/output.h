@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "io/manifest.h"
+
 namespace io {
 
 namespace fs = std::filesystem;
@@ -30,6 +32,21 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
 void check_destination(const fs::path& path, bool force, const std::string& what,
                        OutputKind kind = OutputKind::Directory, const std::string& csv_header = "");
 
+// Why --force may not replace the directory `dir` with a new output of `kind`: empty when it is siloscope's
+// own output of that kind holding exactly what its manifest lists. Otherwise what it is: a campaign's results
+// (never replaced), another kind of output, a directory with files a user added or changed, one without a
+// manifest, a symbolic link, a file.
+std::string foreign_directory(const fs::path& dir, DirKind kind);
+
+// An output path made absolute and normal (".." and trailing slashes resolved, the parent's symbolic links
+// followed), after refusing what names no new entry: an empty path, ".", "..", "/". `option` names the flag
+// in the error (e.g. "--out").
+fs::path output_path(const std::string& path, const std::string& option = "--out");
+
+// Refuses an output that is, or holds, one of the command's inputs (analyze RESULTS/runs --out RESULTS would
+// replace the runs it reads): throws core::InputError naming both.
+void check_not_input(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& what);
+
 // One writer per output: an exclusive lock on PARENT/.NAME.lock, held for the object's life. A second process
 // aiming at the same output gets core::OutputBusy at once, before any work. The lock goes with the process,
 // so a killed writer never leaves it held.
@@ -45,25 +62,30 @@ class OutputLock {
   int fd_ = -1;
 };
 
-// Remove what a dead siloscope process left next to `final_path` (NAME.partial-PID, NAME.old-PID whose PID is
-// gone, and the `extra` names, e.g. NAME.mp4.partial), saying so on stderr. Call while holding its
+// Clear what a dead siloscope process left next to `final_path` (NAME.partial-PID, NAME.old-PID whose PID is
+// gone, and the `extra` names, e.g. NAME.mp4.partial), saying so on stderr. An old output moved aside whose
+// replacement never arrived (NAME.old-PID with no NAME) is put back, not removed. Call while holding its
 // OutputLock.
 void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::string>& extra = {});
 
 class OutputDir {
  public:
-  OutputDir(fs::path final_path, bool force);
+  // `kind`: what the directory will be, written into its manifest at commit(); --force replaces only a
+  // directory of the same kind that holds exactly what its manifest lists.
+  OutputDir(const std::string& final_path, bool force, DirKind kind);
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
   // Path of `name` inside the directory being built.
   fs::path file(const std::string& name) const { return tmp_ / name; }
   const fs::path& final_path() const { return final_; }
-  // Move the finished directory into place (replacing an old one if force).
+  // Write the manifest and move the finished directory into place (replacing an old one if force; if the
+  // last rename fails, the old one is put back under its own name).
   void commit();
 
  private:
   fs::path final_, tmp_;
+  DirKind kind_;
   std::unique_ptr<OutputLock> lock_;
   bool force_, committed_ = false;
 };

@@ -1,4 +1,5 @@
 #include "io/trajectory.h"
+#include "core/format.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,6 +7,8 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/scene.h"
+#include "io/manifest.h"
 
 namespace io {
 
@@ -110,6 +113,9 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
                            "?");
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw core::InputError(p + ": a trajectory must be a regular file (this is a device, pipe or socket)");
+  if (std::filesystem::exists(path, ec))
+    core::check_input_file(p, "trajectory", std::uintmax_t{4} << 30);  // read whole: bounded
+  verify_listed(path, "trajectory");
   std::ifstream in(p, std::ios::binary);
   if (!in) throw core::InputError(p + ": cannot open trajectory file");
   parse(std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
@@ -187,8 +193,38 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   // Every number a frame holds must be finite: a corrupted frame is named, never drawn as an empty silo.
   static const char* kFields[] = {"x", "y", "angle", "vx", "vy", "force"};
   const size_t base = 40 + 4 * kTrajectoryMaxArch;
+  // Finite but impossible values are refused as well: time must run forwards, exit counts never fall below
+  // zero or go down, and a grain cannot be farther from the container than the container's own size (1 km
+  // when the metadata holds no scene).
+  double reach = 1e3;
+  if (setup_)
+    reach = 10.0 * std::max(setup_->geo.total_height, setup_->geo.x_right - setup_->geo.x_left) + 1.0;
+  double last_t = -INFINITY;
+  std::int64_t last_orig = 0, last_added = 0;
   for (long k = 0; k < count_; ++k) {
     const unsigned char* b = record(k);
+    const std::string frame = p + ": frame " + std::to_string(k) + " is corrupted: ";
+    const double t = get<double>(b, 0);
+    if (std::isfinite(t) && !(t > last_t))
+      throw core::InputError(frame + "its time " + core::format_shortest(t) +
+                             " s does not come after the previous frame's " + core::format_shortest(last_t) +
+                             " s");
+    last_t = t;
+    const auto orig = get<std::int64_t>(b, 16), added = get<std::int64_t>(b, 24);
+    if (orig < last_orig || added < last_added)
+      throw core::InputError(frame + "its exit counts (" + std::to_string(orig) + ", " +
+                             std::to_string(added) + ") are negative or lower than the previous frame's (" +
+                             std::to_string(last_orig) + ", " + std::to_string(last_added) + ")");
+    last_orig = orig, last_added = added;
+    if (get<double>(b, 8) < 0) throw core::InputError(frame + "its time since the last exit is negative");
+    for (size_t a = 0; a < 2; ++a)
+      for (size_t i = 0; i < n; ++i) {
+        const float v = get<float>(b, base + 4 * (a * n + i));
+        if (std::isfinite(v) && std::abs(v) > reach)
+          throw core::InputError(frame + kFields[a] + " of particle " + std::to_string(i) + " is " +
+                                 core::format_g(v, 7) + " m, far outside the container (allowed: within " +
+                                 core::format_shortest(reach) + " m)");
+      }
     for (size_t off : {size_t(0), size_t(8)})
       if (!std::isfinite(get<double>(b, off)))
         throw core::InputError(p + ": frame " + std::to_string(k) + " is corrupted: its " +

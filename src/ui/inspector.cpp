@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/scene.h"
 
 namespace ui {
 
@@ -357,6 +358,7 @@ void Inspector::export_command(const std::vector<std::string>& a, Painter* paint
 }
 
 int run_script(Inspector& insp, Painter& painter, const std::string& path) {
+  core::check_text_file(path, "inspector script", "");
   std::ifstream in(path);
   if (!in) throw core::InputError(path + ": cannot open script");
   int line_no = 0, commands = 0;

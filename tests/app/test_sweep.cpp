@@ -300,7 +300,7 @@ TEST_CASE("sweep --status says how far a campaign got and what is left, and writ
   fs::path other = tiny_campaign(d, 2, "[[points]]\nchi = 0.2\n");
   r = test::cli("sweep " + other.string() + " --status --results " + res.string());
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("holds a different campaign"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("holds another campaign"));
 }
 
 TEST_CASE("figures draws what the grid allows, avalanche sizes included, and names what it skipped",

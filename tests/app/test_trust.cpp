@@ -120,9 +120,7 @@ TEST_CASE("leftovers of a dead process are removed by the next run to the same o
   fs::path d = temp_dir("leftovers");
   const pid_t gone = dead_pid();
   const fs::path dead_dir = d / ("r.partial-" + std::to_string(gone));
-  const fs::path dead_old = d / ("r.old-" + std::to_string(gone));
   fs::create_directories(dead_dir);
-  fs::create_directories(dead_old);
   std::ofstream(d / "r.mp4.partial") << "half a movie";
   std::ofstream(d / "r.partial-notes") << "a user's file with a similar name";
   auto r = cli("record " + kScene + kShort + " --size 64x48 --out " + (d / "r").string());
@@ -130,10 +128,20 @@ TEST_CASE("leftovers of a dead process are removed by the next run to the same o
   CHECK_THAT(r.output, Catch::Matchers::Contains("removed " + dead_dir.string()));
   CHECK_THAT(r.output, Catch::Matchers::Contains("r.mp4.partial"));
   CHECK_FALSE(fs::exists(dead_dir));
-  CHECK_FALSE(fs::exists(dead_old));
   CHECK_FALSE(fs::exists(d / "r.mp4.partial"));
   CHECK(fs::exists(d / "r.partial-notes"));
   CHECK(fs::exists(d / "r.mp4"));
+  // An old output that a dead process moved aside before its replacement arrived is put back, not removed:
+  // it may be the only copy. The new run then finds it in place and, without --force, leaves it alone.
+  const fs::path dead_old = d / ("q.old-" + std::to_string(gone));
+  fs::create_directories(dead_old);
+  std::ofstream(dead_old / "exits.csv") << "t_s,id,species\n";
+  r = cli("run " + kScene + kShort + " --quiet --out " + (d / "q").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("put " + dead_old.string() + " back") &&
+                           Catch::Matchers::Contains("already exists"));
+  CHECK_FALSE(fs::exists(dead_old));
+  CHECK(test::slurp(d / "q" / "exits.csv") == "t_s,id,species\n");
 }
 
 TEST_CASE("analyze counts a run for the time it covered and names what it leaves out",
@@ -146,6 +154,10 @@ TEST_CASE("analyze counts a run for the time it covered and names what it leaves
   // s2 as if it had been stopped after 2 s (what record writes when interrupted), s3 as if unhealthy.
   edit(d / "runs" / "s2" / "metadata.toml", "[run]\n", "[run]\ninterrupted = true\nsimulated_s = 2.0\n");
   edit(d / "runs" / "s3" / "metadata.toml", "warnings = 0", "warnings = 3");
+  // Edited by hand, the two no longer match their manifests (analyze would refuse them as changed); without
+  // a manifest they are read as runs made before manifests were written.
+  fs::remove(d / "runs" / "s2" / "manifest.toml");
+  fs::remove(d / "runs" / "s3" / "manifest.toml");
   auto r = cli("analyze " + (d / "runs").string() + " --out " + (d / "a").string());
   REQUIRE(r.code == 0);
   CHECK_THAT(r.output,

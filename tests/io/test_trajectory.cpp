@@ -81,3 +81,33 @@ TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame numb
     }
   }
 }
+
+TEST_CASE(
+    "finite garbage in a frame is refused: time running backwards, falling exit counts, a disk at 1e30 m",
+    "[trust][io]") {
+  fs::path d = temp_dir("traj_garbage");
+  REQUIRE(cli("run " + kScene + kShort + " --trajectory-fps 10 --out " + (d / "r").string()).code == 0);
+  std::ifstream in((d / "r" / "trajectory.sstraj").string(), std::ios::binary);
+  std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  io::Trajectory good(data, "good");
+  REQUIRE(good.size() >= 5);
+  const size_t n = good.info().n_particles,
+               fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
+  const size_t frame4 = data.size() - fb * static_cast<size_t>(good.size()) + 4 * fb;
+  auto refused = [&](size_t offset, const void* bytes, size_t size, const std::string& what) {
+    std::vector<unsigned char> broken = data;
+    std::memcpy(&broken[frame4 + offset], bytes, size);
+    try {
+      io::Trajectory t(broken, "broken.sstraj");
+      FAIL("accepted: " + what);
+    } catch (const core::InputError& e) {
+      CHECK_THAT(e.what(), Catch::Matchers::Contains("frame 4") && Catch::Matchers::Contains(what));
+    }
+  };
+  const double back = good.time(2);  // frame 4 at the time of frame 2
+  refused(0, &back, 8, "does not come after");
+  const std::int64_t negative = -3;
+  refused(16, &negative, 8, "exit counts (-3");
+  const float far = 1e30f;
+  refused(40 + 4 * io::kTrajectoryMaxArch + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
+}

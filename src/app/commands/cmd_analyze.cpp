@@ -1,5 +1,6 @@
 // siloscope analyze DIR... --out DIR: aggregate runs (from any machine) into tidy CSV with 95% intervals.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -9,6 +10,7 @@
 #include "core/format.h"
 #include "core/setup.h"
 #include "io/events_csv.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -61,7 +63,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
       throw core::InputError("analyze: no runs under " + in +
                              " (a run directory holds metadata.toml and exits.csv)");
   }
-  io::OutputDir out(o.out, o.force);
+  std::vector<fs::path> input_paths(o.inputs.begin(), o.inputs.end());
+  io::check_not_input(io::output_path(o.out), input_paths, "analysis directory");
+  io::OutputDir out(o.out, o.force, io::DirKind::Analysis);
   std::vector<analysis::Run> runs;
   runs.reserve(dirs.size());
   std::vector<std::string> left_out;
@@ -69,6 +73,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     analysis::Run r;
     r.source = d.string();
     const std::string meta = (d / "metadata.toml").string();
+    for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
+      io::verify_listed(d / f, "analyze: run");
     r.scene = core::load_scene(meta);
     core::validate(r.scene);
     const core::Setup setup = core::resolve(r.scene);
@@ -135,6 +141,17 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   std::printf(
       "%zu runs, %zu points -> %s/{points,realizations,survival,avalanches,species,clog_survival}.csv\n",
       runs.size(), points.size(), o.out.c_str());
+  // A mean and its interval in 18 columns; never "nan": what is missing is said instead.
+  auto pm = [](const analysis::Estimate& e, const char* missing) {
+    char b[64];
+    if (!std::isfinite(e.mean))
+      std::snprintf(b, sizeof b, "%18s", missing);
+    else if (!std::isfinite(e.half_width))
+      std::snprintf(b, sizeof b, "%9.3f (1 run)   ", e.mean);
+    else
+      std::snprintf(b, sizeof b, "%9.3f +- %5.3f", e.mean, e.half_width);
+    return std::string(b);
+  };
   if (!runs.front().scene.shorthand()) {
     // A scene of its own species: the --by keys, Q and each species' flow.
     std::printf("%-32s %4s %18s   %s\n", "point", "runs", "Q [1/s]", "per species [1/s]");
@@ -144,7 +161,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
       if (label.empty()) label = "(one point)";
       std::string per;
       for (const auto& e : p.species) per += e.name + " " + core::format_g(e.q.mean, 4) + "  ";
-      std::printf("%-32s %4zu %9.3f +- %5.3f   %s\n", label.c_str(), p.runs.size(), p.q.mean, p.q.half_width,
+      std::printf("%-32s %4zu %s   %s\n", label.c_str(), p.runs.size(), pm(p.q, "no flow").c_str(),
                   per.c_str());
     }
     return 0;
@@ -155,8 +172,10 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     char label[64];
     std::snprintf(label, sizeof label, "%g, %g, %g, %g", p.scene.size_ratio, p.scene.chi, p.scene.mu,
                   p.scene.kick_impulse_max);
-    std::printf("%-32s %4zu %9.3f +- %5.3f %9.3f +- %5.3f %7.3f\n", label, p.runs.size(), p.q_tilde.mean,
-                p.q_tilde.half_width, p.q_tilde_over_qp.mean, p.q_tilde_over_qp.half_width, p.chi_eff.mean);
+    const std::string chi_eff =
+        std::isfinite(p.chi_eff.mean) ? core::format_g(p.chi_eff.mean, 3) : std::string("no exits");
+    std::printf("%-32s %4zu %s %s %14s\n", label, p.runs.size(), pm(p.q_tilde, "no exits").c_str(),
+                pm(p.q_tilde_over_qp, "no pure point").c_str(), chi_eff.c_str());
   }
   return 0;
 }

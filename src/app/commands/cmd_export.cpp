@@ -67,7 +67,7 @@ std::string num(double v) {
 int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajectory& t, long first, long last,
                const core::Scene& scene, const core::Setup& setup) {
   const fs::path out = o.out.empty() ? traj.parent_path() / "vtu" : fs::path(o.out);
-  io::OutputDir dir(out, o.force);
+  io::OutputDir dir(out.string(), o.force, io::DirKind::Export);
   std::vector<io::PvdEntry> entries;
   const bool moving = setup.drive.vibrating();
   if (!moving) io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo), false);

@@ -40,8 +40,9 @@ int figures(const FiguresOptions& o) {
         "figures: python3 with matplotlib and pandas is needed (Debian: apt-get install "
         "python3-matplotlib python3-pandas)");
   // Drawn into a temporary directory, moved into place when complete; an existing figures directory is
-  // replaced only with --force and only when siloscope made it (its metadata.toml says so).
-  io::OutputDir dir(out, o.force);
+  // replaced only with --force and only when it is siloscope's figures holding what its manifest lists.
+  io::check_not_input(io::output_path(out.string()), {src}, "figures directory");
+  io::OutputDir dir(out.string(), o.force, io::DirKind::Figures);
   const fs::path tmp = dir.file("");
   const int status = run_python(script.string(), {src.string(), tmp.string()});
   if (status == 2)

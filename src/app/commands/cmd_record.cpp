@@ -342,11 +342,13 @@ int record_movie(const RecordOptions& o) {
 
   fs::path base = o.out;
   if (base.extension() == ".mp4") base.replace_extension();
-  if (base.filename().empty()) throw core::InputError("--out " + o.out + ": expected recordings/NAME");
+  if (base.filename().empty()) base = base.parent_path();  // recordings/NAME/ names NAME
+  if (base.filename().empty() || base.filename() == "." || base.filename() == "..")
+    throw core::InputError("--out " + o.out + ": expected recordings/NAME");
   fs::path movie_path = base;
   movie_path += ".mp4";
   // The directory's lock also guards NAME.mp4: one writer for both.
-  io::OutputDir dir(base, o.force);
+  io::OutputDir dir(base.string(), o.force, io::DirKind::Run);
   if (!o.no_movie) {
     io::check_destination(movie_path, o.force, "movie", io::OutputKind::Movie);
     io::remove_dead_leftovers(base, {movie_path.filename().string() + ".partial"});

@@ -57,7 +57,7 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
   const FrameClock clock = o.trajectory_fps > 0
                                ? FrameClock::every(scene.dt, 1.0 / o.trajectory_fps, "--trajectory-fps")
                                : FrameClock::none();
-  io::OutputDir dir(o.out, o.force);  // checked before hours of simulation, not after
+  io::OutputDir dir(o.out, o.force, io::DirKind::Run);  // checked before hours of simulation, not after
   install_interrupt_handler();
 
   Progress progress("run", scene.duration, !o.quiet);

@@ -93,27 +93,72 @@ bool partial_is_live(const fs::path& p) {
   return pid > 0 && ::kill(pid, 0) == 0;
 }
 
-// The campaign.toml a results directory was made for ("" if none). Throws if it is another campaign.
+// The campaign.toml a results directory was made for ("" if none). The same campaign when the text differs
+// at most in `realizations`, or when it parses to the same seed and the same points in the same order (a
+// comment, key order or spacing changed): their seeds and directories are then those already run. Anything
+// else is refused, naming the difference.
 std::string stamped_campaign(const Campaign& c, const fs::path& dir) {
   const fs::path stamp = dir / "campaign.toml";
   if (!fs::exists(stamp)) return "";
+  core::check_text_file(stamp.string(), "campaign file", "");
   std::ifstream in(stamp);
   std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (without_realizations(old) != without_realizations(c.text))
-    throw core::InputError("results directory " + dir.string() +
-                           " holds a different campaign (its campaign.toml "
-                           "differs from " +
-                           c.path +
-                           " in more than `realizations`); choose another --results "
-                           "directory");
+  if (without_realizations(old) == without_realizations(c.text)) return old;
+  auto refuse = [&](const std::string& why) {
+    return core::InputError("results directory " + dir.string() + " holds another campaign: " + why +
+                            " (its campaign.toml against " + c.path +
+                            "); choose another --results directory");
+  };
+  Campaign prev;
+  try {
+    prev = parse_campaign(old, c.path);
+  } catch (const core::InputError& e) {
+    throw refuse(std::string("its campaign.toml no longer parses here (") + e.what() + ")");
+  }
+  if (prev.seed != c.seed)
+    throw refuse("seed " + std::to_string(prev.seed) + " there, " + std::to_string(c.seed) + " here");
+  if (prev.points.size() != c.points.size())
+    throw refuse(std::to_string(prev.points.size()) + " points there, " + std::to_string(c.points.size()) +
+                 " here");
+  for (size_t p = 0; p < c.points.size(); ++p)
+    if (prev.points[p].label != c.points[p].label)
+      throw refuse("point " + std::to_string(p) + " is " + prev.points[p].label + " there, " +
+                   c.points[p].label + " here");
+  std::fprintf(stderr, "siloscope: %s was edited without changing its points or seeds; resuming\n",
+               c.path.c_str());
   return old;
+}
+
+// Each point's scene as its realizations ran (scenes/pNNN.toml) must be the scene the campaign gives now:
+// an edited base scene would otherwise mix two scenes in one point. Compared as parsed scenes, key by key.
+void check_point_scenes(const Campaign& c, const fs::path& dir) {
+  for (size_t p = 0; p < c.points.size(); ++p) {
+    char name[32];
+    std::snprintf(name, sizeof name, "p%03zu.toml", p);
+    const fs::path f = dir / "scenes" / name;
+    if (!fs::exists(f)) continue;
+    const auto was = core::scene_values(core::load_scene(f.string()));
+    const auto now = core::scene_values(c.points[p].scene);
+    for (const auto& [key, value] : now) {
+      const auto it = was.find(key);
+      if (key == "seed" || (it != was.end() && it->second == value)) continue;
+      throw core::InputError("results directory " + dir.string() + ": point " +
+                             std::string(name).substr(0, 4) + " (" + c.points[p].label + ") ran with " + key +
+                             " = " + (it == was.end() ? std::string("(absent)") : it->second) +
+                             ", the campaign now gives " + value +
+                             " (its base scene or grid changed since); choose another --results "
+                             "directory, or put the scene back");
+    }
+  }
 }
 
 void prepare_results(const Campaign& c, const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir / "scenes", ec);
   if (ec) throw core::InputError("results directory " + dir.string() + ": cannot create it: " + ec.message());
-  if (stamped_campaign(c, dir) != c.text) io::write_file_atomic(dir / "campaign.toml", c.text);
+  const bool restamp = stamped_campaign(c, dir) != c.text;
+  check_point_scenes(c, dir);
+  if (restamp) io::write_file_atomic(dir / "campaign.toml", c.text);
   for (size_t p = 0; p < c.points.size(); ++p) {
     char name[32];
     std::snprintf(name, sizeof name, "p%03zu.toml", p);
@@ -424,6 +469,15 @@ int sweep(const SweepOptions& o) {
       o.workers > 0 ? o.workers : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.status) return print_status(c, dir, o.up_to, workers);
   std::error_code ec;
+  // A directory that holds something but no campaign.toml is not a campaign's results: writing there would
+  // mix realizations into a user's files (a leftover .lock of a sweep that died at once is no content).
+  if (fs::is_directory(dir, ec) && !fs::exists(dir / "campaign.toml", ec))
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().filename() != ".lock")
+        throw core::InputError("--results " + dir.string() +
+                               " is not empty and holds no campaign.toml, so it "
+                               "is not this campaign's results (it holds " +
+                               e.path().filename().string() + "); choose a new or empty directory");
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw core::InputError("--results " + dir.string() + ": cannot create directory: " + ec.message());

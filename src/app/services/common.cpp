@@ -33,7 +33,7 @@ void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
                              "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
   if (scene_required) opt->required();
   cmd.add_option("--seed", seed, "random seed (overrides the scene's)")
-      ->check(whole_number(0, 18446744073709551615.0L));
+      ->check(whole_number(0, 9223372036854775807.0L));  // 2^63 - 1: what metadata.toml can hold
   cmd.add_option("--duration", duration,
                  "seconds of discharge after the aperture opens (overrides the scene's)");
   cmd.add_option("--set", overrides, "override a scene key, e.g. --set mu=1.0 (repeatable)")->take_all();
@@ -43,12 +43,15 @@ void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
 
 core::Scene SceneOptions::load() const {
   core::Scene s = path.empty() ? core::Scene{} : core::load_scene(path);
+  if (!path.empty() && core::scene_is_empty_file(path))
+    std::fprintf(stderr, "siloscope: %s sets no keys: running the built-in default scene\n", path.c_str());
   core::apply_overrides(s, overrides);
-  if (seed) s.seed = *seed;
+  if (seed) s.seed = *seed, s.origin["seed"] = "--seed";
   if (duration) {
     if (!(*duration >= 0))
       throw core::InputError("--duration " + std::to_string(*duration) + ": must be >= 0 s");
     s.duration = *duration;
+    s.origin["duration"] = "--duration";  // a range error names the option, not the file's line
   }
   if (unsafe) s.unsafe = true;
   core::validate(s);
@@ -83,6 +86,21 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
   info.health = health_facts(h);
   io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(scene, info));
   return m;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
 }
 
 CLI::Validator whole_number(long double lo, long double hi) {

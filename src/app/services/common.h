@@ -40,6 +40,8 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);
+// Levenshtein distance (for "did you mean").
+size_t edit_distance(const std::string& a, const std::string& b);
 
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {

@@ -11,12 +11,6 @@
 
 namespace app {
 
-namespace {
-std::string num6(double v) {
-  return core::format_g(v, 6);
-}
-}  // namespace
-
 render::Annotations EventMarks::update(const sim::Hopper& h, double t) {
   render::Annotations notes;
   const auto& arches = h.events().arches;
