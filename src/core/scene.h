@@ -105,6 +105,12 @@ struct Scene {
   double length_scale = 10.0;            // Box2D length units per metre
   bool continuous = false;               // Box2D continuous collision for the grains
   bool unsafe = false;                   // let the health monitor warn instead of stopping
+  // The arrested-state shortcut (off by default; docs/accuracy/campaign-numerics.md): once the outlet has
+  // been arrested at arrest_skip consecutive kicks and no grain moved more than arrest_skip_shift of its
+  // radius from one kick to the next, the run jumps to the clog rule instead of integrating the still
+  // packing, drawing the skipped kicks so that a seed stays one run. 0: off (every step integrated).
+  std::int64_t arrest_skip = 0;     // kicks
+  double arrest_skip_shift = 0.01;  // fraction of a grain's radius per kick period
 
   std::uint64_t seed = 1;  // one seed determines the whole run
 

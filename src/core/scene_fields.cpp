@@ -96,6 +96,10 @@ const std::vector<Field>& scene_fields() {
        "numerics"},
       {"continuous", &Scene::continuous, "", 0, 0, nullptr, "Box2D continuous collision for the grains",
        "numerics"},
+      {"arrest_skip", &Scene::arrest_skip, "1", 0, 1000000, nullptr,
+       "shortcut: after this many still, arrested kicks, jump to the clog rule; 0: off", "numerics"},
+      {"arrest_skip_shift", &Scene::arrest_skip_shift, "1", 0.0, 1.0, nullptr,
+       "... 'still': no grain moved more radii than this per kick period", "numerics"},
       {"unsafe", &Scene::unsafe, "", 0, 0, nullptr, "health monitor warns instead of stopping", "numerics"},
       {"seed", &Scene::seed, "", 0, 9223372036854775807.0, nullptr, "random seed of the run", "run"},
   };

@@ -383,6 +383,13 @@ Setup resolve(const Scene& s) {
     refuse(s, "arrest_hold", format_shortest(s.arrest_hold),
            "it must be at least dt = " + format_shortest(s.dt) +
                " s and shorter than kick_period = " + format_shortest(s.kick_period) + " s");
+  if (s.arrest_skip > 0 && !st.clog_rule)
+    refuse(s, "arrest_skip", std::to_string(s.arrest_skip),
+           "the shortcut jumps to the clog rule, which is off (clog_timeout = 0); use 0 (off)");
+  if (s.arrest_skip > 0 && st.drive.vibrating())
+    refuse(
+        s, "arrest_skip", std::to_string(s.arrest_skip),
+        "a vibrating container never holds still; use 0 (off) with vibration_amplitude or vibration_gamma");
   if (st.clog_rule && s.clog_min_gap >= s.clog_timeout)
     refuse(s, "clog_min_gap", format_shortest(s.clog_min_gap),
            "it must be shorter than clog_timeout = " + format_shortest(s.clog_timeout) + " s");

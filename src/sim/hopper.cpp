@@ -208,13 +208,20 @@ void Hopper::step() {
   const std::int64_t phase =
       (((static_cast<std::int64_t>(step_) - static_cast<std::int64_t>(open_step_)) % every) + every) % every;
   const bool kick_due = phase == 0;
+  if (skip_until_ > step_) return skipped_step(kick_due);
   if (open_ && phase == every - static_cast<std::int64_t>(hold_steps_)) hold_pos_ = positions();
   if (kick_due) {
     if (open_) {
-      clogs_.on_rest_check(t_, outlet_arrested());
+      const bool arrested = outlet_arrested();
+      clogs_.on_rest_check(t_, arrested);
       check_overlaps();
       sample_airborne();
+      if (scene_.arrest_skip > 0) {
+        still_kicks_ = arrested && still_since_last_kick() ? still_kicks_ + 1 : 0;
+        if (still_kicks_ >= scene_.arrest_skip) start_skip();
+      }
     }
+    if (skip_until_ > step_) return skipped_step(kick_due);
     if (scene_.kick_impulse_max > 0 && (open_ || scene_.settle_kicks)) apply_kicks();
   }
   Clock::time_point t1;
@@ -243,6 +250,47 @@ void Hopper::step() {
   if (open_) apply_clog_rule();
   if (clogs_.clogs().size() != events_.clogs.size()) events_.clogs = clogs_.clogs();
   if (profiling_) times_.bookkeeping += seconds_since(t3), ++times_.steps;
+}
+
+bool Hopper::still_since_last_kick() {
+  // Every grain, not only those near the outlet: a rearrangement higher in the column can still reach the
+  // arch.
+  std::vector<core::Vec2> now = positions();
+  bool still = kick_pos_.size() == now.size();
+  for (int i = 0; still && i < particle_count(); ++i) {
+    const double limit = scene_.arrest_skip_shift * radius_[i];
+    const core::Vec2 d = now[i] - kick_pos_[i];
+    still = core::dot(d, d) <= limit * limit;
+  }
+  kick_pos_ = std::move(now);
+  return still;
+}
+
+void Hopper::start_skip() {
+  // Called at a kick, before it is applied: from here to the step at which the clog rule falls due, step()
+  // integrates nothing (skipped_step). Each kick in between is drawn and not applied, so the generator is
+  // where an integrated run would have left it, and the rule then fires at the step it would have fired at.
+  std::uint64_t target = step_ + 1;
+  while (!clogs_.rule_due((static_cast<double>(target) - static_cast<double>(open_step_)) * scene_.dt))
+    ++target;
+  skip_until_ = target;
+  still_kicks_ = 0;
+  ++arrest_skips_;
+}
+
+void Hopper::skipped_step(bool kick_due) {
+  if (kick_due && scene_.kick_impulse_max > 0)
+    draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
+  ++step_;
+  t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
+  skipped_s_ += scene_.dt;
+  if (step_ < skip_until_) return;
+  // The packing stood still: no exits; the rule fires as in an integrated run.
+  skip_until_ = 0;
+  apply_clog_rule();
+  if (clogs_.clogs().size() != events_.clogs.size()) events_.clogs = clogs_.clogs();
+  hold_pos_ = positions();
+  kick_pos_.clear();
 }
 
 void Hopper::advance_to(double t) {

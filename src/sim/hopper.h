@@ -79,6 +79,11 @@ class Hopper {
   // The container's displacement now (a vibrating container), m.
   core::Vec2 container_offset() const { return offset_; }
 
+  // The arrested-state shortcut (scene.arrest_skip): how many clogs it jumped to the rule, and the simulated
+  // seconds it did not integrate.
+  long arrest_skips() const { return arrest_skips_; }
+  double skipped_seconds() const { return skipped_s_; }
+
   // Number of arch fallbacks (the primary arch method found nothing when the rule fired).
   long arch_fallbacks() const { return arch_fallbacks_; }
   // Settling outcome: the largest disk speed (m/s) when the aperture opened.
@@ -150,6 +155,9 @@ class Hopper {
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
   void check_overlaps();
   bool outlet_arrested() const;
+  bool still_since_last_kick();
+  void start_skip();
+  void skipped_step(bool kick_due);
   void sample_airborne();
   void reinject(int id);
   core::Vec2 pos(int id) const;
@@ -193,6 +201,11 @@ class Hopper {
   Airborne airborne_;
   std::uint64_t hold_steps_ = 1;      // arrest_hold in steps
   std::vector<core::Vec2> hold_pos_;  // positions arrest_hold before the coming kick
+  std::vector<core::Vec2> kick_pos_;  // positions at the last kick (the shortcut's stillness test)
+  std::uint64_t skip_until_ = 0;      // the shortcut: steps before this one are not integrated
+  long still_kicks_ = 0;              // consecutive kicks at which the outlet was arrested and all was still
+  long arrest_skips_ = 0;
+  double skipped_s_ = 0;
   mutable long health_warnings_ = 0;
   void warn_unsafe(const std::string& msg) const;
   StageTimes times_;

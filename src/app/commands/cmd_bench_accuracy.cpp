@@ -1,6 +1,7 @@
 // siloscope bench accuracy: every numerical setting against a fine reference, on the default, pure and
 // magnetic scenes: speed (simulated s per wall s), overlaps, Q and Q~ with 95% intervals, the distribution of
 // clog durations (KS distance), and the energy drift of an isolated magnetic pair. Table, CSV and a chart.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +30,7 @@ struct AccuracyOptions {
   int realizations = 6, threads = 2;
   std::string csv = "docs/accuracy/accuracy.csv", chart = "docs/accuracy/accuracy.png";
   std::vector<std::string> scenes = {"default", "pure", "magnetic", "vibrated"};
+  std::vector<std::string> settings;  // empty: all; the first is the one the others are compared with
   bool quick = false;
 };
 
@@ -38,7 +40,9 @@ constexpr const char* kHeader =
     "failures,sim_per_wall,speedup_vs_reference,q_per_s,q_ci95,q_tilde_per_s,q_tilde_ci95,q_tilde_rel_error,"
     "q_tilde_within_reference_ci,overlap_mean_pct,overlap_max_pct,clogs,clog_ks_distance,avalanches,"
     "avalanche_mean,avalanche_ci95,avalanche_ks_distance,avalanche_ks_critical,gaps,gap_ks_distance,"
-    "gap_ks_critical,pair_energy_drift";
+    "gap_ks_critical,pair_energy_drift,clogs_ended,clogs_vibration,vibration_fraction,vibration_fraction_"
+    "ci95,"
+    "clog_ks_critical,skipped_fraction,arrest_skip,arrest_skip_shift";
 
 std::vector<NumericSetting> settings() {
   // The reference first: the finest setting we can afford. Then one change at a time around the default.
@@ -55,7 +59,35 @@ std::vector<NumericSetting> settings() {
       {"ccd-on", 1e-3, 8, 3, 10, true, 0},
       {"dt=2ms+iter20-8", 2e-3, 20, 8, 10, false, 0},
       {"dipole-cutoff-1%", 1e-3, 8, 3, 10, false, 0.01},
+      // The arrested-state shortcut (scene key arrest_skip) at the default numerics.
+      {"skip1", 1e-3, 8, 3, 10, false, 0, 1},
+      {"skip3", 1e-3, 8, 3, 10, false, 0, 3},
+      {"skip1-shift5%", 1e-3, 8, 3, 10, false, 0, 1, 0.05},
   };
+}
+
+// The settings named by --settings, in that order (all when none), each name checked.
+std::vector<NumericSetting> chosen_settings(const std::vector<std::string>& names) {
+  const std::vector<NumericSetting> all = settings();
+  if (names.empty()) return all;
+  std::vector<NumericSetting> out;
+  for (const auto& n : names) {
+    auto it = std::find_if(all.begin(), all.end(), [&](const NumericSetting& s) { return s.name == n; });
+    if (it == all.end()) {
+      std::string known;
+      for (const auto& s : all) known += (known.empty() ? "" : ", ") + s.name;
+      throw core::InputError("--settings: '" + n + "' is not a setting; allowed: " + known);
+    }
+    out.push_back(*it);
+  }
+  return out;
+}
+
+// The share of clogs kicks broke, with a Wilson 95% half-width.
+std::pair<double, double> share(long k, long n) {
+  if (n <= 0) return {NAN, NAN};
+  const double z = 1.959964, p = static_cast<double>(k) / n, d = 1 + z * z / n;
+  return {p, z * std::sqrt(p * (1 - p) / n + z * z / (4.0 * n * n)) / d};
 }
 
 int bench_accuracy(const AccuracyOptions& o) {
@@ -66,6 +98,7 @@ int bench_accuracy(const AccuracyOptions& o) {
     throw core::InputError("--realizations must be >= 2 and --duration > 0");
   io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
   base.duration = duration;
+  const std::vector<NumericSetting> grid = chosen_settings(o.settings);
   struct SceneCase {
     std::string name;
     core::Scene scene;
@@ -91,26 +124,31 @@ int bench_accuracy(const AccuracyOptions& o) {
     std::printf("scene %-8s: r = %g, chi = %g, mu = %.4g A*m^2, kick = %g N*s\n", sc.name.c_str(),
                 sc.scene.size_ratio, sc.scene.chi, sc.scene.mu, sc.scene.kick_impulse_max);
   std::printf(
-      "KSa, KSg: KS distance of the avalanche sizes and of the gaps between original exits from the "
-      "reference's,\n"
-      "over the distance two samples of one distribution exceed 5%% of the time (< 1: "
-      "indistinguishable)\n\n");
+      "KSa, KSg, KSc: KS distance of the avalanche sizes, of the gaps between original exits and of the "
+      "clogs'\ndurations from the first setting's (%s), over the distance two samples of one distribution "
+      "exceed 5%% of\nthe time (< 1: indistinguishable); vib. %%: clogs a kick broke (95%% interval); "
+      "skip%%: "
+      "simulated time the\narrested-state shortcut did not integrate\n\n",
+      grid.front().name.c_str());
 
   std::string csv = std::string(kHeader) + "\n";
-  std::printf("%-17s %-8s %6s %6s %13s %5s %6s %6s %5s %13s %5s %5s %8s\n", "setting", "scene", "speed",
-              "x ref", "Q~ [1/s]", "in CI", "ovl %", "max %", "aval", "mean size", "KSa", "KSg", "E drift");
+  std::printf("%-17s %-8s %6s %6s %13s %5s %6s %6s %5s %13s %5s %5s %5s %11s %5s %8s\n", "setting", "scene",
+              "speed", "x ref", "Q~ [1/s]", "in CI", "ovl %", "max %", "aval", "mean size", "KSa", "KSg",
+              "KSc", "vib. %", "skip%", "E drift");
   core::Scene magnetic = base;
   magnetic.mu = core::mu_for_force_ratio(magnetic, 10.0);
   for (const auto& sc : scenes) {
     SettingResult ref;
     analysis::Estimate ref_qt;
     double ref_speed = 0;
-    for (const auto& st : settings()) {
+    bool first = true;
+    for (const auto& st : grid) {
       // The dipole cutoff only matters with dipoles; the magnetic scene is run at the reference and default
       // settings and the cutoff, to keep the benchmark's cost in bounds.
       const bool magnetic_case = sc.name == "magnetic";
       if (st.dipole_cutoff_fraction > 0 && !magnetic_case) continue;
-      if (magnetic_case && st.name != "reference" && st.name != "default" && st.dipole_cutoff_fraction == 0)
+      if (magnetic_case && o.settings.empty() && st.name != "reference" && st.name != "default" &&
+          st.dipole_cutoff_fraction == 0)
         continue;
       if (interrupted()) return 130;
       SettingResult r = run_setting(sc.scene, st, realizations, o.threads);
@@ -122,10 +160,16 @@ int bench_accuracy(const AccuracyOptions& o) {
            eav = analysis::estimate(r.avalanche_sizes);
       // Throughput per core: the threads ran side by side, each realization single-threaded.
       const double speed = r.wall_seconds > 0 ? r.sim_seconds / r.wall_seconds : NAN;
-      if (st.name == "reference") ref = r, ref_qt = eqt, ref_speed = speed;
+      // The comparisons are with the first setting run (the reference, unless --settings names another
+      // first).
+      const bool is_ref = first;
+      if (first) ref = r, ref_qt = eqt, ref_speed = speed, first = false;
       const double rel = std::abs(eqt.mean - ref_qt.mean) / ref_qt.mean;
       const bool within = std::abs(eqt.mean - ref_qt.mean) <= ref_qt.half_width;
       const double ks = ks_distance(r.clog_durations, ref.clog_durations);
+      const double crit_clog = ks_critical_95(r.clog_durations.size(), ref.clog_durations.size());
+      const auto vib = share(r.clogs_vibration, r.clogs_ended);
+      const double skipped = r.sim_seconds > 0 ? r.skipped_seconds / r.sim_seconds : 0;
       const double ks_av = ks_distance(r.avalanche_sizes, ref.avalanche_sizes);
       const double crit_av = ks_critical_95(r.avalanche_sizes.size(), ref.avalanche_sizes.size());
       const double ks_gap = ks_distance(r.original_gaps, ref.original_gaps);
@@ -139,12 +183,14 @@ int bench_accuracy(const AccuracyOptions& o) {
         } catch (const std::exception&) {
         }
       }
-      const bool is_ref = st.name == "reference";
       std::printf(
-          "%-17s %-8s %6.2f %6.2f %6.3f+-%5.3f %5s %6.2f %6.1f %5zu %6.1f+-%5.1f %5.2f %5.2f %8.2e%s\n",
+          "%-17s %-8s %6.2f %6.2f %6.3f+-%5.3f %5s %6.2f %6.1f %5zu %6.1f+-%5.1f %5.2f %5.2f %5.2f "
+          "%5.2f+-%4.2f "
+          "%5.1f %8.2e%s\n",
           st.name.c_str(), sc.name.c_str(), speed, speed / ref_speed, eqt.mean, eqt.half_width,
           within ? "yes" : "no", 100 * r.overlap_mean, 100 * r.overlap_max, r.avalanche_sizes.size(),
-          eav.mean, eav.half_width, is_ref ? 0.0 : ks_av / crit_av, is_ref ? 0.0 : ks_gap / crit_gap, drift,
+          eav.mean, eav.half_width, is_ref ? 0.0 : ks_av / crit_av, is_ref ? 0.0 : ks_gap / crit_gap,
+          is_ref ? 0.0 : ks / crit_clog, 100 * vib.first, 100 * vib.second, 100 * skipped, drift,
           r.failures ? ("  FAILED " + std::to_string(r.failures) + "x: " + r.failure.substr(0, 80)).c_str()
                      : "");
       std::fflush(stdout);
@@ -158,7 +204,10 @@ int bench_accuracy(const AccuracyOptions& o) {
              std::to_string(r.clog_durations.size()) + "," + num6(ks) + "," +
              std::to_string(r.avalanche_sizes.size()) + "," + num6(eav.mean) + "," + num6(eav.half_width) +
              "," + num6(ks_av) + "," + num6(crit_av) + "," + std::to_string(r.original_gaps.size()) + "," +
-             num6(ks_gap) + "," + num6(crit_gap) + "," + num6(drift) + "\n";
+             num6(ks_gap) + "," + num6(crit_gap) + "," + num6(drift) + "," + std::to_string(r.clogs_ended) +
+             "," + std::to_string(r.clogs_vibration) + "," + num6(vib.first) + "," + num6(vib.second) + "," +
+             num6(crit_clog) + "," + num6(skipped) + "," + std::to_string(st.arrest_skip) + "," +
+             num6(st.arrest_skip_shift) + "\n";
     }
   }
   fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".")
@@ -194,6 +243,10 @@ void add_bench_accuracy_command(CLI::App& bench, Action& action) {
                   "5e-3 N*s)")
       ->delimiter(',')
       ->capture_default_str();
+  cmd->add_option("--settings", o->settings,
+                  "settings to run, the first being the one the others are compared with (default: all, "
+                  "the reference first)")
+      ->delimiter(',');
   cmd->add_flag("--quick", o->quick,
                 "3 realizations of 15 s: a smoke run of the whole grid (default: 6 of --duration, 60 s)");
   cmd->callback([o, &action] { action = [o] { return bench_accuracy(*o); }; });

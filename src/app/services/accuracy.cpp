@@ -21,6 +21,8 @@ void NumericSetting::apply(core::Scene& s) const {
   s.position_iterations = position_iterations;
   s.length_scale = length_scale;
   s.continuous = continuous;
+  s.arrest_skip = arrest_skip;
+  s.arrest_skip_shift = arrest_skip_shift;
   s.dipole_cutoff = 0;
   if (dipole_cutoff_fraction > 0 && s.mu > 0) {
     // The distance at which the pair force falls to this fraction of an added disk's weight.
@@ -58,8 +60,13 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
         out.avalanche_sizes.insert(out.avalanche_sizes.end(), av.begin(), av.end());
         auto gaps = analysis::original_gaps(h.events().exits);
         out.original_gaps.insert(out.original_gaps.end(), gaps.begin(), gaps.end());
-        for (const auto& c : h.events().clogs)
-          if (c.ended_by != core::ClogEnd::RunEnd) out.clog_durations.push_back(c.end - c.start);
+        for (const auto& c : h.events().clogs) {
+          if (c.ended_by == core::ClogEnd::RunEnd) continue;
+          out.clog_durations.push_back(c.end - c.start);
+          ++out.clogs_ended;
+          out.clogs_vibration += c.ended_by == core::ClogEnd::Vibration;
+        }
+        out.skipped_seconds += h.skipped_seconds();
         overlap_sum += h.overlaps().sum;
         overlap_n += h.overlaps().samples;
         out.overlap_max = std::max(out.overlap_max, h.overlaps().max);

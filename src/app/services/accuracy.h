@@ -22,6 +22,8 @@ struct NumericSetting {
   double length_scale = 10;
   bool continuous = false;
   double dipole_cutoff_fraction = 0;  // > 0: cut dipole pairs whose force is below this fraction of a weight
+  int arrest_skip = 0;                // the arrested-state shortcut (scene key arrest_skip); 0: off
+  double arrest_skip_shift = 0.01;
   void apply(core::Scene& s) const;
 };
 
@@ -32,7 +34,9 @@ struct SettingResult {
   std::vector<double>
       avalanche_sizes;                // disks per avalanche between clogs, pooled (analysis::avalanche_sizes)
   std::vector<double> original_gaps;  // s between consecutive original exits, pooled
-  double overlap_mean = 0, overlap_max = 0;  // fraction of the smaller radius
+  double overlap_mean = 0, overlap_max = 0;   // fraction of the smaller radius
+  long clogs_ended = 0, clogs_vibration = 0;  // clogs that ended before the run's end, and those a kick broke
+  double skipped_seconds = 0;                 // simulated s the shortcut did not integrate, summed
   int failures = 0;
   std::string failure;  // the first health-monitor message
 };

@@ -84,6 +84,11 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
                         analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir / "survival.csv", analysis::survival_csv(scene, h.events().exits));
   info.health = health_facts(h);
+  // The shortcut's work, only where it was on (metadata of ordinary runs stays as it was).
+  if (scene.arrest_skip > 0) {
+    info.facts.push_back({"arrest_skips", h.arrest_skips()});
+    info.facts.push_back({"arrest_skipped_s", h.skipped_seconds()});
+  }
   io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(scene, info));
   return m;
 }
