@@ -92,6 +92,31 @@ std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, 
   return trim ? trim_arch(path, pos) : path;
 }
 
+bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
+                   const std::vector<double>& radius, double half_aperture) {
+  if (arch.size() < 2) return false;
+  if (!(pos[arch.front()].x < 0 && pos[arch.back()].x > 0)) return false;
+  std::vector<char> member(pos.size(), 0);
+  for (int id : arch) member[static_cast<size_t>(id)] = 1;
+  // The chain's height at x: linear between consecutive members' centres (members run left to right).
+  auto chain_y = [&](double x) {
+    for (size_t k = 0; k + 1 < arch.size(); ++k) {
+      const Vec2 a = pos[arch[k]], b = pos[arch[k + 1]];
+      if (x >= std::min(a.x, b.x) && x <= std::max(a.x, b.x))
+        return b.x == a.x ? std::min(a.y, b.y) : a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+    }
+    return -std::numeric_limits<double>::infinity();
+  };
+  for (size_t i = 0; i < pos.size(); ++i) {
+    if (member[i]) continue;
+    const Vec2 p = pos[i];
+    // Wholly inside the opening's span and not yet through it: a grain on its way out.
+    if (std::abs(p.x) > half_aperture - radius[i] || p.y < -radius[i]) continue;
+    if (p.y < chain_y(p.x)) return false;
+  }
+  return true;
+}
+
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                            const std::vector<double>& radius) {
   ArchGeometry a;

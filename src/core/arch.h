@@ -46,6 +46,14 @@ std::vector<int> trim_arch(const std::vector<int>& path, const std::vector<Vec2>
 std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, double wall_reach,
                            bool trim = true);
 
+// Whether a found arch (members left to right) is one a picture or an export may show: at least two grains,
+// the first centred left of the outlet's centre and the last right of it (it spans the outlet), and no other
+// grain lying between the chain and the outlet inside the opening (a chain with grains falling beneath it
+// blocks nothing). Positions in the container's frame (the outlet centred at x = 0, its line at y = 0). The
+// clog rule's removal is not filtered by this (the paper's events stay as they are); at a clog the two agree.
+bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
+                   const std::vector<double>& radius, double half_aperture);
+
 // Span, height and largest angle of an arch (members left to right).
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                            const std::vector<double>& radius);

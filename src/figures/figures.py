@@ -175,21 +175,33 @@ def draw(campaign, src, out):
     has_qp = any(finite(p["q_tilde_over_qp"]) for p in points)
     qkey, qlabel = ("q_tilde_over_qp", r"$\tilde Q / Q_p$") if has_qp else ("q_tilde_per_s", r"$\tilde Q$ [1/s]")
 
+    # Points no figure below draws are named, never dropped in silence: the figures show chi = chi0, the pure
+    # system (as Q_p and as bands), and the non-magnetic chi curve at r near 0.4.
+    r4 = nearest(sizes, 0.4)
+    for p in points:
+        if abs(p["chi"] - chi0) < 1e-9 or p["chi"] == 0 or (p["size_ratio"] == r4 and p["mu"] == 0):
+            continue
+        print(f"not drawn: the point r = {p['size_ratio']:g}, chi = {p['chi']:g}, mu = {p['mu']:g} fits no figure "
+              f"(they show chi = {chi0:g}, the pure system, and chi at r = {r4:g} without dipoles); it is in "
+              "points.csv")
+
     # Q~/Q_p versus r, one curve per dipole strength.
     if len(sizes) < 2:
         print(f"skipped qtilde_vs_r: the grid has one size ratio at chi = {chi0:g}")
-    fig, ax = plt.subplots(figsize=(5, 3.6))
-    for i, fr in enumerate(ratios):
-        xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio", qkey, qkey + "_ci95")
-        label = "non-magnetic" if fr == 0 else f"$F_{{dip}}/W_a$ = {fr:g}"
-        ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=COLORS[i % len(COLORS)], label=label)
-    if has_qp:
-        ax.axhline(1.0, color="k", lw=0.8, ls="--")
-    ax.set_xlabel(r"size ratio $r = r_a / r_o$")
-    ax.set_ylabel(qlabel)
-    ax.set_title(rf"$\chi$ = {chi0:g}")
-    ax.legend()
-    save(fig, out, "qtilde_vs_r")
+    else:
+        fig, ax = plt.subplots(figsize=(5, 3.6))
+        for i, fr in enumerate(ratios):
+            xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio", qkey,
+                                qkey + "_ci95")
+            label = "non-magnetic" if fr == 0 else f"$F_{{dip}}/W_a$ = {fr:g}"
+            ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=COLORS[i % len(COLORS)], label=label)
+        if has_qp:
+            ax.axhline(1.0, color="k", lw=0.8, ls="--")
+        ax.set_xlabel(r"size ratio $r = r_a / r_o$")
+        ax.set_ylabel(qlabel)
+        ax.set_title(rf"$\chi$ = {chi0:g}")
+        ax.legend()
+        save(fig, out, "qtilde_vs_r")
 
     # Q~/Q_p, chi_eff, long arches and added disks per arch versus mu, for r near 0.4, 0.65 and 1.0.
     picks = []
@@ -214,11 +226,11 @@ def draw(campaign, src, out):
             ax.axhline(chi0, color="k", lw=0.8, ls=":", label=rf"$\chi$ = {chi0:g}")
         ax.set_xlabel(r"dipole moment $\mu$ [A m$^2$]")
         ax.set_ylabel(label)
+        ax.set_title(rf"$\chi$ = {chi0:g}")
         ax.legend()
         save(fig, out, name)
 
     # Q~ versus chi_eff (magnetic) beside Q~ versus chi (non-magnetic), at r near 0.4.
-    r4 = nearest(sizes, 0.4)
     if not any(p["size_ratio"] == r4 and p["mu"] == 0 and 0 < p["chi"] for p in points if abs(p["chi"] - chi0) > 1e-9):
         print(f"note qtilde_vs_chi_eff: no other non-magnetic chi at r = {r4:g}, the chi curve has one point")
     fig, ax = plt.subplots(figsize=(5, 3.6))

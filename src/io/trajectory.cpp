@@ -260,6 +260,8 @@ core::Frame Trajectory::frame(long k) const {
     const int id = get<std::int32_t>(b, 40 + 4 * j);
     if (id >= 0 && static_cast<size_t>(id) < n) f.arch.push_back(id);
   }
+  // Trajectories written before arches were checked (core::blocks_outlet) may hold one-grain "arches".
+  if (f.arch.size() < 2) f.arch.clear();
   const size_t base = 40 + 4 * kTrajectoryMaxArch;
   f.particles.resize(n);
   for (size_t i = 0; i < n; ++i) {

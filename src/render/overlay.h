@@ -110,6 +110,7 @@ class Overlay {
     double t;
     long original, added;
     bool clogged;
+    double clog_start;  // s: when the clog began (its last exit), if clogged
   };
   std::vector<Sample> history_;
   int font_px_ = 0;

@@ -54,7 +54,7 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   // most zoomed view, below the outlet where there are no disks.
   if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
   history_.push_back({f.t, static_cast<long>(f.exits_original), static_cast<long>(f.exits_added),
-                      f.since_last_exit >= d.clog_min_gap});
+                      f.since_last_exit >= d.clog_min_gap, f.t - f.since_last_exit});
   const float em = static_cast<float>(font_px_);
   const View& v = most_zoomed(views);
   const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;
@@ -68,11 +68,12 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   for (const auto& s : history_) nmax = std::max(nmax, std::max(s.original, s.added));
   auto X = [&](double t) { return x0 + static_cast<float>(t / tmax) * pw; };
   auto Y = [&](double n) { return y1 - static_cast<float>(n / static_cast<double>(nmax)) * ph; };
-  // Clogs: spans where the clog timer ran past clog_min_gap.
+  // Clogs: shaded from the clog's start (its last exit, as clogs.csv's start_s), not from the moment the
+  // timer passed clog_min_gap.
   for (size_t k = 1; k < history_.size(); ++k)
     if (history_[k].clogged)
-      dl->AddRectFilled(ImVec2(X(history_[k - 1].t), y0), ImVec2(X(history_[k].t) + 0.5f, y1),
-                        IM_COL32(200, 200, 200, 255));
+      dl->AddRectFilled(ImVec2(X(std::max(0.0, history_[k].clog_start)), y0),
+                        ImVec2(X(history_[k].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
   for (int sp = 0; sp < 2; ++sp) {
     const ImU32 ink =
         to_u32(sp == 0 ? species_color(style, core::Species::Original)

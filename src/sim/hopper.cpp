@@ -436,7 +436,10 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
     if (a >= 0) f.particles[a].force += force;
     if (b >= 0) f.particles[b].force += force;
   }
-  if (with_arch && open_) f.arch = current_arch();
+  if (with_arch && open_) {
+    f.arch = current_arch();
+    if (!core::blocks_outlet(f.arch, positions(), radius_, geo_.half_aperture)) f.arch.clear();
+  }
   f.since_last_exit = open_ ? clogs_.since_last(t_) : 0;
   f.exits_original = exits_original_;
   f.exits_added = exits_added_;

@@ -48,7 +48,11 @@ Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const Im
       longest = next;
     }
     const bool removed = last + 1 < traj_.size() && traj_.long_arches(last + 1) > traj_.long_arches(last);
-    clogs_.push_back({k, last, longest, removed});
+    // The clog began at its last exit, clog_min_gap before the timer said so: the bar starts there.
+    const double start = traj_.time(k) - timer;
+    long first = k;
+    while (first > 0 && traj_.time(first - 1) >= start - 1e-9) --first;
+    clogs_.push_back({first, last, longest, removed});
     k = last;
   }
 }

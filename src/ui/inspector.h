@@ -28,7 +28,8 @@
 
 namespace ui {
 
-// A stretch of frames during which nothing left for at least clog_min_gap.
+// A clog: the frames from its start (its last exit, as clogs.csv's start_s) to its end, during which nothing
+// left for at least clog_min_gap.
 struct ClogSpan {
   long first, last;  // frames
   double duration;   // s, the clog timer at its last frame

@@ -327,4 +327,26 @@ TEST_CASE("figures draws what the grid allows, avalanche sizes included, and nam
     CHECK(fs::file_size(res / "figures" / (std::string(name) + ".png")) > 10000);
   CHECK_THAT(r.output, Catch::Matchers::Contains("skipped qtilde_vs_mu: the grid has one dipole strength"));
   CHECK_FALSE(fs::exists(res / "figures" / "qtilde_vs_mu.png"));
+
+  // One size ratio left (r = 1.0 removed), and a point no figure shows (chi = 0.25 at r = 1.0): the skipped
+  // figure is not written, the point is named.
+  fs::copy(res / "analysis", d / "one_r", fs::copy_options::recursive);
+  std::istringstream rows(points);
+  std::string line, kept, moved;
+  while (std::getline(rows, line)) {
+    if (line.rfind("1.0,0.4,", 0) == 0) {
+      moved = "1.0,0.25," + line.substr(8);
+      continue;
+    }
+    kept += line + "\n";
+  }
+  REQUIRE(!moved.empty());
+  std::ofstream(d / "one_r" / "points.csv") << kept << moved << "\n";
+  r = test::cli("figures " + (d / "one_r").string() + " --out " + (d / "f1").string());
+  INFO(r.output);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("skipped qtilde_vs_r: the grid has one size ratio"));
+  CHECK_FALSE(fs::exists(d / "f1" / "qtilde_vs_r.png"));
+  CHECK_THAT(r.output,
+             Catch::Matchers::Contains("not drawn: the point r = 1, chi = 0.25, mu = 0 fits no figure"));
 }

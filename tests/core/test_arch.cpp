@@ -138,3 +138,22 @@ TEST_CASE("an obstacle supports an arch: a path may pass through it without coun
   g.on_obstacle = {1, 2};
   CHECK(core::shortest_wall_path(g, pos, 1.0) == std::vector<int>{0, 1, 2, 3});
 }
+
+TEST_CASE("an arch is shown only where it blocks: two or more grains spanning the outlet, nothing beneath",
+          "[arch]") {
+  const double half = 0.15, r = 0.065;
+  const std::vector<double> radius(4, r);
+  // Two grains straddling the outlet's centre, nothing beneath: an arch.
+  std::vector<core::Vec2> pos = {{-0.07, 0.1}, {0.07, 0.1}, {0.0, 0.5}, {0.3, 0.4}};
+  CHECK(core::blocks_outlet({0, 1}, pos, radius, half));
+  // One grain (the "one-disk arch" touching one wall): never.
+  CHECK_FALSE(core::blocks_outlet({0}, pos, radius, half));
+  // Both grains left of the centre: they span nothing.
+  CHECK_FALSE(core::blocks_outlet({0, 1}, {{-0.3, 0.2}, {-0.17, 0.2}, {0.0, 0.5}, {0.3, 0.4}}, radius, half));
+  // A grain falling through the opening beneath the chain: the chain blocks nothing.
+  pos[2] = {0.0, 0.02};
+  CHECK_FALSE(core::blocks_outlet({0, 1}, pos, radius, half));
+  // ... once it is through (below the outlet line by its radius), the chain blocks again.
+  pos[2] = {0.0, -0.07};
+  CHECK(core::blocks_outlet({0, 1}, pos, radius, half));
+}
