@@ -30,6 +30,12 @@ struct Particle {
 // Circumradius over equal-area radius of a regular polygon of `sides` sides (1 for a disk).
 double polygon_extent(int sides);
 
+// A contact between two grains and its normal force, N (from the last step's impulse).
+struct Contact {
+  int a, b;
+  float force;
+};
+
 struct Frame {
   double t = 0;                     // s since the aperture opened (negative while settling)
   std::uint64_t step = 0;           // time steps since the start of settling
@@ -39,6 +45,9 @@ struct Frame {
   std::int64_t exits_original = 0;  // exits so far of each species
   std::int64_t exits_added = 0;
   double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
+  // Grain-grain contacts with their normal forces, when forces were asked for (a live simulation's frames;
+  // trajectories keep only each grain's summed force).
+  std::vector<Contact> contacts;
 };
 
 struct ExitEvent {

@@ -1,5 +1,6 @@
 #include "render/draw_list.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace render {
@@ -59,6 +60,21 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       d.shape[1] = 100, d.shape[2] = hw, d.shape[3] = hh;
     copy(d.fill, wc);
     out.shapes.push_back(d);
+  }
+  if (style.chains) {
+    // Width from a tenth of the smaller grain's radius (at chain_min) to its whole radius (at chain_max).
+    const double span = std::max(1e-12, style.chain_max - style.chain_min);
+    for (const auto& c : frame.contacts) {
+      if (c.a < 0 || c.b < 0 || static_cast<size_t>(std::max(c.a, c.b)) >= frame.particles.size()) continue;
+      if (!(c.force >= style.chain_min)) continue;
+      const auto& a = frame.particles[static_cast<size_t>(c.a)];
+      const auto& b = frame.particles[static_cast<size_t>(c.b)];
+      const double u = std::clamp((c.force - style.chain_min) / span, 0.0, 1.0);
+      SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
+      copy(seg.color, colormap(u));
+      out.chains.push_back(seg);
+      out.chain_width_m.push_back(static_cast<float>((0.15 + 0.85 * u) * std::min(a.radius, b.radius)));
+    }
   }
   if (show_arch) {
     for (size_t k = 0; k + 1 < frame.arch.size(); ++k) {

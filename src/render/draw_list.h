@@ -35,9 +35,11 @@ struct SegmentInstance {
 };
 
 struct DrawList {
-  std::vector<ShapeInstance> shapes;   // grains, then the obstacle
-  std::vector<SegmentInstance> walls;  // drawn under the grains
-  std::vector<SegmentInstance> bonds;  // drawn over them
+  std::vector<ShapeInstance> shapes;    // grains, then the obstacle
+  std::vector<SegmentInstance> walls;   // drawn under the grains
+  std::vector<SegmentInstance> chains;  // force chains, over the grains
+  std::vector<float> chain_width_m;     // each chain segment's width, m
+  std::vector<SegmentInstance> bonds;   // the arch's bonds, over everything
   float wall_m = 0.012f, bond_m = 0.012f, halo_m = 0.012f;
 };
 

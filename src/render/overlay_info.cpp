@@ -99,16 +99,16 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
         swatch(species_color(style, static_cast<core::Species>(k)), {0, 0, 0, 0}, d.species_names[k].c_str());
         ImGui::SameLine();
       }
-    } else {
-      colour_bar(style, em);
+      if (style.chains) ImGui::NewLine();
     }
+    colour_bar(style, em);
     swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
   }
 }
 
 void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style,
                             float em) {
-  if (o.colorbar && !o.legend && style.color != ColorMode::Species) {
+  if (o.colorbar && !o.legend && (style.color != ColorMode::Species || style.chains)) {
     const View& zoom = most_zoomed(views);
     ImGui::SetNextWindowPos(ImVec2(zoom.rect.x + zoom.rect.w - 0.6f * em, zoom.rect.y + 0.6f * em), 0,
                             ImVec2(1.0f, 0.0f));

@@ -12,9 +12,9 @@ namespace render {
 
 namespace overlay_detail {
 
-void colour_bar(const Style& style, float em) {
-  const bool speed = style.color == ColorMode::Speed;
-  ImGui::Text("%s 0", speed ? "speed [m/s]" : "contact force [N]");
+namespace {
+void scale_bar(const char* label, double lo, double hi, float em) {
+  ImGui::Text("%s %g", label, lo);
   ImGui::SameLine();
   ImVec2 p = ImGui::GetCursorScreenPos();
   const int steps = 32;
@@ -25,7 +25,15 @@ void colour_bar(const Style& style, float em) {
                                               to_u32(colormap((k + 0.5) / steps)));
   ImGui::Dummy(ImVec2(bw, bh));
   ImGui::SameLine();
-  ImGui::Text("%g", speed ? style.speed_max : style.force_max);
+  ImGui::Text("%g", hi);
+}
+}  // namespace
+
+void colour_bar(const Style& style, float em) {
+  // The grains' colour scale, then the force chains' (each on its own line).
+  if (style.color == ColorMode::Speed) scale_bar("speed [m/s]", 0, style.speed_max, em);
+  if (style.color == ColorMode::Force) scale_bar("contact force [N]", 0, style.force_max, em);
+  if (style.chains) scale_bar("force chains [N]", style.chain_min, style.chain_max, em);
 }
 
 const View& most_zoomed(const std::vector<View>& views) {

@@ -22,7 +22,12 @@ struct Style {
   double force_max = 20.0;   // N at the top of the colour scale (~99th percentile of the default scene)
   bool transparent = false;  // transparent background (PNG)
   bool show_arch = true;
-  bool clear = true;  // clear the image first (false: draw another panel into the same image)
+  // Force chains: a segment between the centres of each pair of grains in contact whose normal force is at
+  // least chain_min, its width and colour (the colour map) growing with the force up to chain_max.
+  bool chains = false;
+  double chain_min = 2.0;   // N
+  double chain_max = 20.0;  // N
+  bool clear = true;        // clear the image first (false: draw another panel into the same image)
   // A scene's own species colours by species index (alpha 0: the palette's colour for that index); set per
   // panel from its OverlayData.
   std::vector<Rgba> species_colors;

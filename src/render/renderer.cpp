@@ -107,6 +107,8 @@ void Renderer::paint(const DrawList& list, const std::vector<View>& views, const
   disks_ = list.shapes;
   walls_ = list.walls;
   bonds_ = list.bonds;
+  chains_ = list.chains;
+  chain_width_m_ = list.chain_width_m;
   halo_m_ = list.halo_m;
   bond_m_ = list.bond_m;
   wall_m_ = list.wall_m;
@@ -138,9 +140,11 @@ void Renderer::draw_view(const View& v, int image_h) {
   const float scale = std::max(1.0f, image_h / 1080.0f);
 
   // Walls and bonds: widths from metres, at least 2 px so they stay visible in the whole-hopper view.
-  auto draw_segments = [&](std::vector<SegmentInstance>& segs, float width_m) {
+  auto draw_segments = [&](std::vector<SegmentInstance>& segs, float width_m,
+                           const std::vector<float>* widths = nullptr) {
     if (segs.empty()) return;
-    for (auto& g : segs) g.width_px = std::max(2.0f * scale, width_m * s);
+    for (size_t k = 0; k < segs.size(); ++k)
+      segs[k].width_px = std::max((widths ? 1.5f : 2.0f) * scale, (widths ? (*widths)[k] : width_m) * s);
     glUseProgram(segment_program_);
     glUniformMatrix3fv(glGetUniformLocation(segment_program_, "u_world_to_clip"), 1, GL_FALSE, m.data());
     glUniform1f(glGetUniformLocation(segment_program_, "u_px_per_m"), s);
@@ -161,6 +165,7 @@ void Renderer::draw_view(const View& v, int image_h) {
   glBindVertexArray(disk_vao_);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(disks_.size()));
 
+  draw_segments(chains_, 0, &chain_width_m_);
   draw_segments(bonds_, bond_m_);
   glBindVertexArray(0);
 }

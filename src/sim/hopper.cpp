@@ -435,6 +435,7 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
     if (a >= 0) f.particles[a].force += force;
     if (b >= 0) f.particles[b].force += force;
+    if (a >= 0 && b >= 0) f.contacts.push_back({a, b, force});
   }
   if (with_arch && open_) {
     f.arch = current_arch();

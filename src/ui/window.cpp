@@ -370,6 +370,8 @@ void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const r
   }
   ImGui::NewLine();
   ImGui::Checkbox("arch", &st.style.show_arch);
+  ImGui::SameLine();
+  ImGui::Checkbox("force chains", &st.style.chains);
   if (painter.info_left()) {  // no corner of the picture is clear of the container
     ImGui::Separator();
     render::info_contents(f, od, st.overlay, st.style, ImGui::GetFontSize());
@@ -401,7 +403,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       st.message = e.what();
       st.paused = true;
     }
-    const core::Frame f = source.frame(st.style.color == render::ColorMode::Force);
+    const core::Frame f = source.frame(st.style.color == render::ColorMode::Force || st.style.chains);
     const render::OverlayData od = source.overlay_data();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);

@@ -46,3 +46,28 @@ TEST_CASE(
   f.since_last_exit = 0.1;
   CHECK(render::build_draw_list(f, geo, style).shapes[0].halo[3] < 0.5f);
 }
+
+TEST_CASE("force chains: a segment per contact at or above the threshold, wider and brighter with the force",
+          "[render]") {
+  core::Scene s;
+  const core::Geometry geo = core::make_geometry(s);
+  core::Frame f;
+  f.particles = {grain(-0.2f, 0.3f, 0.065f, 0), grain(-0.07f, 0.3f, 0.065f, 0), grain(0.06f, 0.3f, 0.065f, 0),
+                 grain(0.19f, 0.3f, 0.065f, 0)};
+  f.contacts = {{0, 1, 0.5f}, {1, 2, 5.0f}, {2, 3, 40.0f}};
+  render::Style style;
+  CHECK(render::build_draw_list(f, geo, style).chains.empty());  // off unless asked for
+  style.chains = true;
+  style.chain_min = 1.0;
+  style.chain_max = 20.0;
+  const render::DrawList d = render::build_draw_list(f, geo, style);
+  REQUIRE(d.chains.size() == 2);  // 0.5 N is below the threshold
+  REQUIRE(d.chain_width_m.size() == 2);
+  CHECK(d.chains[0].ax == f.particles[1].x);
+  CHECK(d.chains[1].bx == f.particles[3].x);
+  CHECK(d.chain_width_m[1] > d.chain_width_m[0]);
+  CHECK(d.chain_width_m[1] == Approx(0.065));  // at or above chain_max: the grain's radius
+  // The colour map's top (yellow, viridis) at 40 N, its dark end near the threshold.
+  CHECK(d.chains[1].color[0] > 0.8f);
+  CHECK(d.chains[0].color[0] < 0.4f);
+}

@@ -123,6 +123,35 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   CHECK(flipped.rgba == img.rgba);
 }
 
+TEST_CASE("force chains are drawn between touching grains in the colour map, over the grains", "[render]") {
+  auto& fx = fixture();
+  const int w = 400, h = 400;
+  core::Frame f;
+  f.particles = {disk(-0.065f, 0.5f, 0.065f, core::Species::Original),
+                 disk(0.065f, 0.5f, 0.065f, core::Species::Original),
+                 disk(0.195f, 0.5f, 0.065f, core::Species::Original)};
+  f.contacts = {{0, 1, 30.0f}, {1, 2, 0.1f}};  // a strong contact and one below the threshold
+  auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
+  render::Style style;
+  style.chains = true;
+  style.chain_min = 1.0;
+  style.chain_max = 20.0;
+  render::Target target(w, h);
+  target.bind();
+  fx.renderer.draw(f, fx.geo, views, style, w, h);
+  core::Image img;
+  target.read(img);
+  const auto& v = views[0];
+  auto at = [&](double x, double y) {
+    core::Vec2 p = v.world_to_pixel({x, y});
+    return img.pixel(static_cast<int>(p.x), static_cast<int>(p.y));
+  };
+  // On the first grain, between its centre and the contact: the chain's colour (the map's top), not red.
+  CHECK(distance(at(-0.03, 0.5), render::colormap(1.0)) < 40);
+  // On the third grain, where the weak contact would run: the grain's own red.
+  CHECK(distance(at(0.16, 0.5), render::species_color(style.palette, core::Species::Original)) < 8);
+}
+
 TEST_CASE("colour by speed uses the colour map on its fixed scale", "[render]") {
   auto& fx = fixture();
   core::Frame f;

@@ -47,6 +47,7 @@ struct RecordOptions {
   std::string color_max;  // top of the speed (m/s) or force (N) colour scale; "": the fixed default; "auto"
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
+  std::string chains;  // "": off; "MIN" or "MIN:MAX" in N
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
 
@@ -176,6 +177,27 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   plan.style.color = render::parse_color_mode(o.color);
   plan.style.transparent = o.transparent;
   plan.overlay = render::parse_overlay(o.overlay);
+  if (!o.chains.empty()) {
+    // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
+    const size_t colon = o.chains.find(':');
+    char* end = nullptr;
+    const double lo = std::strtod(o.chains.c_str(), &end);
+    double hi = plan.style.chain_max;
+    bool ok = end != o.chains.c_str() && (*end == '\0' || *end == ':') && lo >= 0 && std::isfinite(lo);
+    if (ok && colon != std::string::npos) {
+      const char* s = o.chains.c_str() + colon + 1;
+      hi = std::strtod(s, &end);
+      ok = end != s && *end == '\0' && std::isfinite(hi);
+    }
+    if (!ok || !(hi > lo))
+      throw core::InputError(
+          "--force-chains " + o.chains +
+          ": expected MIN or MIN:MAX in N with 0 <= MIN < MAX (e.g. 2 or 2:30; MAX default " +
+          num6(plan.style.chain_max) + ")");
+    plan.style.chains = true;
+    plan.style.chain_min = lo;
+    plan.style.chain_max = hi;
+  }
   const render::CameraSpec camera = render::parse_camera(o.camera);
   double top = 0;
   if (!o.color_max.empty()) {
@@ -281,6 +303,9 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
           {"color_scale_max",
            plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max},
           {"overlay", o.overlay},
+          {"force_chains", plan.style.chains},
+          {"force_chain_min_N", plan.style.chain_min},
+          {"force_chain_max_N", plan.style.chain_max},
           {"crf", o.crf},
           {"preset", o.preset},
           {"png_every", o.png_every},
@@ -476,6 +501,11 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();
   cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")
       ->capture_default_str();
+  cmd->add_option(
+      "--force-chains", o->chains,
+      "draw the contact network: a segment between the centres of each pair in contact whose normal "
+      "force is at least MIN newtons, width and colour growing with the force up to MAX (MIN or "
+      "MIN:MAX; e.g. 2 or 2:30; MAX default 20)");
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
