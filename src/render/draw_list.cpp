@@ -36,7 +36,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
   }
   // The container where it is now: a vibrating container carries its walls and obstacle along.
   const float ox = static_cast<float>(frame.container_x), oy = static_cast<float>(frame.container_y);
-  const Rgba wc = wall_color(style.palette);
+  const Rgba wc = wall_color(style);
   for (core::Wall k : {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft,
                        core::Wall::SiloRight, core::Wall::Top}) {
     const auto& s = geo.walls[static_cast<int>(k)];

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -116,8 +117,8 @@ Overlay::~Overlay() {
   ImGui::DestroyContext(static_cast<ImGuiContext*>(ctx_));
 }
 
-void Overlay::ensure_font(int h) {
-  const int px = std::max(13, h / 42);
+void Overlay::ensure_font(int h, double scale) {
+  const int px = std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(scale, 0.25, 8.0))));
   if (px == font_px_) return;
   ImGuiIO& io = ImGui::GetIO();
   io.Fonts->Clear();
@@ -143,7 +144,14 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   if (!o.any()) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
-  ensure_font(h);
+  ensure_font(h, o.font_scale);
+  if (style.dark != dark_) {
+    dark_ = style.dark;
+    if (dark_)
+      ImGui::StyleColorsDark();
+    else
+      ImGui::StyleColorsLight();
+  }
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
   io.DeltaTime = 1.0f / 30.0f;

@@ -29,6 +29,7 @@ struct OverlayOptions {
   // caller, who shows info_contents() beside the picture (the windows' side panels). Off: the least-covering
   // corner.
   bool may_leave = false;
+  double font_scale = 1.0;  // text size over the default (1/42 of the image height): 1.5-2 for projectors
   static OverlayOptions none() {
     OverlayOptions o;
     o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
@@ -92,7 +93,8 @@ class Overlay {
   bool info_left() const { return info_left_; }
 
  private:
-  void ensure_font(int h);
+  void ensure_font(int h, double scale);
+  bool dark_ = false;  // the panels' ImGui colours follow the style's background
   void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
              const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
              const Annotations& notes);

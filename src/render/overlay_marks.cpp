@@ -70,7 +70,7 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   const float x0 = x1 - pw, y0 = y1 - ph;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   dl->AddRectFilled(ImVec2(x0 - 2.6f * em, y0 - 1.5f * em), ImVec2(x1 + 0.4f * em, y1 + 1.4f * em),
-                    IM_COL32(255, 255, 255, 215), 0.3f * em);
+                    style.dark ? IM_COL32(30, 30, 36, 215) : IM_COL32(255, 255, 255, 215), 0.3f * em);
   const double tmax = std::max(1.0, history_.back().t);
   long nmax = 1;
   for (const auto& s : history_) nmax = std::max(nmax, std::max(s.original, s.added));
@@ -97,7 +97,7 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
                     ImVec2(X(history_[k].t), Y(static_cast<double>(b))), ink, 2.0f);
     }
   }
-  const ImU32 axis = IM_COL32(40, 40, 40, 255);
+  const ImU32 axis = style.dark ? IM_COL32(220, 220, 220, 255) : IM_COL32(40, 40, 40, 255);
   dl->AddLine(ImVec2(x0, y1), ImVec2(x1, y1), axis);
   dl->AddLine(ImVec2(x0, y0), ImVec2(x0, y1), axis);
   char text[64];
@@ -121,7 +121,8 @@ void Overlay::draw_zoombox(const std::vector<View>& views, int h) {
           ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
           ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
       dl->AddRect(ImVec2(static_cast<float>(a.x), static_cast<float>(a.y)),
-                  ImVec2(static_cast<float>(b.x), static_cast<float>(b.y)), IM_COL32(30, 30, 30, 230), 0, 0,
+                  ImVec2(static_cast<float>(b.x), static_cast<float>(b.y)),
+                  dark_ ? IM_COL32(220, 220, 225, 230) : IM_COL32(30, 30, 30, 230), 0, 0,
                   std::max(1.5f, h / 500.0f));
       dl->PopClipRect();
     }
@@ -170,7 +171,7 @@ void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, f
       if (c.px_per_m() > v->px_per_m()) v = &c;
     const float len = static_cast<float>(d.diameter * v->px_per_m());
     const float x0 = v->rect.x + em, y0 = v->rect.y + v->rect.h - 1.2f * em;
-    const ImU32 ink = IM_COL32(20, 20, 20, 255);
+    const ImU32 ink = dark_ ? IM_COL32(235, 235, 235, 255) : IM_COL32(20, 20, 20, 255);
     dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
     char text[64];
     std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);

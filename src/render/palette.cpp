@@ -43,7 +43,12 @@ Rgba species_color(const Style& style, core::Species s) {
 
 Rgba background_color(const Style& s) {
   if (s.transparent) return {0, 0, 0, 0};
+  if (s.dark) return {0.07f, 0.07f, 0.09f, 1};
   return {1, 1, 1, 1};
+}
+
+Rgba wall_color(const Style& s) {
+  return s.dark ? Rgba{0.82f, 0.82f, 0.85f, 1} : wall_color(s.palette);
 }
 
 Rgba wall_color(Palette) {

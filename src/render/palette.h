@@ -21,6 +21,7 @@ struct Style {
   double speed_max = 0.5;    // m/s at the top of the colour scale
   double force_max = 20.0;   // N at the top of the colour scale (~99th percentile of the default scene)
   bool transparent = false;  // transparent background (PNG)
+  bool dark = false;         // a dark background (projectors, dark slides): light walls, dark panels
   bool show_arch = true;
   // Force chains: a segment between the centres of each pair of grains in contact whose normal force is at
   // least chain_min, its width and colour (the colour map) growing with the force up to chain_max.
@@ -44,7 +45,8 @@ Rgba species_color(Palette p, core::Species s);
 Rgba species_color(const Style& style, core::Species s);
 Rgba background_color(const Style& s);
 Rgba wall_color(Palette p);
-Rgba arch_color(Palette p);  // halo and bonds of arch members
+Rgba wall_color(const Style& s);  // light on a dark background
+Rgba arch_color(Palette p);       // halo and bonds of arch members
 // A perceptually uniform map (viridis, polynomial fit) of t in [0, 1].
 Rgba colormap(double t);
 // The fill colour of a disk under a style.

@@ -203,3 +203,15 @@ TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal 
       slow, Catch::Matchers::Contains("frames = 123\n") && Catch::Matchers::Contains("slowmo_frames = 57\n"));
   CHECK(cli(common + (d / "bad").string() + " --slowmo 0.5").code == 2);
 }
+
+TEST_CASE("record: --background, --font-scale and --force-chains are checked before any work", "[cli][app]") {
+  const fs::path d = temp_dir("record_looks");
+  for (const std::string& bad : {std::string("--background pink"), std::string("--font-scale 9"),
+                                 std::string("--background dark --transparent --no-movie --png-every 1"),
+                                 std::string("--force-chains 5:2"), std::string("--force-chains x")}) {
+    auto r = cli("record " + kScene + " --duration 1 --quiet " + bad + " --out " + (d / "r").string());
+    INFO(bad << ": " << r.output);
+    CHECK(r.code == 2);
+    CHECK_FALSE(fs::exists(d / "r"));
+  }
+}

@@ -152,6 +152,32 @@ TEST_CASE("force chains are drawn between touching grains in the colour map, ove
   CHECK(distance(at(0.16, 0.5), render::species_color(style.palette, core::Species::Original)) < 8);
 }
 
+TEST_CASE("a dark background: dark empty space, light walls, the grains' own colours", "[render]") {
+  auto& fx = fixture();
+  const int w = 400, h = 400;
+  core::Frame f;
+  f.particles = {disk(0.0f, 0.5f, 0.065f, core::Species::Original)};
+  auto views = render::layout_views(render::parse_camera("window:-0.5,0,0.5,1"), fx.geo, w, h);
+  render::Style style;
+  style.dark = true;
+  render::Target target(w, h);
+  target.bind();
+  fx.renderer.draw(f, fx.geo, views, style, w, h);
+  core::Image img;
+  target.read(img);
+  const auto& v = views[0];
+  auto at = [&](double x, double y) {
+    core::Vec2 p = v.world_to_pixel({x, y});
+    return img.pixel(static_cast<int>(p.x), static_cast<int>(p.y));
+  };
+  CHECK(at(0.3, 0.8)[0] < 30);  // empty space is dark
+  CHECK(distance(at(0.0, 0.5), render::species_color(style.palette, core::Species::Original)) < 8);
+  // The hopper's left wall at mid height of the funnel: light.
+  const core::Segment& wall = fx.geo.walls[static_cast<int>(core::Wall::HopperLeft)];
+  const core::Vec2 mid = 0.5 * (wall.a + wall.b);
+  CHECK(at(mid.x, mid.y)[0] > 150);
+}
+
 TEST_CASE("colour by speed uses the colour map on its fixed scale", "[render]") {
   auto& fx = fixture();
   core::Frame f;

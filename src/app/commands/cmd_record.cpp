@@ -48,6 +48,8 @@ struct RecordOptions {
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
   std::string chains;  // "": off; "MIN" or "MIN:MAX" in N
+  std::string background = "white";
+  double font_scale = 1.0;
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
 
@@ -177,6 +179,15 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   plan.style.color = render::parse_color_mode(o.color);
   plan.style.transparent = o.transparent;
   plan.overlay = render::parse_overlay(o.overlay);
+  if (o.background != "white" && o.background != "dark")
+    throw core::InputError("--background " + o.background + ": expected white or dark");
+  plan.style.dark = o.background == "dark";
+  if (o.transparent && plan.style.dark)
+    throw core::InputError(
+        "--background dark and --transparent: choose one (a transparent frame has no background)");
+  if (!(o.font_scale >= 0.5 && o.font_scale <= 4))
+    throw core::InputError("--font-scale " + num6(o.font_scale) + ": allowed range is 0.5 to 4");
+  plan.overlay.font_scale = o.font_scale;
   if (!o.chains.empty()) {
     // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
     const size_t colon = o.chains.find(':');
@@ -303,6 +314,8 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
           {"color_scale_max",
            plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max},
           {"overlay", o.overlay},
+          {"background", o.background},
+          {"font_scale", o.font_scale},
           {"force_chains", plan.style.chains},
           {"force_chain_min_N", plan.style.chain_min},
           {"force_chain_max_N", plan.style.chain_max},
@@ -506,6 +519,12 @@ void add_record_command(CLI::App& app, Action& action) {
       "draw the contact network: a segment between the centres of each pair in contact whose normal "
       "force is at least MIN newtons, width and colour growing with the force up to MAX (MIN or "
       "MIN:MAX; e.g. 2 or 2:30; MAX default 20)");
+  cmd->add_option("--background", o->background,
+                  "white, or dark (light walls and text: projectors, dark slides)")
+      ->capture_default_str();
+  cmd->add_option("--font-scale", o->font_scale,
+                  "text size over the default (1/42 of the picture's height); 1.5-2 for a projector")
+      ->capture_default_str();
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
