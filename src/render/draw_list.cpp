@@ -32,6 +32,9 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
     ShapeInstance d{p.x, p.y, p.radius * extent[sides], {}, {}, {p.angle, static_cast<float>(sides), 0, 0}};
     copy(d.fill, particle_color(style, p));
     copy(d.halo, member[i] ? Rgba{halo.r, halo.g, halo.b, arch_alpha} : Rgba{0, 0, 0, 0});
+    if (!member[i] && !style.tracked.empty() &&
+        std::find(style.tracked.begin(), style.tracked.end(), static_cast<int>(i)) != style.tracked.end())
+      copy(d.halo, tracked_color(style));
     out.shapes.push_back(d);
   }
   // The container where it is now: a vibrating container carries its walls and obstacle along.

@@ -37,6 +37,8 @@ struct SegmentInstance {
 struct DrawList {
   std::vector<ShapeInstance> shapes;    // grains, then the obstacle
   std::vector<SegmentInstance> walls;   // drawn under the grains
+  std::vector<SegmentInstance> trails;  // tracked grains' trails, over the grains
+  std::vector<float> trail_width_m;
   std::vector<SegmentInstance> chains;  // force chains, over the grains
   std::vector<float> chain_width_m;     // each chain segment's width, m
   std::vector<SegmentInstance> bonds;   // the arch's bonds, over everything

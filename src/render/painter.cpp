@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "render/draw_list.h"
 #include "render/renderer.h"
 #include "render/target.h"
 
@@ -24,7 +25,15 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     Style panel_style = style;
     panel_style.clear = style.clear && k == 0;
     if (p.data) panel_style.species_colors = p.data->species_colors;
-    renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
+    if (panel_style.tracked.empty()) {
+      renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
+    } else {
+      while (trails_.size() <= k) trails_.emplace_back();
+      trails_[k].update(*p.frame, panel_style.tracked, panel_style.trail_s);
+      DrawList list = build_draw_list(*p.frame, *p.geometry, panel_style);
+      trails_[k].append(list, *p.frame, tracked_color(panel_style));
+      renderer_->paint(list, *p.views, panel_style, w, h);
+    }
     if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
     while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
     overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, panel_style, overlay_w < 0 ? w : overlay_w, h,

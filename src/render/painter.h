@@ -13,6 +13,7 @@
 #include "render/camera.h"
 #include "render/overlay.h"
 #include "render/palette.h"
+#include "render/trails.h"
 
 namespace render {
 
@@ -64,6 +65,7 @@ class Painter {
  private:
   std::unique_ptr<Renderer> renderer_;
   std::vector<std::unique_ptr<Overlay>> overlays_;  // one per panel, made when first needed
+  std::vector<Trails> trails_;                      // one per panel: the tracked grains' recent positions
   std::unique_ptr<Target> target_;
   PaintTiming timing_;
   bool info_left_ = false;

@@ -55,6 +55,11 @@ Rgba wall_color(Palette) {
   return {0.18f, 0.18f, 0.2f, 1};
 }
 
+Rgba tracked_color(const Style& s) {
+  return s.dark ? Rgba{0.3f, 1.0f, 0.4f, 1}
+                : Rgba{0.0f, 0.62f, 0.2f, 1};  // green: apart from red, blue, gold
+}
+
 Rgba arch_color(Palette p) {
   if (p == Palette::ColorBlind) return {0.0f, 0.0f, 0.0f, 1};
   return {1.0f, 0.76f, 0.0f, 1};  // gold

@@ -28,7 +28,10 @@ struct Style {
   bool chains = false;
   double chain_min = 2.0;   // N
   double chain_max = 20.0;  // N
-  bool clear = true;        // clear the image first (false: draw another panel into the same image)
+  // Tracked grains (by id): a ring of their own colour and a trail of their last trail_s seconds.
+  std::vector<int> tracked;
+  double trail_s = 2.0;
+  bool clear = true;  // clear the image first (false: draw another panel into the same image)
   // A scene's own species colours by species index (alpha 0: the palette's colour for that index); set per
   // panel from its OverlayData.
   std::vector<Rgba> species_colors;
@@ -45,8 +48,9 @@ Rgba species_color(Palette p, core::Species s);
 Rgba species_color(const Style& style, core::Species s);
 Rgba background_color(const Style& s);
 Rgba wall_color(Palette p);
-Rgba wall_color(const Style& s);  // light on a dark background
-Rgba arch_color(Palette p);       // halo and bonds of arch members
+Rgba wall_color(const Style& s);     // light on a dark background
+Rgba arch_color(Palette p);          // halo and bonds of arch members
+Rgba tracked_color(const Style& s);  // ring and trail of tracked grains
 // A perceptually uniform map (viridis, polynomial fit) of t in [0, 1].
 Rgba colormap(double t);
 // The fill colour of a disk under a style.

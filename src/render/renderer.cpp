@@ -108,6 +108,8 @@ void Renderer::paint(const DrawList& list, const std::vector<View>& views, const
   walls_ = list.walls;
   bonds_ = list.bonds;
   chains_ = list.chains;
+  trails_ = list.trails;
+  trail_width_m_ = list.trail_width_m;
   chain_width_m_ = list.chain_width_m;
   halo_m_ = list.halo_m;
   bond_m_ = list.bond_m;
@@ -165,6 +167,7 @@ void Renderer::draw_view(const View& v, int image_h) {
   glBindVertexArray(disk_vao_);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(disks_.size()));
 
+  draw_segments(trails_, 0, &trail_width_m_);  // over the grains: in a packing they would hide it
   draw_segments(chains_, 0, &chain_width_m_);
   draw_segments(bonds_, bond_m_);
   glBindVertexArray(0);

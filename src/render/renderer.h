@@ -33,7 +33,8 @@ class Renderer {
   unsigned quad_vbo_ = 0, disk_vao_ = 0, disk_vbo_ = 0, segment_vao_ = 0, segment_vbo_ = 0;
   std::vector<ShapeInstance> disks_;
   std::vector<SegmentInstance> walls_, bonds_, chains_;
-  std::vector<float> chain_width_m_;
+  std::vector<float> chain_width_m_, trail_width_m_;
+  std::vector<SegmentInstance> trails_;
   float halo_m_ = 0.012f, bond_m_ = 0.012f, wall_m_ = 0.012f;
 };
 

@@ -27,7 +27,7 @@ double to_double(const std::string& s, const char* what) {
   return v;
 }
 const char* kCommands =
-    "goto, step, next, prev, zoom, pan, color, palette, overlay, arch, snapshot, export, print";
+    "goto, step, next, prev, zoom, pan, color, palette, overlay, arch, track, snapshot, export, print";
 }  // namespace
 
 Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
@@ -328,6 +328,22 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       need(1, "arch on|off");
       if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
       return show_arch(a[1] == "on");
+    }
+    if (cmd == "track") {
+      // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
+      need(1, "track ID[,ID...]|off");
+      style.tracked.clear();
+      if (a[1] == "off") return;
+      const long n = static_cast<long>(traj_.frame(frame_).particles.size());
+      std::stringstream ids(a[1]);
+      for (std::string id; std::getline(ids, id, ',');) {
+        const long v = to_long(id, "ID");
+        if (v < 0 || v >= n)
+          throw core::InputError("track: grain " + id + " does not exist; ids run from 0 to " +
+                                 std::to_string(n - 1));
+        style.tracked.push_back(static_cast<int>(v));
+      }
+      return;
     }
     if (cmd == "print") return (void)print_frame();
     if (cmd == "snapshot") {

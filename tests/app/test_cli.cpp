@@ -204,11 +204,14 @@ TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal 
   CHECK(cli(common + (d / "bad").string() + " --slowmo 0.5").code == 2);
 }
 
-TEST_CASE("record: --background, --font-scale and --force-chains are checked before any work", "[cli][app]") {
+TEST_CASE("record: --background, --font-scale, --force-chains and --track are checked before any work",
+          "[cli][app]") {
   const fs::path d = temp_dir("record_looks");
-  for (const std::string& bad : {std::string("--background pink"), std::string("--font-scale 9"),
-                                 std::string("--background dark --transparent --no-movie --png-every 1"),
-                                 std::string("--force-chains 5:2"), std::string("--force-chains x")}) {
+  for (const std::string& bad :
+       {std::string("--background pink"), std::string("--font-scale 9"),
+        std::string("--background dark --transparent --no-movie --png-every 1"),
+        std::string("--force-chains 5:2"), std::string("--force-chains x"), std::string("--track 250"),
+        std::string("--track 3,x"), std::string("--trail -1")}) {
     auto r = cli("record " + kScene + " --duration 1 --quiet " + bad + " --out " + (d / "r").string());
     INFO(bad << ": " << r.output);
     CHECK(r.code == 2);

@@ -4,6 +4,7 @@
 #include "core/geometry.h"
 #include "core/setup.h"
 #include "render/draw_list.h"
+#include "render/trails.h"
 
 namespace {
 core::Particle grain(float x, float y, float r, int species, int sides = 0) {
@@ -70,4 +71,43 @@ TEST_CASE("force chains: a segment per contact at or above the threshold, wider 
   // The colour map's top (yellow, viridis) at 40 N, its dark end near the threshold.
   CHECK(d.chains[1].color[0] > 0.8f);
   CHECK(d.chains[0].color[0] < 0.4f);
+}
+
+TEST_CASE(
+    "tracked grains: a ring of their own colour, a trail that fades, breaks at re-injection, restarts on "
+    "a jump back",
+    "[render]") {
+  core::Scene s;
+  const core::Geometry geo = core::make_geometry(s);
+  render::Style style;
+  style.tracked = {1};
+  core::Frame f;
+  f.particles = {grain(-0.2f, 0.5f, 0.065f, 0), grain(0.0f, 0.5f, 0.065f, 0)};
+  const render::DrawList d = render::build_draw_list(f, geo, style);
+  CHECK(d.shapes[1].halo[3] == 1.0f);  // the tracked grain's ring
+  CHECK(d.shapes[1].halo[1] == render::tracked_color(style).g);
+  CHECK(d.shapes[0].halo[3] == 0.0f);
+  render::Trails trails;
+  for (int k = 0; k < 5; ++k) {  // falling 2 cm per frame
+    f.t = 0.1 * k;
+    f.particles[1].y = 0.5f - 0.02f * static_cast<float>(k);
+    trails.update(f, style.tracked, 1.0);
+  }
+  render::DrawList list;
+  trails.append(list, f, render::tracked_color(style));
+  REQUIRE(list.trails.size() == 4);
+  REQUIRE(list.trail_width_m.size() == 4);
+  CHECK(list.trails.front().color[3] < list.trails.back().color[3]);  // older: fainter
+  CHECK(list.trails.back().by == Approx(0.42));
+  // Re-injected at the top: no segment across the silo.
+  f.t = 0.5;
+  f.particles[1].y = 3.0f;
+  trails.update(f, style.tracked, 1.0);
+  render::DrawList after;
+  trails.append(after, f, render::tracked_color(style));
+  CHECK(after.trails.size() == 4);
+  // A jump back in time (the inspector): the trail starts afresh.
+  f.t = 0.05;
+  trails.update(f, style.tracked, 1.0);
+  CHECK(trails.points(1) == 1);
 }

@@ -120,6 +120,11 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
   CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
+  CHECK_THROWS_WITH(insp.execute("track 0,7"), Contains("grain 7 does not exist; ids run from 0 to 1"));
+  insp.execute("track 1");
+  CHECK(insp.style.tracked == std::vector<int>{1});
+  insp.execute("track off");
+  CHECK(insp.style.tracked.empty());
 }
 
 TEST_CASE("snapshots and clips are named by frame and never written over and export clog cuts the clog",

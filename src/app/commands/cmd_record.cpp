@@ -20,6 +20,7 @@
 #include "app/services/sinks.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/setup.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
@@ -49,6 +50,8 @@ struct RecordOptions {
   std::string preset = "veryfast";
   std::string chains;  // "": off; "MIN" or "MIN:MAX" in N
   std::string background = "white";
+  std::vector<std::string> track;  // grain ids to follow
+  double trail_s = 2.0;
   double font_scale = 1.0;
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
@@ -188,6 +191,19 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   if (!(o.font_scale >= 0.5 && o.font_scale <= 4))
     throw core::InputError("--font-scale " + num6(o.font_scale) + ": allowed range is 0.5 to 4");
   plan.overlay.font_scale = o.font_scale;
+  if (!(o.trail_s >= 0 && o.trail_s <= 1000))
+    throw core::InputError("--trail " + num6(o.trail_s) + ": allowed range is 0 to 1000 s");
+  plan.style.trail_s = o.trail_s;
+  const int n_grains = core::resolve(scene).n_total;
+  for (const auto& id : o.track) {
+    char* end = nullptr;
+    const long v = std::strtol(id.c_str(), &end, 10);
+    if (id.empty() || *end != '\0' || v < 0 || v >= n_grains)
+      throw core::InputError("--track " + id + ": expected grain ids from 0 to " +
+                             std::to_string(n_grains - 1) + " (this scene has " + std::to_string(n_grains) +
+                             " grains), comma-separated");
+    plan.style.tracked.push_back(static_cast<int>(v));
+  }
   if (!o.chains.empty()) {
     // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
     const size_t colon = o.chains.find(':');
@@ -316,6 +332,13 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
           {"overlay", o.overlay},
           {"background", o.background},
           {"font_scale", o.font_scale},
+          {"tracked_grains",
+           [&] {
+             std::string s;
+             for (int id : plan.style.tracked) s += (s.empty() ? "" : ",") + std::to_string(id);
+             return s;
+           }()},
+          {"trail_s", plan.style.trail_s},
           {"force_chains", plan.style.chains},
           {"force_chain_min_N", plan.style.chain_min},
           {"force_chain_max_N", plan.style.chain_max},
@@ -525,6 +548,12 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--font-scale", o->font_scale,
                   "text size over the default (1/42 of the picture's height); 1.5-2 for a projector")
       ->capture_default_str();
+  cmd->add_option(
+         "--track", o->track,
+         "follow these grains (ids, comma-separated; the inspector's panel and the exports show ids): a "
+         "green ring and a trail of their last --trail seconds")
+      ->delimiter(',');
+  cmd->add_option("--trail", o->trail_s, "length of the tracked grains' trails, s")->capture_default_str();
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
