@@ -117,6 +117,44 @@ bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
   return true;
 }
 
+ArchDescriptors arch_descriptors(const std::vector<int>& ids, const std::vector<Vec2>& pos,
+                                 const std::vector<double>& radius) {
+  ArchDescriptors d;
+  d.grains = static_cast<int>(ids.size());
+  if (ids.empty()) return d;
+  const Vec2 a = pos[ids.front()], b = pos[ids.back()];
+  d.span = (b.x + radius[ids.back()]) - (a.x - radius[ids.front()]);
+  // The rise above the chord joining the end members' centres.
+  for (int i : ids) {
+    const double base = b.x == a.x ? std::max(a.y, b.y) : a.y + (b.y - a.y) * (pos[i].x - a.x) / (b.x - a.x);
+    d.rise = std::max(d.rise, pos[i].y - base);
+  }
+  const double half = 0.5 * d.span;
+  d.aspect = half > 0 ? d.rise / half : std::numeric_limits<double>::quiet_NaN();
+  d.inverse_aspect = d.rise > 0 ? half / d.rise : std::numeric_limits<double>::infinity();
+  std::vector<double> angles;
+  for (size_t k = 1; k + 1 < ids.size(); ++k) {
+    const Vec2 u = pos[ids[k - 1]] - pos[ids[k]], v = pos[ids[k + 1]] - pos[ids[k]];
+    double ang = std::atan2(v.y, v.x) - std::atan2(u.y, u.x);
+    while (ang < 0) ang += 2 * kPi;
+    while (ang >= 2 * kPi) ang -= 2 * kPi;
+    angles.push_back(ang * 180.0 / kPi);
+  }
+  double sum = 0;
+  for (double x : angles) {
+    d.theta_max_deg = std::max(d.theta_max_deg, x);
+    d.defects += x > 180.0;
+    sum += x;
+  }
+  if (angles.size() > 1) {
+    const double mean = sum / static_cast<double>(angles.size());
+    double ss = 0;
+    for (double x : angles) ss += (x - mean) * (x - mean);
+    d.angle_sd_deg = std::sqrt(ss / static_cast<double>(angles.size() - 1));
+  }
+  return d;
+}
+
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                            const std::vector<double>& radius) {
   ArchGeometry a;

@@ -54,6 +54,23 @@ std::vector<int> find_arch(const ContactGraph& g, const std::vector<Vec2>& pos, 
 bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
                    const std::vector<double>& radius, double half_aperture);
 
+// The descriptors of the arch literature, from the members' centres (left to right) and radii:
+//   grains; span (outer edge to outer edge, m); rise: the highest member centre above the line through the
+//   two end members' centres (m); aspect ratio rise / (span / 2) (Garcimartin et al., PRE 82, 031306, 2010)
+//   and its inverse (span / 2) / rise (To, Lai and Pak, PRL 86, 71, 2001, use the span over the height); the
+//   bead angle at each interior member, between the bonds to its two neighbours measured below the arch (180
+//   deg: flat); its largest value theta_max; defects: bead angles above 180 deg (a member poking down towards
+//   the outlet; Lozano et al., PRL 109, 068001, 2012, relate theta_max to an arch's resistance to vibration);
+//   and the standard deviation of the bead angles.
+struct ArchDescriptors {
+  int grains = 0;
+  double span = 0, rise = 0, aspect = 0, inverse_aspect = 0;  // m, m, 1, 1 (inf/nan for a flat pair)
+  double theta_max_deg = 0, angle_sd_deg = 0;
+  int defects = 0;
+};
+ArchDescriptors arch_descriptors(const std::vector<int>& ids, const std::vector<Vec2>& pos,
+                                 const std::vector<double>& radius);
+
 // Span, height and largest angle of an arch (members left to right).
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                            const std::vector<double>& radius);

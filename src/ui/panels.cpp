@@ -130,6 +130,10 @@ void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
     else
       ImGui::Text("arch: %zu grains%s", f.arch.size(), clogging);
     ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
+    const auto d = core::arch_descriptors(f.arch, pos, rad);
+    ImGui::Text(
+        "rise %.3f m, aspect rise/(span/2) %.2f, theta_max %.0f deg, %d defect%s, bead angles sd %.0f deg",
+        d.rise, d.aspect, d.theta_max_deg, d.defects, d.defects == 1 ? "" : "s", d.angle_sd_deg);
     std::string members;
     for (int id : f.arch) {
       const size_t sp = static_cast<size_t>(core::species_index(f.particles[id].species));

@@ -97,8 +97,8 @@ TEST_CASE("a run writes its files whole, refuses to overwrite, and its metadata 
   const std::string args = " --duration 3 --set settle_time=2 --quiet --out ";
   auto r = cli("run " + kScene + args + (d / "a").string());
   REQUIRE(r.code == 0);
-  CHECK(only(d / "a", {"arches.csv", "clogs.csv", "exits.csv", "manifest.toml", "metadata.toml",
-                       "species.csv", "summary.csv", "survival.csv"}));
+  CHECK(only(d / "a", {"arch_shapes.csv", "arches.csv", "clogs.csv", "exits.csv", "manifest.toml",
+                       "metadata.toml", "species.csv", "summary.csv", "survival.csv"}));
   CHECK(slurp(d / "a" / "exits.csv").rfind("t_s,id,species\n", 0) == 0);
   // Again into the same directory: refused without --force, the first run intact.
   const std::string before = slurp(d / "a" / "exits.csv");

@@ -157,3 +157,31 @@ TEST_CASE("an arch is shown only where it blocks: two or more grains spanning th
   pos[2] = {0.0, -0.07};
   CHECK(core::blocks_outlet({0, 1}, pos, radius, half));
 }
+
+TEST_CASE("arch descriptors: rise, both aspect ratios, theta_max, defects and the spread of bead angles",
+          "[arch]") {
+  const double r = 0.05;
+  // A symmetric dome of three: ends at y = 0, crown 0.04 m higher, 0.16 m between end centres.
+  std::vector<core::Vec2> pos = {{-0.08, 0.0}, {0.0, 0.04}, {0.08, 0.0}};
+  const std::vector<double> radius(3, r);
+  core::ArchDescriptors d = core::arch_descriptors({0, 1, 2}, pos, radius);
+  CHECK(d.grains == 3);
+  CHECK(d.span == Approx(0.26));
+  CHECK(d.rise == Approx(0.04));
+  CHECK(d.aspect == Approx(0.04 / 0.13));
+  CHECK(d.inverse_aspect == Approx(0.13 / 0.04));
+  // The crown's bead angle: 180 - 2 atan(0.04 / 0.08), below 180 (a dome), no defect.
+  CHECK(d.theta_max_deg == Approx(180 - 2 * std::atan(0.5) * 180 / 3.14159265358979));
+  CHECK(d.defects == 0);
+  CHECK(d.angle_sd_deg == 0);  // one bead angle: no spread
+  // A V (the middle member pokes down): one defect, the angle above 180.
+  pos[1].y = -0.04;
+  d = core::arch_descriptors({0, 1, 2}, pos, radius);
+  CHECK(d.defects == 1);
+  CHECK(d.theta_max_deg > 180);
+  CHECK(d.rise == Approx(0.0));
+  // Four members, two bead angles: their standard deviation.
+  pos = {{-0.15, 0.0}, {-0.05, 0.05}, {0.05, 0.05}, {0.15, 0.0}};
+  d = core::arch_descriptors({0, 1, 2, 3}, std::vector<core::Vec2>(pos), std::vector<double>(4, r));
+  CHECK(d.angle_sd_deg == Approx(0.0).margin(1e-9));  // symmetric: equal angles
+}

@@ -1,4 +1,5 @@
 #include "app/services/common.h"
+#include "core/arch.h"
 
 #include <unistd.h>
 
@@ -75,10 +76,36 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
   return m;
 }
 
+std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii) {
+  std::string out =
+      "t_s,grains,span_m,rise_m,aspect_rise_over_half_span,half_span_over_rise,theta_max_deg,defects,"
+      "bead_angle_sd_deg\n";
+  for (const auto& a : ev.arches) {
+    std::vector<core::Vec2> pos(radii.size());
+    std::vector<int> local;
+    std::vector<double> r;
+    for (size_t k = 0; k < a.ids.size() && k < a.x.size(); ++k) {
+      local.push_back(static_cast<int>(k));
+      pos[k] = {a.x[k], a.y[k]};
+      r.push_back(radii[static_cast<size_t>(a.ids[k])]);
+    }
+    pos.resize(local.size());
+    const core::ArchDescriptors d = core::arch_descriptors(local, pos, r);
+    auto g = [](double v) { return core::format_g(v, 6); };
+    out += g(a.t) + "," + std::to_string(d.grains) + "," + g(d.span) + "," + g(d.rise) + "," + g(d.aspect) +
+           "," + g(d.inverse_aspect) + "," + g(d.theta_max_deg) + "," + std::to_string(d.defects) + "," +
+           g(d.angle_sd_deg) + "\n";
+  }
+  return out;
+}
+
 analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
                                          const sim::Hopper& h, double duration, io::RunInfo info) {
   const analysis::Measurements m = measure_run(h, duration);
   io::write_events(dir, h.events(), h.setup().species_names());
+  // The arch literature's descriptors of each removed arch, beside arches.csv (whose bytes the paper's golden
+  // events fix).
+  io::write_file_atomic(dir / "arch_shapes.csv", arch_shapes_csv(h.events(), h.radii()));
   io::write_file_atomic(dir / "species.csv", analysis::species_csv(h.setup(), m));
   io::write_file_atomic(dir / "summary.csv",
                         analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");

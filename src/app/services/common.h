@@ -35,6 +35,8 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration);
 // A run's outputs, written the same way by run and record into `dir`: exits/clogs/arches.csv, summary.csv,
 // survival.csv and metadata.toml (info, with the run's health added). Returns the measurements of `duration`
 // s.
+// arch_shapes.csv: per arch the clog rule removed, the descriptors of core::arch_descriptors.
+std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii);
 analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
                                          const sim::Hopper& h, double duration, io::RunInfo info);
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
