@@ -3,6 +3,7 @@
 // element can be switched off; a clean frame has none.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,13 @@ class Overlay {
             const core::Geometry* geo = nullptr, const Annotations* notes = nullptr);
   // The last draw left the information box out of the picture (place_clear and may_leave, no clear corner).
   bool info_left() const { return info_left_; }
+  // Where the last draw put the information box and the colour bar (pixels: x0, y0, x1, y1; empty if not
+  // drawn), so that tests can hold them apart.
+  std::array<float, 4> info_rect() const {
+    return info_shown_ ? std::array<float, 4>{info_x_, info_y_, info_x_ + info_w_, info_y_ + info_h_}
+                       : std::array<float, 4>{};
+  }
+  std::array<float, 4> colorbar_rect() const { return bar_rect_; }
 
  private:
   void ensure_font(int h, double scale);
@@ -118,8 +126,12 @@ class Overlay {
   int font_px_ = 0;
   bool laid_out_ = false;
   float info_w_ = 0, info_h_ = 0;  // the information box's size in the last frame, pixels
-  int info_corner_ = 0;            // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
-  bool info_left_ = false;         // see info_left()
+  float info_x_ = 0, info_y_ = 0;  // ... and its top-left corner
+  bool info_shown_ = false;        // drawn in this frame's picture
+  float bar_w_ = 0, bar_h_ = 0;    // the colour bar's size in the last frame
+  std::array<float, 4> bar_rect_{};
+  int info_corner_ = 0;     // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
+  bool info_left_ = false;  // see info_left()
 };
 
 }  // namespace render

@@ -108,16 +108,27 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
 
 void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style,
                             float em) {
+  bar_rect_ = {};
   if (o.colorbar && !o.legend && (style.color != ColorMode::Species || style.chains)) {
     const View& zoom = most_zoomed(views);
-    ImGui::SetNextWindowPos(ImVec2(zoom.rect.x + zoom.rect.w - 0.6f * em, zoom.rect.y + 0.6f * em), 0,
-                            ImVec2(1.0f, 0.0f));
+    // Top-right of the outlet view; where the information box is there, just below it (never under it).
+    const float right = zoom.rect.x + zoom.rect.w - 0.6f * em;
+    float top = zoom.rect.y + 0.6f * em;
+    const float bw = bar_w_ > 0 ? bar_w_ : 16 * em, bh = bar_h_ > 0 ? bar_h_ : 2 * em;
+    if (info_shown_ && right - bw < info_x_ + info_w_ && right > info_x_ && top < info_y_ + info_h_ &&
+        top + bh > info_y_)
+      top = info_y_ + info_h_ + 0.4f * em;
+    ImGui::SetNextWindowPos(ImVec2(right, top), 0, ImVec2(1.0f, 0.0f));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("colorbar", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                      ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
                      ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
     colour_bar(style, em);
+    bar_w_ = ImGui::GetWindowSize().x;
+    bar_h_ = ImGui::GetWindowSize().y;
+    bar_rect_ = {ImGui::GetWindowPos().x, ImGui::GetWindowPos().y, ImGui::GetWindowPos().x + bar_w_,
+                 ImGui::GetWindowPos().y + bar_h_};
     ImGui::End();
   }
 }
@@ -198,6 +209,9 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
     info_contents(f, d, o, style, em);
     info_w_ = ImGui::GetWindowSize().x;
     info_h_ = ImGui::GetWindowSize().y;
+    info_x_ = ImGui::GetWindowPos().x;
+    info_y_ = ImGui::GetWindowPos().y;
+    info_shown_ = !info_left_;
     ImGui::End();
   }
 }

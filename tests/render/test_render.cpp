@@ -236,6 +236,22 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   CHECK(render::parse_overlay("none").any() == false);
   CHECK(render::parse_overlay("time,scale").time);
   CHECK_THROWS_WITH(render::parse_overlay("time,clock"), Catch::Matchers::Contains("'clock'"));
+  // The colour bar without the legend, beside the information box: never under it (two frames, the second
+  // with the sizes of the first, as a movie's frames are).
+  style.color = render::ColorMode::Speed;
+  render::OverlayOptions o = render::parse_overlay("time,counts,rate,timer,colorbar");
+  views = render::layout_views(render::parse_camera("split"), fx.geo, 1280, 720);
+  render::Target big(1280, 720);
+  for (int k = 0; k < 2; ++k) {
+    big.bind();
+    fx.renderer.draw(f, fx.geo, views, style, 1280, 720);
+    overlay.draw(f, {}, o, views, style, 1280, 720);
+    const auto a = overlay.info_rect(), b = overlay.colorbar_rect();
+    REQUIRE(a[2] > a[0]);
+    REQUIRE(b[2] > b[0]);
+    const bool overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+    CHECK_FALSE(overlap);
+  }
 }
 
 TEST_CASE("in a window the information box never covers the container: a clear corner or beside the picture",
