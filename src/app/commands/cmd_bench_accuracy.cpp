@@ -208,11 +208,12 @@ int bench_accuracy(const AccuracyOptions& o) {
              "," + std::to_string(r.clogs_vibration) + "," + num6(vib.first) + "," + num6(vib.second) + "," +
              num6(crit_clog) + "," + num6(skipped) + "," + std::to_string(st.arrest_skip) + "," +
              num6(st.arrest_skip_shift) + "\n";
+      // Written after every row (atomically): a bench stopped part-way keeps every row it finished.
+      fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".")
+                                                                   : fs::path(o.csv).parent_path());
+      io::write_file_atomic(o.csv, csv);
     }
   }
-  fs::create_directories(fs::path(o.csv).parent_path().empty() ? fs::path(".")
-                                                               : fs::path(o.csv).parent_path());
-  io::write_file_atomic(o.csv, csv);
   std::printf("\nwritten %s\n", o.csv.c_str());
   if (!o.chart.empty()) {
     if (run_python(script_path("accuracy_chart.py"), {o.csv, o.chart}) != 0) {
