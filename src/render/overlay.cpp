@@ -181,10 +181,11 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
 
   if (o.zoombox && views.size() > 1) draw_zoombox(views, h);
   if (o.events) draw_events(notes, views, em);
-  if (o.plot) plot(f, d, views, style);
+  // The information box first: the plot, the colour bar and the scale bar are placed clear of it.
   info_shown_ = false;
   draw_info(f, d, o, views, style, w, h, geo, em);
-  draw_colorbar(o, views, style, em);  // after the box: placed clear of it
+  if (o.plot) plot(f, d, views, style);
+  draw_colorbar(o, views, style, em);
   if (o.scale) draw_scale(d, views, em);
   // A bold line between panels of a comparison, thin separators between views.
   if (d.panel_x > 0)

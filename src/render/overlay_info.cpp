@@ -111,14 +111,22 @@ void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& vi
   bar_rect_ = {};
   if (o.colorbar && !o.legend && (style.color != ColorMode::Species || style.chains)) {
     const View& zoom = most_zoomed(views);
-    // Top-right of the outlet view; where the information box is there, just below it (never under it).
-    const float right = zoom.rect.x + zoom.rect.w - 0.6f * em;
+    // Top-right of the outlet view; with the information box placed by free space, beside it in the same free
+    // corner (below a top box, above a bottom one); where it would meet the box, just below it.
+    float right = zoom.rect.x + zoom.rect.w - 0.6f * em;
     float top = zoom.rect.y + 0.6f * em;
     const float bw = bar_w_ > 0 ? bar_w_ : 16 * em, bh = bar_h_ > 0 ? bar_h_ : 2 * em;
-    if (info_shown_ && right - bw < info_x_ + info_w_ && right > info_x_ && top < info_y_ + info_h_ &&
-        top + bh > info_y_)
+    ImVec2 pivot(1.0f, 0.0f);
+    if (info_shown_ && o.place_clear) {
+      const bool left_corner = info_corner_ % 2 == 1, bottom_corner = info_corner_ >= 2;
+      right = left_corner ? info_x_ : info_x_ + info_w_;
+      pivot.x = left_corner ? 0.0f : 1.0f;
+      top = bottom_corner ? info_y_ - 0.4f * em - bh : info_y_ + info_h_ + 0.4f * em;
+    } else if (info_shown_ && right - bw < info_x_ + info_w_ && right > info_x_ && top < info_y_ + info_h_ &&
+               top + bh > info_y_) {
       top = info_y_ + info_h_ + 0.4f * em;
-    ImGui::SetNextWindowPos(ImVec2(right, top), 0, ImVec2(1.0f, 0.0f));
+    }
+    ImGui::SetNextWindowPos(ImVec2(right, top), 0, pivot);
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("colorbar", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
@@ -187,6 +195,7 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
         }
         return n;
       };
+      // The discharge plot (on request) owns the bottom-right of the outlet view: the box keeps out of it.
       long best = covered(info_corner_);
       for (int k = 0; k < 4 && best > 0; ++k) {
         const long n = covered(k);

@@ -66,7 +66,12 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   const float em = static_cast<float>(font_px_);
   const View& v = most_zoomed(views);
   const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;
-  const float x1 = v.rect.x + v.rect.w - 0.8f * em, y1 = v.rect.y + v.rect.h - 1.6f * em;
+  const float x1 = v.rect.x + v.rect.w - 0.8f * em;
+  float y1 = v.rect.y + v.rect.h - 1.6f * em;
+  // Where the information box took the bottom-right, the plot sits just above it.
+  if (info_shown_ && x1 + 0.4f * em > info_x_ && x1 - pw - 2.6f * em < info_x_ + info_w_ &&
+      y1 + 1.4f * em > info_y_ && y1 - ph - 1.5f * em < info_y_ + info_h_)
+    y1 = info_y_ - 1.8f * em;
   const float x0 = x1 - pw, y0 = y1 - ph;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   dl->AddRectFilled(ImVec2(x0 - 2.6f * em, y0 - 1.5f * em), ImVec2(x1 + 0.4f * em, y1 + 1.4f * em),
@@ -170,7 +175,13 @@ void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, f
     for (const auto& c : views)
       if (c.px_per_m() > v->px_per_m()) v = &c;
     const float len = static_cast<float>(d.diameter * v->px_per_m());
-    const float x0 = v->rect.x + em, y0 = v->rect.y + v->rect.h - 1.2f * em;
+    const float x0 = v->rect.x + em;
+    float y0 = v->rect.y + v->rect.h - 1.2f * em;
+    // Clear of the information box: just above it where the box took the bottom of this view.
+    const float tw = std::max(len, ImGui::CalcTextSize("1 d = 100 cm").x);
+    if (info_shown_ && x0 < info_x_ + info_w_ && x0 + tw > info_x_ && y0 > info_y_ &&
+        y0 - 1.45f * em < info_y_ + info_h_)
+      y0 = info_y_ - 0.4f * em;
     const ImU32 ink = dark_ ? IM_COL32(235, 235, 235, 255) : IM_COL32(20, 20, 20, 255);
     dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
     char text[64];

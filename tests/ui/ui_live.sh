@@ -20,14 +20,17 @@ t0=$(ticks); s0=$(date +%s.%N)
 sleep 3
 t1=$(ticks); s1=$(date +%s.%N)
 awk -v a="$t0" -v b="$t1" -v hz="$hz" -v s0="$s0" -v s1="$s1" 'BEGIN { printf "paused_cpu_fraction %.4f\n", (b - a) / hz / (s1 - s0) }'
+# Each snapshot is waited for (up to 20 s), not a fixed time: on a loaded machine a frame can take longer.
+shots() { ls -1 live-t*.png 2>/dev/null | wc -l; }
+wait_shots() { for _ in $(seq 100); do [ "$(shots)" -ge "$1" ] && return; sleep 0.2; done; }
 xdotool key s
-sleep 1.5
+wait_shots 1
 xdotool key s
-sleep 1.5
+wait_shots 2
 xdotool key --delay 25 Right Right Right
 sleep 1
 xdotool key s
-sleep 1.5
+wait_shots 3
 xdotool key q
 for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
 kill "$pid" 2>/dev/null

@@ -191,6 +191,11 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   if (!(o.font_scale >= 0.5 && o.font_scale <= 4))
     throw core::InputError("--font-scale " + num6(o.font_scale) + ": allowed range is 0.5 to 4");
   plan.overlay.font_scale = o.font_scale;
+  // The information box goes to the corner of each panel that covers the least of the container and its
+  // grains (below the outlet in the default split view), as in the windows; it stays there unless another
+  // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
+  // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
+  plan.overlay.place_clear = !plan.overlay.plot;
   if (!(o.trail_s >= 0 && o.trail_s <= 1000))
     throw core::InputError("--trail " + num6(o.trail_s) + ": allowed range is 0 to 1000 s");
   plan.style.trail_s = o.trail_s;
