@@ -14,6 +14,7 @@
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/services/common.h"
+#include "app/services/looks.h"
 #include "app/services/pipeline.h"
 #include "app/services/recording.h"
 #include "app/services/session.h"
@@ -48,11 +49,7 @@ struct RecordOptions {
   std::string color_max;  // top of the speed (m/s) or force (N) colour scale; "": the fixed default; "auto"
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
-  std::string chains;  // "": off; "MIN" or "MIN:MAX" in N
-  std::string background = "white";
-  std::vector<std::string> track;  // grain ids to follow
-  double trail_s = 2.0;
-  double font_scale = 1.0;
+  LookOptions looks;  // background, text size, force chains, tracked grains
   bool transparent = false, no_movie = false, force = false, quiet = false;
 };
 
@@ -182,54 +179,12 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   plan.style.color = render::parse_color_mode(o.color);
   plan.style.transparent = o.transparent;
   plan.overlay = render::parse_overlay(o.overlay);
-  if (o.background != "white" && o.background != "dark")
-    throw core::InputError("--background " + o.background + ": expected white or dark");
-  plan.style.dark = o.background == "dark";
-  if (o.transparent && plan.style.dark)
-    throw core::InputError(
-        "--background dark and --transparent: choose one (a transparent frame has no background)");
-  if (!(o.font_scale >= 0.5 && o.font_scale <= 4))
-    throw core::InputError("--font-scale " + num6(o.font_scale) + ": allowed range is 0.5 to 4");
-  plan.overlay.font_scale = o.font_scale;
+  o.looks.apply(core::resolve(scene).n_total, o.transparent, plan.style, plan.overlay);
   // The information box goes to the corner of each panel that covers the least of the container and its
   // grains (below the outlet in the default split view), as in the windows; it stays there unless another
   // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
   // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
   plan.overlay.place_clear = !plan.overlay.plot;
-  if (!(o.trail_s >= 0 && o.trail_s <= 1000))
-    throw core::InputError("--trail " + num6(o.trail_s) + ": allowed range is 0 to 1000 s");
-  plan.style.trail_s = o.trail_s;
-  const int n_grains = core::resolve(scene).n_total;
-  for (const auto& id : o.track) {
-    char* end = nullptr;
-    const long v = std::strtol(id.c_str(), &end, 10);
-    if (id.empty() || *end != '\0' || v < 0 || v >= n_grains)
-      throw core::InputError("--track " + id + ": expected grain ids from 0 to " +
-                             std::to_string(n_grains - 1) + " (this scene has " + std::to_string(n_grains) +
-                             " grains), comma-separated");
-    plan.style.tracked.push_back(static_cast<int>(v));
-  }
-  if (!o.chains.empty()) {
-    // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
-    const size_t colon = o.chains.find(':');
-    char* end = nullptr;
-    const double lo = std::strtod(o.chains.c_str(), &end);
-    double hi = plan.style.chain_max;
-    bool ok = end != o.chains.c_str() && (*end == '\0' || *end == ':') && lo >= 0 && std::isfinite(lo);
-    if (ok && colon != std::string::npos) {
-      const char* s = o.chains.c_str() + colon + 1;
-      hi = std::strtod(s, &end);
-      ok = end != s && *end == '\0' && std::isfinite(hi);
-    }
-    if (!ok || !(hi > lo))
-      throw core::InputError(
-          "--force-chains " + o.chains +
-          ": expected MIN or MIN:MAX in N with 0 <= MIN < MAX (e.g. 2 or 2:30; MAX default " +
-          num6(plan.style.chain_max) + ")");
-    plan.style.chains = true;
-    plan.style.chain_min = lo;
-    plan.style.chain_max = hi;
-  }
   const render::CameraSpec camera = render::parse_camera(o.camera);
   double top = 0;
   if (!o.color_max.empty()) {
@@ -315,53 +270,43 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
                           bool interrupted_run, const std::string& gl_renderer, double wall,
                           const fs::path& movie_path) {
   const double per = 1e3 / std::max(1L, encoded);
-  return {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
-          {"frames", encoded},
-          {"trajectory", "trajectory.sstraj"},
-          {"trajectory_bytes_per_frame",
-           io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(h.particle_count()))},
-          {"size", std::to_string(plan.video.width) + "x" + std::to_string(plan.video.height)},
-          {"fps", o.fps},
-          {"steps_per_frame", plan.clock.steps},
-          {"frame_interval_s", plan.clock.frame_interval},
-          {"video_fps", plan.clock.video_fps},
-          {"slowmo_effective", plan.clock.effective_slowmo},
-          {"speed_sim_s_per_video_s", o.speed, 6},
-          {"slowmo", o.slowmo, 6},
-          {"slowmo_frames", slow_frames},
-          {"camera", o.camera},
-          {"palette", o.palette},
-          {"color", o.color},
-          {"color_scale_max",
-           plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max},
-          {"overlay", o.overlay},
-          {"background", o.background},
-          {"font_scale", o.font_scale},
-          {"tracked_grains",
-           [&] {
-             std::string s;
-             for (int id : plan.style.tracked) s += (s.empty() ? "" : ",") + std::to_string(id);
-             return s;
-           }()},
-          {"trail_s", plan.style.trail_s},
-          {"force_chains", plan.style.chains},
-          {"force_chain_min_N", plan.style.chain_min},
-          {"force_chain_max_N", plan.style.chain_max},
-          {"crf", o.crf},
-          {"preset", o.preset},
-          {"png_every", o.png_every},
-          {"panels", n_panels},
-          {"panel_label", p.label},
-          {"interrupted", interrupted_run},
-          {"simulated_s", h.time(), 6},
-          {"gl_renderer", gl_renderer},
-          {"wall_s", wall, 6},
-          {"ms_per_frame_sim", st.sim * per, 6},
-          {"ms_per_frame_draw", st.draw * per, 6},
-          {"ms_per_frame_readback", st.readback * per, 6},
-          {"ms_per_frame_convert", st.convert * per, 6},
-          {"ms_per_frame_encode", st.encode * per, 6},
-          {"ms_per_frame_png", st.png * per, 6}};
+  io::Facts facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
+                     {"frames", encoded},
+                     {"trajectory", "trajectory.sstraj"},
+                     {"trajectory_bytes_per_frame",
+                      io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(h.particle_count()))},
+                     {"size", std::to_string(plan.video.width) + "x" + std::to_string(plan.video.height)},
+                     {"fps", o.fps},
+                     {"steps_per_frame", plan.clock.steps},
+                     {"frame_interval_s", plan.clock.frame_interval},
+                     {"video_fps", plan.clock.video_fps},
+                     {"slowmo_effective", plan.clock.effective_slowmo},
+                     {"speed_sim_s_per_video_s", o.speed, 6},
+                     {"slowmo", o.slowmo, 6},
+                     {"slowmo_frames", slow_frames},
+                     {"camera", o.camera},
+                     {"palette", o.palette},
+                     {"color", o.color},
+                     {"color_scale_max", plan.style.color == render::ColorMode::Speed ? plan.style.speed_max
+                                                                                      : plan.style.force_max},
+                     {"overlay", o.overlay},
+                     {"crf", o.crf},
+                     {"preset", o.preset},
+                     {"png_every", o.png_every},
+                     {"panels", n_panels},
+                     {"panel_label", p.label},
+                     {"interrupted", interrupted_run},
+                     {"simulated_s", h.time(), 6},
+                     {"gl_renderer", gl_renderer},
+                     {"wall_s", wall, 6},
+                     {"ms_per_frame_sim", st.sim * per, 6},
+                     {"ms_per_frame_draw", st.draw * per, 6},
+                     {"ms_per_frame_readback", st.readback * per, 6},
+                     {"ms_per_frame_convert", st.convert * per, 6},
+                     {"ms_per_frame_encode", st.encode * per, 6},
+                     {"ms_per_frame_png", st.png * per, 6}};
+  for (auto& f : o.looks.facts(plan.style)) facts.push_back(std::move(f));
+  return facts;
 }
 
 // Each panel's events, measurements and metadata (with the recording's facts); for a comparison, the whole's
@@ -542,23 +487,7 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();
   cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")
       ->capture_default_str();
-  cmd->add_option(
-      "--force-chains", o->chains,
-      "draw the contact network: a segment between the centres of each pair in contact whose normal "
-      "force is at least MIN newtons, width and colour growing with the force up to MAX (MIN or "
-      "MIN:MAX; e.g. 2 or 2:30; MAX default 20)");
-  cmd->add_option("--background", o->background,
-                  "white, or dark (light walls and text: projectors, dark slides)")
-      ->capture_default_str();
-  cmd->add_option("--font-scale", o->font_scale,
-                  "text size over the default (1/42 of the picture's height); 1.5-2 for a projector")
-      ->capture_default_str();
-  cmd->add_option(
-         "--track", o->track,
-         "follow these grains (ids, comma-separated; the inspector's panel and the exports show ids): a "
-         "green ring and a trail of their last --trail seconds")
-      ->delimiter(',');
-  cmd->add_option("--trail", o->trail_s, "length of the tracked grains' trails, s")->capture_default_str();
+  o->looks.add_to(*cmd);
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");

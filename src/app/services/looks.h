@@ -1,0 +1,32 @@
+// How a recording looks, beyond palette and colouring: the background, the text size, force chains and
+// tracked grains. Their command-line options, parsed and checked once, applied to the renderer's style and
+// the overlay's options (record; anything else that records pictures can take the same options).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+#include "io/metadata.h"
+#include "render/overlay.h"
+#include "render/palette.h"
+
+namespace app {
+
+struct LookOptions {
+  std::string background = "white";  // white | dark
+  double font_scale = 1.0;
+  std::string chains;              // "": off; "MIN" or "MIN:MAX" in N
+  std::vector<std::string> track;  // grain ids to follow
+  double trail_s = 2.0;
+
+  void add_to(CLI::App& cmd);
+  // Checked against a scene of n_grains grains (the tracked ids) and --transparent; throws core::InputError
+  // naming the option.
+  void apply(int n_grains, bool transparent, render::Style& style, render::OverlayOptions& overlay) const;
+  // What the metadata records of them, from the style they were applied to.
+  io::Facts facts(const render::Style& style) const;
+};
+
+}  // namespace app
