@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace render {
 
@@ -139,6 +140,74 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
       return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h, t), {0, 0, w, h}, "window"}};
   }
   return {};
+}
+
+CameraPath parse_camera_path(const std::string& spec) {
+  CameraPath path;
+  path.text = spec;
+  const std::string allowed =
+      "expected T:CAMERA,T:CAMERA,... with times in seconds, increasing, and each camera hopper, outlet or "
+      "window:X0,Y0,X1,Y1";
+  // Split at commas that start a new key (a window's own commas are followed by more numbers, not "T:").
+  std::vector<std::string> items;
+  std::string cur;
+  std::stringstream ss(spec);
+  for (std::string part; std::getline(ss, part, ',');) {
+    const size_t colon = part.find(':');
+    bool starts_key = false;
+    if (colon != std::string::npos && colon > 0) {
+      char* end = nullptr;
+      std::strtod(part.substr(0, colon).c_str(), &end);
+      starts_key = *end == '\0';
+    }
+    if (starts_key || cur.empty()) {
+      if (!cur.empty()) items.push_back(cur);
+      cur = part;
+    } else {
+      cur += "," + part;
+    }
+  }
+  if (!cur.empty()) items.push_back(cur);
+  for (const auto& item : items) {
+    const size_t colon = item.find(':');
+    if (colon == std::string::npos || colon == 0)
+      throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
+    char* end = nullptr;
+    const double t = std::strtod(item.substr(0, colon).c_str(), &end);
+    if (*end != '\0' || !std::isfinite(t))
+      throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
+    CameraSpec cam;
+    try {
+      cam = parse_camera(item.substr(colon + 1));
+    } catch (const core::InputError& e) {
+      throw core::InputError("--camera-path key '" + item + "': " + e.what());
+    }
+    if (cam.kind == CameraSpec::Kind::Split)
+      throw core::InputError("--camera-path key '" + item +
+                             "': split shows two views and a path moves one; use hopper, outlet or window");
+    if (!path.keys.empty() && !(t > path.keys.back().t))
+      throw core::InputError("--camera-path key '" + item + "': times must increase (the key before is at " +
+                             core::format_g(path.keys.back().t, 6) + " s)");
+    path.keys.push_back({t, cam});
+  }
+  if (path.keys.empty()) throw core::InputError("--camera-path '" + spec + "': " + allowed);
+  return path;
+}
+
+View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) const {
+  auto at = [&](size_t k) { return layout_views(keys[k].camera, geo, w, h).front(); };
+  if (t <= keys.front().t) return at(0);
+  if (t >= keys.back().t) return at(keys.size() - 1);
+  size_t k = 1;
+  while (keys[k].t < t) ++k;
+  View a = at(k - 1);
+  const View b = at(k);
+  const double u = (t - keys[k - 1].t) / (keys[k].t - keys[k - 1].t), s = u * u * (3 - 2 * u);
+  a.cam.cx += s * (b.cam.cx - a.cam.cx);
+  a.cam.cy += s * (b.cam.cy - a.cam.cy);
+  a.cam.height *= std::pow(b.cam.height / a.cam.height, s);
+  a.name = "path";
+  return a;
 }
 
 }  // namespace render

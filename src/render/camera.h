@@ -59,4 +59,23 @@ CameraSpec parse_camera(const std::string& spec);
 // The views of a camera in an image of w x h pixels.
 std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h);
 
+// A camera move: key frames "T:CAMERA,T:CAMERA,..." (simulated seconds, increasing; each camera hopper,
+// outlet or window:X0,Y0,X1,Y1: one view, since a path moves one view). Before the first key and after the
+// last the camera stands still; between two keys it glides with an ease in and out (smoothstep), the centre
+// moving linearly and the height shown geometrically (a zoom at a steady rate). Two keys at the same camera
+// hold it.
+struct CameraPath {
+  struct Key {
+    double t;
+    CameraSpec camera;
+  };
+  std::vector<Key> keys;
+  std::string text;  // as written: metadata
+  bool empty() const { return keys.empty(); }
+  // The single view at simulated time t in an image of w x h pixels.
+  View view_at(double t, const core::Geometry& geo, int w, int h) const;
+};
+// Throws core::InputError naming the key and what is allowed.
+CameraPath parse_camera_path(const std::string& spec);
+
 }  // namespace render

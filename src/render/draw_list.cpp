@@ -12,7 +12,9 @@ void copy(float* dst, Rgba c) {
 }  // namespace
 
 DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
-                         const ArchStyle& arch) {
+                         const ArchStyle& arch, const std::vector<float>* values, double value_top) {
+  const bool by_value = values && values->size() == frame.particles.size() &&
+                        (style.color == ColorMode::Displacement || style.color == ColorMode::Coordination);
   DrawList out;
   out.halo_m = static_cast<float>(arch.halo_m);
   out.bond_m = static_cast<float>(arch.bond_m);
@@ -30,7 +32,8 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
     const auto& p = frame.particles[i];
     const int sides = p.sides <= 8 ? p.sides : 0;
     ShapeInstance d{p.x, p.y, p.radius * extent[sides], {}, {}, {p.angle, static_cast<float>(sides), 0, 0}};
-    copy(d.fill, particle_color(style, p));
+    copy(d.fill, by_value ? value_color(style, (*values)[i], value_top)
+                          : particle_color(style, p, static_cast<int>(i)));
     copy(d.halo, member[i] ? Rgba{halo.r, halo.g, halo.b, arch_alpha} : Rgba{0, 0, 0, 0});
     if (!member[i] && !style.tracked.empty() &&
         std::find(style.tracked.begin(), style.tracked.end(), static_cast<int>(i)) != style.tracked.end())
@@ -74,7 +77,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       const auto& b = frame.particles[static_cast<size_t>(c.b)];
       const double u = std::clamp((c.force - style.chain_min) / span, 0.0, 1.0);
       SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
-      copy(seg.color, colormap(u));
+      copy(seg.color, colormap(style, u));
       out.chains.push_back(seg);
       out.chain_width_m.push_back(static_cast<float>((0.15 + 0.85 * u) * std::min(a.radius, b.radius)));
     }

@@ -45,8 +45,10 @@ struct DrawList {
   float wall_m = 0.012f, bond_m = 0.012f, halo_m = 0.012f;
 };
 
-// The draw list of a frame in its container, as the style says.
+// The draw list of a frame in its container, as the style says. `values`: each grain's value for the
+// displacement and coordination colourings (render/grain_values.h), on the scale [color_min, value_top].
 DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
-                         const ArchStyle& arch = {});
+                         const ArchStyle& arch = {}, const std::vector<float>* values = nullptr,
+                         double value_top = 0);
 
 }  // namespace render

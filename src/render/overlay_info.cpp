@@ -101,6 +101,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       }
       if (style.chains) ImGui::NewLine();
     }
+    if (style.color == ColorMode::Id) ImGui::TextUnformatted("colour: grain id");
     colour_bar(style, em);
     swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
   }
@@ -109,7 +110,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
 void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style,
                             float em) {
   bar_rect_ = {};
-  if (o.colorbar && !o.legend && (style.color != ColorMode::Species || style.chains)) {
+  if (o.colorbar && !o.legend && (!color_scale_label(style).empty() || style.chains)) {
     const View& zoom = most_zoomed(views);
     // Top-right of the outlet view; with the information box placed by free space, beside it in the same free
     // corner (below a top box, above a bottom one); where it would meet the box, just below it.

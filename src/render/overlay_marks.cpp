@@ -13,8 +13,8 @@ namespace render {
 namespace overlay_detail {
 
 namespace {
-void scale_bar(const char* label, double lo, double hi, float em) {
-  ImGui::Text("%s %g", label, lo);
+void scale_bar(const char* label, double lo, double hi, const Style& style, float em) {
+  ImGui::Text("%s %.3g", label, lo);
   ImGui::SameLine();
   ImVec2 p = ImGui::GetCursorScreenPos();
   const int steps = 32;
@@ -22,18 +22,18 @@ void scale_bar(const char* label, double lo, double hi, float em) {
   for (int k = 0; k < steps; ++k)
     ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x + bw * k / steps, p.y),
                                               ImVec2(p.x + bw * (k + 1) / steps, p.y + bh),
-                                              to_u32(colormap((k + 0.5) / steps)));
+                                              to_u32(colormap(style, (k + 0.5) / steps)));
   ImGui::Dummy(ImVec2(bw, bh));
   ImGui::SameLine();
-  ImGui::Text("%g", hi);
+  ImGui::Text("%.3g", hi);
 }
 }  // namespace
 
 void colour_bar(const Style& style, float em) {
   // The grains' colour scale, then the force chains' (each on its own line).
-  if (style.color == ColorMode::Speed) scale_bar("speed [m/s]", 0, style.speed_max, em);
-  if (style.color == ColorMode::Force) scale_bar("contact force [N]", 0, style.force_max, em);
-  if (style.chains) scale_bar("force chains [N]", style.chain_min, style.chain_max, em);
+  const std::string label = color_scale_label(style);
+  if (!label.empty()) scale_bar(label.c_str(), style.color_min, color_scale_max(style), style, em);
+  if (style.chains) scale_bar("force chains [N]", style.chain_min, style.chain_max, style, em);
 }
 
 const View& most_zoomed(const std::vector<View>& views) {

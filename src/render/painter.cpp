@@ -1,5 +1,6 @@
 #include "render/painter.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/draw_list.h"
@@ -25,13 +26,26 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     Style panel_style = style;
     panel_style.clear = style.clear && k == 0;
     if (p.data) panel_style.species_colors = p.data->species_colors;
-    if (panel_style.tracked.empty()) {
+    const bool valued =
+        panel_style.color == ColorMode::Displacement || panel_style.color == ColorMode::Coordination;
+    if (panel_style.tracked.empty() && !valued) {
       renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
     } else {
-      while (trails_.size() <= k) trails_.emplace_back();
-      trails_[k].update(*p.frame, panel_style.tracked, panel_style.trail_s);
-      DrawList list = build_draw_list(*p.frame, *p.geometry, panel_style);
-      trails_[k].append(list, *p.frame, tracked_color(panel_style));
+      const std::vector<float>* values = nullptr;
+      if (valued) {
+        while (values_.size() <= k) values_.emplace_back();
+        values = &values_[k].update(*p.frame, panel_style);
+        // A displacement scale taken from the data: this frame's largest (the colour bar shows it).
+        if (panel_style.color == ColorMode::Displacement && !(panel_style.displacement_max > 0))
+          panel_style.displacement_max = std::max(values_[k].largest(), panel_style.color_min + 1e-6);
+      }
+      DrawList list =
+          build_draw_list(*p.frame, *p.geometry, panel_style, {}, values, color_scale_max(panel_style));
+      if (!panel_style.tracked.empty()) {
+        while (trails_.size() <= k) trails_.emplace_back();
+        trails_[k].update(*p.frame, panel_style.tracked, panel_style.trail_s);
+        trails_[k].append(list, *p.frame, tracked_color(panel_style));
+      }
       renderer_->paint(list, *p.views, panel_style, w, h);
     }
     if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames

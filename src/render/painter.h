@@ -11,6 +11,7 @@
 #include "core/geometry.h"
 #include "core/image.h"
 #include "render/camera.h"
+#include "render/grain_values.h"
 #include "render/overlay.h"
 #include "render/palette.h"
 #include "render/trails.h"
@@ -66,6 +67,7 @@ class Painter {
   std::unique_ptr<Renderer> renderer_;
   std::vector<std::unique_ptr<Overlay>> overlays_;  // one per panel, made when first needed
   std::vector<Trails> trails_;                      // one per panel: the tracked grains' recent positions
+  std::vector<GrainValues> values_;                 // one per panel: displacement reference, coordination
   std::unique_ptr<Target> target_;
   PaintTiming timing_;
   bool info_left_ = false;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 
@@ -14,10 +15,119 @@ Palette parse_palette(const std::string& s) {
 }
 
 ColorMode parse_color_mode(const std::string& s) {
-  if (s == "species") return ColorMode::Species;
-  if (s == "speed") return ColorMode::Speed;
-  if (s == "force") return ColorMode::Force;
-  throw core::InputError("--color " + s + ": expected species, speed or force");
+  for (ColorMode m : {ColorMode::Species, ColorMode::Speed, ColorMode::Force, ColorMode::Displacement,
+                      ColorMode::Coordination, ColorMode::Id})
+    if (s == color_mode_name(m)) return m;
+  throw core::InputError("--color " + s +
+                         ": expected species, speed, force, displacement, coordination or id");
+}
+
+Colormap parse_colormap(const std::string& s) {
+  for (Colormap m : {Colormap::Viridis, Colormap::Magma, Colormap::Inferno, Colormap::Cividis})
+    if (s == colormap_name(m)) return m;
+  throw core::InputError("--colormap " + s + ": expected viridis, magma, inferno or cividis");
+}
+
+const char* color_mode_name(ColorMode m) {
+  switch (m) {
+    case ColorMode::Speed:
+      return "speed";
+    case ColorMode::Force:
+      return "force";
+    case ColorMode::Displacement:
+      return "displacement";
+    case ColorMode::Coordination:
+      return "coordination";
+    case ColorMode::Id:
+      return "id";
+    case ColorMode::Species:
+      break;
+  }
+  return "species";
+}
+
+const char* colormap_name(Colormap m) {
+  switch (m) {
+    case Colormap::Magma:
+      return "magma";
+    case Colormap::Inferno:
+      return "inferno";
+    case Colormap::Cividis:
+      return "cividis";
+    case Colormap::Viridis:
+      break;
+  }
+  return "viridis";
+}
+
+std::string color_scale_label(const Style& s) {
+  switch (s.color) {
+    case ColorMode::Speed:
+      return "speed [m/s]";
+    case ColorMode::Force:
+      return "contact force [N]";
+    case ColorMode::Displacement: {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "displacement since %g s [m]", s.displacement_from);
+      return buf;
+    }
+    case ColorMode::Coordination:
+      return "contacts per grain";
+    default:
+      return "";
+  }
+}
+
+double color_scale_max(const Style& s) {
+  switch (s.color) {
+    case ColorMode::Speed:
+      return s.speed_max;
+    case ColorMode::Force:
+      return s.force_max;
+    case ColorMode::Displacement:
+      return s.displacement_max;
+    case ColorMode::Coordination:
+      return s.coordination_max;
+    default:
+      return 0;
+  }
+}
+
+void set_color_range(Style& style, const std::string& text) {
+  if (style.color == ColorMode::Species || style.color == ColorMode::Id)
+    throw core::InputError("a colour range applies to speed, force, displacement and coordination, not " +
+                           std::string(color_mode_name(style.color)));
+  double lo = 0, hi = 0;
+  if (text == "auto") {
+    if (style.color != ColorMode::Displacement)
+      throw core::InputError("auto: each frame's own range is for displacement; give MAX or MIN:MAX");
+  } else {
+    const size_t colon = text.find(':');
+    char* end = nullptr;
+    if (colon != std::string::npos) {
+      lo = std::strtod(text.substr(0, colon).c_str(), &end);
+      if (*end != '\0' || colon == 0) lo = NAN;
+    }
+    const std::string top = colon == std::string::npos ? text : text.substr(colon + 1);
+    hi = std::strtod(top.c_str(), &end);
+    if (*end != '\0' || top.empty() || !std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo) || lo < 0)
+      throw core::InputError("colour range " + text +
+                             ": expected MAX or MIN:MAX with 0 <= MIN < MAX, or auto");
+  }
+  style.color_min = lo;
+  switch (style.color) {
+    case ColorMode::Speed:
+      style.speed_max = hi;
+      break;
+    case ColorMode::Force:
+      style.force_max = hi;
+      break;
+    case ColorMode::Displacement:
+      style.displacement_max = hi;  // 0: each frame's largest
+      break;
+    default:
+      style.coordination_max = hi;
+  }
 }
 
 Rgba species_color(Palette p, core::Species s) {
@@ -82,13 +192,113 @@ Rgba colormap(double t) {
   return {out[0], out[1], out[2], 1};
 }
 
-Rgba particle_color(const Style& s, const core::Particle& p) {
+Rgba colormap(const Style& s, double t) {
+  // matplotlib's maps at t = k/16.
+  static const float table[3][17][3] = {{{0.0015f, 0.0005f, 0.0139f},
+                                         {0.0396f, 0.0311f, 0.1335f},
+                                         {0.1131f, 0.0655f, 0.2768f},
+                                         {0.2117f, 0.0620f, 0.4186f},
+                                         {0.3167f, 0.0717f, 0.4854f},
+                                         {0.4147f, 0.1104f, 0.5047f},
+                                         {0.5128f, 0.1482f, 0.5076f},
+                                         {0.6136f, 0.1818f, 0.4985f},
+                                         {0.7164f, 0.2150f, 0.4753f},
+                                         {0.8169f, 0.2559f, 0.4365f},
+                                         {0.9043f, 0.3196f, 0.3881f},
+                                         {0.9609f, 0.4183f, 0.3596f},
+                                         {0.9867f, 0.5356f, 0.3822f},
+                                         {0.9961f, 0.6537f, 0.4462f},
+                                         {0.9969f, 0.7696f, 0.5349f},
+                                         {0.9924f, 0.8843f, 0.6401f},
+                                         {0.9871f, 0.9914f, 0.7495f}},
+                                        {{0.0015f, 0.0005f, 0.0139f},
+                                         {0.0423f, 0.0281f, 0.1411f},
+                                         {0.1293f, 0.0473f, 0.2908f},
+                                         {0.2383f, 0.0366f, 0.3964f},
+                                         {0.3415f, 0.0623f, 0.4294f},
+                                         {0.4412f, 0.0993f, 0.4316f},
+                                         {0.5409f, 0.1347f, 0.4151f},
+                                         {0.6401f, 0.1714f, 0.3811f},
+                                         {0.7357f, 0.2159f, 0.3302f},
+                                         {0.8224f, 0.2752f, 0.2661f},
+                                         {0.8943f, 0.3534f, 0.1936f},
+                                         {0.9470f, 0.4492f, 0.1153f},
+                                         {0.9784f, 0.5579f, 0.0349f},
+                                         {0.9879f, 0.6753f, 0.0653f},
+                                         {0.9746f, 0.7977f, 0.2063f},
+                                         {0.9476f, 0.9174f, 0.4107f},
+                                         {0.9884f, 0.9984f, 0.6449f}},
+                                        {{0.0000f, 0.1351f, 0.3048f},
+                                         {0.0000f, 0.1788f, 0.4148f},
+                                         {0.1034f, 0.2204f, 0.4358f},
+                                         {0.1951f, 0.2644f, 0.4259f},
+                                         {0.2637f, 0.3078f, 0.4228f},
+                                         {0.3242f, 0.3513f, 0.4263f},
+                                         {0.3808f, 0.3952f, 0.4357f},
+                                         {0.4352f, 0.4398f, 0.4511f},
+                                         {0.4887f, 0.4853f, 0.4710f},
+                                         {0.5478f, 0.5319f, 0.4717f},
+                                         {0.6091f, 0.5798f, 0.4636f},
+                                         {0.6720f, 0.6293f, 0.4480f},
+                                         {0.7365f, 0.6806f, 0.4240f},
+                                         {0.8027f, 0.7340f, 0.3902f},
+                                         {0.8707f, 0.7896f, 0.3433f},
+                                         {0.9411f, 0.8475f, 0.2758f},
+                                         {0.9957f, 0.9093f, 0.2178f}}};
+  if (s.colormap == Colormap::Viridis) return colormap(t);
+  const auto& m = table[static_cast<int>(s.colormap) - 1];
+  t = std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.0;
+  const double x = 16 * t;
+  const int k = std::min(15, static_cast<int>(x));
+  const float u = static_cast<float>(x - k);
+  return {m[k][0] + u * (m[k + 1][0] - m[k][0]), m[k][1] + u * (m[k + 1][1] - m[k][1]),
+          m[k][2] + u * (m[k + 1][2] - m[k][2]), 1};
+}
+
+Rgba value_color(const Style& s, double value, double top) {
+  if (!std::isfinite(value)) return {0.62f, 0.62f, 0.62f, 1};
+  const double span = top - s.color_min;
+  return colormap(s, span > 0 ? (value - s.color_min) / span : 0.0);
+}
+
+Rgba id_color(int id) {
+  // Hue a golden angle on from the previous id; lightness cycles through three levels.
+  const double h = std::fmod(0.618033988749895 * id, 1.0) * 6.0;
+  const double v = id % 3 == 0 ? 0.95 : id % 3 == 1 ? 0.75 : 0.55, sat = 0.75;
+  const double c = v * sat, x = c * (1 - std::fabs(std::fmod(h, 2.0) - 1)), m = v - c;
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(h)) {
+    case 0:
+      r = c, g = x;
+      break;
+    case 1:
+      r = x, g = c;
+      break;
+    case 2:
+      g = c, b = x;
+      break;
+    case 3:
+      g = x, b = c;
+      break;
+    case 4:
+      r = x, b = c;
+      break;
+    default:
+      r = c, b = x;
+      break;
+  }
+  return {static_cast<float>(r + m), static_cast<float>(g + m), static_cast<float>(b + m), 1};
+}
+
+Rgba particle_color(const Style& s, const core::Particle& p, int id) {
   switch (s.color) {
     case ColorMode::Speed:
-      return colormap(std::hypot(p.vx, p.vy) / s.speed_max);
+      return value_color(s, std::hypot(p.vx, p.vy), s.speed_max);
     case ColorMode::Force:
-      return colormap(p.force / s.force_max);
-    case ColorMode::Species:
+      return value_color(s, p.force, s.force_max);
+    case ColorMode::Id:
+      return id_color(id);
+    default:
       break;
   }
   return species_color(s, p.species);

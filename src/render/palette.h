@@ -13,15 +13,27 @@ struct Rgba {
 };
 
 enum class Palette { Paper, ColorBlind };
-enum class ColorMode { Species, Speed, Force };
+// What sets a grain's colour: its species (the legend), a per-grain quantity on a colour map (speed, the
+// summed contact force, the displacement since a reference time, the coordination number), or its id
+// (distinct colours, to tell grains apart).
+enum class ColorMode { Species, Speed, Force, Displacement, Coordination, Id };
+// Perceptually uniform colour maps (matplotlib's; cividis also reads for red-green colour blindness).
+enum class Colormap { Viridis, Magma, Inferno, Cividis };
 
 struct Style {
   Palette palette = Palette::Paper;
   ColorMode color = ColorMode::Species;
-  double speed_max = 0.5;    // m/s at the top of the colour scale
-  double force_max = 20.0;   // N at the top of the colour scale (~99th percentile of the default scene)
-  bool transparent = false;  // transparent background (PNG)
-  bool dark = false;         // a dark background (projectors, dark slides): light walls, dark panels
+  double speed_max = 0.5;   // m/s at the top of the colour scale
+  double force_max = 20.0;  // N at the top of the colour scale (~99th percentile of the default scene)
+  Colormap colormap = Colormap::Viridis;
+  // The bottom of the scale (speed, force, displacement, coordination) and the tops of the displacement (m;
+  // 0: each frame's largest) and coordination scales.
+  double color_min = 0;
+  double displacement_max = 0;
+  double coordination_max = 6;
+  double displacement_from = 0;  // s: displacement is measured from the first frame at or after this time
+  bool transparent = false;      // transparent background (PNG)
+  bool dark = false;             // a dark background (projectors, dark slides): light walls, dark panels
   bool show_arch = true;
   // Force chains: a segment between the centres of each pair of grains in contact whose normal force is at
   // least chain_min, its width and colour (the colour map) growing with the force up to chain_max.
@@ -37,9 +49,20 @@ struct Style {
   std::vector<Rgba> species_colors;
 };
 
-// Parse "paper"/"colorblind" and "species"/"speed"/"force"; throw core::InputError naming the option.
+// Parse "paper"/"colorblind", "species"/"speed"/"force"/"displacement"/"coordination"/"id" and
+// "viridis"/"magma"/"inferno"/"cividis"; throw core::InputError naming the option and what is allowed.
 Palette parse_palette(const std::string& s);
 ColorMode parse_color_mode(const std::string& s);
+Colormap parse_colormap(const std::string& s);
+const char* color_mode_name(ColorMode m);
+// Set the colour scale's range of the style's mode from "MAX", "MIN:MAX" or (displacement) "auto": each
+// frame's largest; throws core::InputError naming what is allowed.
+void set_color_range(Style& style, const std::string& text);
+const char* colormap_name(Colormap m);
+// The colour scale's quantity and unit for the colour bar, e.g. "speed [m/s]"; "" for species and id.
+std::string color_scale_label(const Style& s);
+// The top of the colour scale the style uses for its mode (0 for species and id).
+double color_scale_max(const Style& s);
 
 // The palette's colour of a species by its index: the paper's original disks red and added disks blue, then
 // Okabe-Ito green, orange, purple, sky blue, yellow, grey; the colour-blind-safe palette starts with
@@ -53,7 +76,16 @@ Rgba arch_color(Palette p);          // halo and bonds of arch members
 Rgba tracked_color(const Style& s);  // ring and trail of tracked grains
 // A perceptually uniform map (viridis, polynomial fit) of t in [0, 1].
 Rgba colormap(double t);
-// The fill colour of a disk under a style.
-Rgba particle_color(const Style& s, const core::Particle& p);
+// The style's colour map of t in [0, 1] (viridis: the polynomial above; the others: matplotlib's map sampled
+// at 17 points, linearly interpolated).
+Rgba colormap(const Style& s, double t);
+// The colour of a value on the style's scale [color_min, top]; NaN (no value: a grain re-injected since the
+// reference time) is a neutral grey.
+Rgba value_color(const Style& s, double value, double top);
+// Distinct colours by id: hues a golden angle apart at three lightness levels, so that neighbours differ.
+Rgba id_color(int id);
+// The fill colour of a grain under a style (species, speed, force and id; the other modes need the grain's
+// value: value_color).
+Rgba particle_color(const Style& s, const core::Particle& p, int id = 0);
 
 }  // namespace render

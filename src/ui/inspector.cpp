@@ -27,7 +27,8 @@ double to_double(const std::string& s, const char* what) {
   return v;
 }
 const char* kCommands =
-    "goto, step, next, prev, zoom, pan, color, palette, overlay, arch, track, snapshot, export, print";
+    "goto, step, next, prev, zoom, pan, color, colormap, palette, overlay, arch, track, snapshot, export, "
+    "print";
 }  // namespace
 
 Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
@@ -318,8 +319,28 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "pan")
       return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
-    if (cmd == "color")
-      return need(1, "color species|speed|force"), set_color(render::parse_color_mode(a[1]), a[1]);
+    if (cmd == "color") {
+      // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
+      // displacement; speed and force keep their defaults) and, for displacement, the reference time.
+      const char* usage =
+          "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
+      if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
+      const render::ColorMode m = render::parse_color_mode(a[1]);
+      size_t k = 2;
+      render::Style next = style;
+      next.color = m;
+      if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
+      if (k < a.size()) {
+        if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
+          throw core::InputError(std::string("usage: ") + usage + " (from T: displacement only)");
+        next.displacement_from = to_double(a[k + 1], "from");
+      }
+      style = next;
+      return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
+    }
+    if (cmd == "colormap")
+      return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
+                                                                log("colormap " + a[1]);
     if (cmd == "palette")
       return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]);
     if (cmd == "overlay")
@@ -331,7 +352,40 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "track") {
       // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
-      need(1, "track ID[,ID...]|off");
+      // track region X0,Y0,X1,Y1: the grains whose centres are in the box in this frame; track arch K: the
+      // members of the K-th long-lasting arch (the arch shown on the frame before the rule removed it);
+      // track clog K: the arch standing where clog K is shown (goto clog K).
+      if (a.size() == 3 && (a[1] == "region" || a[1] == "arch" || a[1] == "clog")) {
+        std::vector<int> ids;
+        if (a[1] == "region") {
+          double x0, y0, x1, y1;
+          char tail = 0;
+          if (std::sscanf(a[2].c_str(), "%lf,%lf,%lf,%lf%c", &x0, &y0, &x1, &y1, &tail) != 4)
+            throw core::InputError("usage: track region X0,Y0,X1,Y1 (metres)");
+          if (x0 > x1) std::swap(x0, x1);
+          if (y0 > y1) std::swap(y0, y1);
+          const auto& ps = traj_.frame(frame_).particles;
+          for (size_t i = 0; i < ps.size(); ++i)
+            if (ps[i].x >= x0 && ps[i].x <= x1 && ps[i].y >= y0 && ps[i].y <= y1)
+              ids.push_back(static_cast<int>(i));
+          if (ids.empty())
+            throw core::InputError("track region " + a[2] + ": no grain's centre is in the box");
+        } else {
+          // Found as goto finds it, without moving (the frame and the history stay).
+          const long keep = frame_;
+          const size_t logged = history_.size();
+          a[1] == "arch" ? goto_arch(to_long(a[2], "K")) : goto_clog(to_long(a[2], "K"));
+          ids = traj_.frame(frame_).arch;
+          frame_ = keep;
+          history_.resize(logged);
+          if (ids.empty())
+            throw core::InputError("track " + a[1] + " " + a[2] + ": no arch stands in that frame");
+        }
+        style.tracked = ids;
+        log("track " + a[1] + " " + a[2]);
+        return;
+      }
+      need(1, "track ID[,ID...]|off | track region X0,Y0,X1,Y1 | track arch K | track clog K");
       style.tracked.clear();
       if (a[1] == "off") return;
       const long n = static_cast<long>(traj_.frame(frame_).particles.size());

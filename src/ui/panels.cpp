@@ -81,12 +81,16 @@ void draw_view(Inspector& insp, PanelState& ps) {
   if (ImGui::SliderFloat("##zoom", &zoom, 0.5f, 10.0f, "zoom %.2fx", ImGuiSliderFlags_Logarithmic))
     insp.zoom = zoom;
   remember(ps, "zoom");
-  // Each choice calls the action it stands for (the script line `color species|speed|force`).
-  const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
-                                                              {"speed", render::ColorMode::Speed},
-                                                              {"force", render::ColorMode::Force}};
-  for (size_t k = 0; k < 3; ++k) {
-    if (k > 0) ImGui::SameLine();
+  // Each choice calls the action it stands for (the script line `color MODE`).
+  const std::pair<const char*, render::ColorMode> colors[] = {
+      {"species", render::ColorMode::Species},
+      {"speed", render::ColorMode::Speed},
+      {"force", render::ColorMode::Force},
+      {"displacement", render::ColorMode::Displacement},
+      {"coordination", render::ColorMode::Coordination},
+      {"id", render::ColorMode::Id}};
+  for (size_t k = 0; k < std::size(colors); ++k) {
+    if (k > 0 && k != 3) ImGui::SameLine();
     if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
       act(insp, ps, [&] { insp.set_color(colors[k].second, colors[k].first); });
   }

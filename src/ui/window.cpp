@@ -361,10 +361,15 @@ void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const r
   }
   ImGui::NewLine();
   ImGui::SliderFloat("zoom", &st.zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-  const std::pair<const char*, render::ColorMode> colors[] = {{"species", render::ColorMode::Species},
-                                                              {"speed", render::ColorMode::Speed},
-                                                              {"force", render::ColorMode::Force}};
+  const std::pair<const char*, render::ColorMode> colors[] = {
+      {"species", render::ColorMode::Species},
+      {"speed", render::ColorMode::Speed},
+      {"force", render::ColorMode::Force},
+      {"displacement", render::ColorMode::Displacement},
+      {"coordination", render::ColorMode::Coordination},
+      {"id", render::ColorMode::Id}};
   for (const auto& [label, mode] : colors) {
+    if (mode == render::ColorMode::Displacement) ImGui::NewLine();
     if (ImGui::RadioButton(label, st.style.color == mode)) st.style.color = mode;
     ImGui::SameLine();
   }

@@ -8,6 +8,7 @@
 
 #include <fcntl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -155,6 +156,124 @@ TEST_CASE("record --color-max sets the colour scale or takes it from the data (a
   CHECK_THAT(bad.output,
              Catch::Matchers::Contains("--color-max fast") && Catch::Matchers::Contains("or auto"));
   CHECK_FALSE(fs::exists(d / "e"));
+}
+
+TEST_CASE("record colours by displacement, coordination or id on a chosen colour map and range",
+          "[app][record]") {
+  fs::path d = temp_dir("colorby");
+  const std::string base = "record " + kScene +
+                           " --duration 0.5 --set settle_time=2 --size 160x120 --fps 10 --no-movie " +
+                           "--png-every 5 --quiet --out ";
+  REQUIRE(cli(base + (d / "a").string() +
+              " --color displacement --displacement-from 0.2 --color-max 0.1:0.8 --colormap cividis")
+              .code == 0);
+  const std::string meta = slurp(d / "a" / "metadata.toml");
+  CHECK_THAT(meta, Catch::Matchers::Contains("color = \"displacement\"") &&
+                       Catch::Matchers::Contains("color_scale_min = 0.1") &&
+                       Catch::Matchers::Contains("color_scale_max = 0.8") &&
+                       Catch::Matchers::Contains("colormap = \"cividis\"") &&
+                       Catch::Matchers::Contains("displacement_from_s = 0.2"));
+  CHECK(fs::exists(d / "a" / "frames" / "frame_000000.png"));
+  REQUIRE(cli(base + (d / "b").string() + " --color coordination").code == 0);
+  CHECK_THAT(slurp(d / "b" / "metadata.toml"), Catch::Matchers::Contains("color_scale_max = 6"));
+  REQUIRE(cli(base + (d / "c").string() + " --color displacement").code == 0);
+  CHECK_THAT(slurp(d / "c" / "metadata.toml"),
+             Catch::Matchers::Contains("color_scale = \"each frame's largest\""));
+  const std::pair<const char*, const char*> bad[] = {
+      {" --color speed --displacement-from 1", "--displacement-from applies to --color displacement"},
+      {" --color coordination --color-max auto", "for displacement"},
+      {" --color id --color-max 3", "not id"},
+      {" --color speed --color-max 2:1", "0 <= MIN < MAX"},
+      {" --colormap jet", "viridis, magma, inferno or cividis"},
+      {" --color pressure", "coordination or id"}};
+  for (const auto& [args, says] : bad) {
+    auto r = cli(base + (d / "e").string() + args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Matchers::Contains(says));
+    CHECK_FALSE(fs::exists(d / "e"));
+  }
+}
+
+TEST_CASE("record --freeze holds the picture at each clog and --camera-path moves the camera",
+          "[app][record]") {
+  fs::path d = temp_dir("freeze");
+  const std::string base =
+      "record " + kScene + " --duration 9 --size 160x120 --fps 10 --no-movie --png-every 1 --quiet --out ";
+  REQUIRE(cli(base + (d / "a").string() + " --freeze clog:0.5 --camera-path 0:hopper,3:outlet").code == 0);
+  const std::string meta = slurp(d / "a" / "metadata.toml");
+  CHECK_THAT(meta, Catch::Matchers::Contains("camera_path = \"0:hopper,3:outlet\"") &&
+                       Catch::Matchers::Contains("freeze = \"clog:0.5\""));
+  // Every clog that lasted clog_min_gap (0.5 s) and formed within the run is frozen once: 5 video frames
+  // (the frame and 4 copies) of one picture.
+  long formed = 0;
+  {
+    std::ifstream clogs(d / "a" / "clogs.csv");
+    std::string line;
+    std::getline(clogs, line);
+    while (std::getline(clogs, line)) formed += std::stod(line) + 0.5 <= 9.0;
+  }
+  REQUIRE(formed >= 1);
+  CHECK_THAT(meta, Catch::Matchers::Contains("frozen_frames = " + std::to_string(4 * formed)));
+  std::vector<std::string> pngs;
+  for (const auto& e : fs::directory_iterator(d / "a" / "frames")) pngs.push_back(e.path().string());
+  std::sort(pngs.begin(), pngs.end());
+  CHECK(pngs.size() == static_cast<size_t>(90 + 4 * formed));  // 9 s at 10 fps, and the copies
+  long held = 0;                                               // frames equal to the one before
+  for (size_t k = 1; k < pngs.size(); ++k) held += slurp(pngs[k]) == slurp(pngs[k - 1]);
+  CHECK(held >= 4 * formed);
+  const std::pair<const char*, const char*> bad[] = {
+      {" --freeze jam:1", "clog:SECONDS or rule:SECONDS"},
+      {" --freeze clog:0", "0 < SECONDS <= 60"},
+      {" --freeze rule:1 --set clog_timeout=0", "clog rule is off"},
+      {" --camera-path 0:split", "a path moves one"},
+      {" --camera-path 3:outlet,1:hopper", "times must increase"}};
+  for (const auto& [args, says] : bad) {
+    auto r = cli(base + (d / "e").string() + args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Matchers::Contains(says));
+    CHECK_FALSE(fs::exists(d / "e"));
+  }
+}
+
+TEST_CASE("record tags grains by region at a time and by role (a long-lasting arch's members)",
+          "[app][record]") {
+  fs::path d = temp_dir("tags");
+  const std::string base =
+      "record " + kScene + " --duration 7 --size 160x120 --fps 10 --no-movie --png-every 100 --quiet --out ";
+  REQUIRE(cli(base + (d / "a").string() + " --track-arch 1").code == 0);
+  // The look-ahead's members are the recording's own first removed arch (the run repeats from its seed).
+  std::ifstream arches(d / "a" / "arches.csv");
+  std::string line;
+  std::getline(arches, line);
+  REQUIRE(std::getline(arches, line));
+  std::vector<std::string> cols;
+  std::stringstream ss(line);
+  for (std::string c; std::getline(ss, c, ',');) cols.push_back(c);
+  REQUIRE(cols.size() > 5);
+  std::string ids = cols[5];
+  std::replace(ids.begin(), ids.end(), ';', ',');
+  CHECK_THAT(slurp(d / "a" / "metadata.toml"),
+             Catch::Matchers::Contains("tracked_grains = \"" + ids + "\"") &&
+                 Catch::Matchers::Contains("track_arch = 1"));
+  REQUIRE(cli(base + (d / "b").string() + " --track-region 0.3,0,-0.3,0.5@2").code == 0);
+  const std::string meta = slurp(d / "b" / "metadata.toml");
+  const auto at = meta.find("tracked_grains = \"");
+  REQUIRE(at != std::string::npos);
+  const std::string list = meta.substr(at + 18, meta.find('"', at + 18) - at - 18);
+  CHECK(std::count(list.begin(), list.end(), ',') >= 3);  // the outlet's bottom half metre holds several
+  const std::pair<const char*, const char*> bad[] = {
+      {" --track-arch 40", "the run has 1 long-lasting arches"},
+      {" --track-arch -1", "expected K >= 1"},
+      {" --track-region 0,0,1@2", "X0,Y0,X1,Y1@T"},
+      {" --track-region 0,0,0,1@2", "non-zero width"},
+      {" --track-region 0,0,1,1@20", "after the run's end"},
+      {" --track-region 5,5,6,6@1", "no grain's centre is in the box"}};
+  for (const auto& [args, says] : bad) {
+    auto r = cli(base + (d / "e").string() + args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Matchers::Contains(says));
+    CHECK_FALSE(fs::exists(d / "e"));
+  }
 }
 
 TEST_CASE("Ctrl-C during record leaves a playable movie of what was recorded", "[app][record]") {

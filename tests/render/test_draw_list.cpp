@@ -1,9 +1,12 @@
 // The draw list: what a frame becomes before any GL (render/draw_list.h).
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "core/geometry.h"
 #include "core/setup.h"
 #include "render/draw_list.h"
+#include "render/grain_values.h"
 #include "render/trails.h"
 
 namespace {
@@ -110,4 +113,86 @@ TEST_CASE(
   f.t = 0.05;
   trails.update(f, style.tracked, 1.0);
   CHECK(trails.points(1) == 1);
+}
+
+TEST_CASE("colour by coordination: solver contacts when the frame has them, touching disks when it has not",
+          "[render]") {
+  core::Frame f;
+  // Three disks in a row, 0-1 and 1-2 touching (within 2% of the radii), 3 far off; 4 just out of reach of 2.
+  f.particles = {grain(0, 0, 0.05f, 0), grain(0.1f, 0, 0.05f, 0), grain(0.2005f, 0, 0.05f, 1),
+                 grain(2, 2, 0.05f, 0), grain(0.3035f, 0, 0.05f, 0)};
+  const std::vector<float> z = render::coordination(f);
+  CHECK(z == std::vector<float>{1, 2, 1, 0, 0});
+  f.contacts = {{0, 3, 1.0f}, {0, 1, 0.0f}};  // the solver's word wins, touching with no force included
+  CHECK(render::coordination(f) == std::vector<float>{2, 1, 0, 1, 0});
+  // On the colour map from color_min to coordination_max: 2 of 0-4 is the middle of the map.
+  render::Style style;
+  style.color = render::ColorMode::Coordination;
+  style.coordination_max = 4;
+  style.colormap = render::Colormap::Magma;
+  render::GrainValues values;
+  const std::vector<float>& v = values.update(f, style);
+  const render::DrawList d =
+      render::build_draw_list(f, core::make_geometry(core::Scene{}), style, {}, &v, style.coordination_max);
+  const render::Rgba mid = render::colormap(style, 0.5), top = render::colormap(style, 1.0);
+  CHECK(d.shapes[0].fill[0] == mid.r);
+  CHECK(d.shapes[0].fill[2] == mid.b);
+  CHECK(d.shapes[2].fill[0] != mid.r);
+  CHECK(top.r > 0.9f);  // magma ends light
+  CHECK(values.largest() == 2);
+}
+
+TEST_CASE("colour by displacement: from the reference frame on, re-injected grains without a value",
+          "[render]") {
+  render::Style style;
+  style.color = render::ColorMode::Displacement;
+  style.displacement_from = 1.0;
+  render::GrainValues values;
+  core::Frame f;
+  f.t = 0.5;
+  f.particles = {grain(0, 1, 0.05f, 0), grain(0.3f, 1, 0.05f, 0)};
+  CHECK(values.update(f, style) == std::vector<float>{0, 0});  // before the reference time: none moved
+  f.t = 1.0;                                                   // the reference
+  values.update(f, style);
+  f.t = 2.0;
+  f.particles[0].x = 0.3f, f.particles[0].y = 0.6f;  // moved 0.5 m
+  f.particles[1].y = 3.0f;                           // re-injected at the top
+  const std::vector<float> v = values.update(f, style);
+  CHECK(v[0] == Approx(0.5f));
+  CHECK(std::isnan(v[1]));
+  CHECK(values.largest() == Approx(0.5));
+  const render::Rgba grey = render::value_color(style, v[1], 1.0);
+  CHECK(grey.r == grey.g);
+  // A jump back before the reference starts afresh: nothing has moved since the new reference.
+  f.t = 0.2;
+  values.update(f, style);
+  f.t = 1.5;
+  CHECK(values.update(f, style) == std::vector<float>{0, 0});
+}
+
+TEST_CASE("colour by id: neighbouring ids get distinguishable colours", "[render]") {
+  for (int id = 0; id < 500; ++id) {
+    const render::Rgba a = render::id_color(id), b = render::id_color(id + 1);
+    const double d = std::fabs(a.r - b.r) + std::fabs(a.g - b.g) + std::fabs(a.b - b.b);
+    CHECK(d > 0.25);
+  }
+}
+
+TEST_CASE("colour options: every bad value names what is allowed", "[render]") {
+  CHECK_THROWS_WITH(render::parse_color_mode("pressure"),
+                    Catch::Contains("displacement, coordination or id"));
+  CHECK_THROWS_WITH(render::parse_colormap("jet"), Catch::Contains("viridis, magma, inferno or cividis"));
+  render::Style s;
+  s.color = render::ColorMode::Coordination;
+  CHECK_THROWS_WITH(render::set_color_range(s, "auto"), Catch::Contains("for displacement"));
+  CHECK_THROWS_WITH(render::set_color_range(s, "5:2"), Catch::Contains("0 <= MIN < MAX"));
+  CHECK_THROWS_WITH(render::set_color_range(s, "x"), Catch::Contains("MIN:MAX"));
+  render::set_color_range(s, "2:5");
+  CHECK(s.color_min == 2);
+  CHECK(s.coordination_max == 5);
+  s.color = render::ColorMode::Id;
+  CHECK_THROWS_WITH(render::set_color_range(s, "5"), Catch::Contains("not id"));
+  s.color = render::ColorMode::Displacement;
+  render::set_color_range(s, "auto");
+  CHECK(s.displacement_max == 0);
 }

@@ -59,6 +59,32 @@ TEST_CASE("camera mapping round-trips between metres and pixels", "[render]") {
   CHECK_THROWS_AS(render::layout_views(render::parse_camera("sideways"), geo, 400, 400), core::InputError);
 }
 
+TEST_CASE("a camera path: the keys' cameras at their times, an eased glide between, still outside",
+          "[render]") {
+  const core::Geometry geo = core::make_geometry(core::Scene{});
+  const render::CameraPath path = render::parse_camera_path("0:hopper,2:outlet,5:window:-0.5,0,0.5,1");
+  REQUIRE(path.keys.size() == 3);
+  CHECK(path.keys[2].camera.x1 == 0.5);
+  const render::View hopper = render::layout_views(path.keys[0].camera, geo, 640, 360).front();
+  const render::View outlet = render::layout_views(path.keys[1].camera, geo, 640, 360).front();
+  CHECK(path.view_at(-3, geo, 640, 360).cam.height == hopper.cam.height);
+  CHECK(path.view_at(0, geo, 640, 360).cam.cy == hopper.cam.cy);
+  CHECK(path.view_at(2, geo, 640, 360).cam.height == Approx(outlet.cam.height));
+  CHECK(path.view_at(99, geo, 640, 360).cam.height == Approx(1.0));  // the window's 1 m, still after
+  // Half-way in time is half-way in zoom (geometric mean), eased: slow at the keys.
+  const render::View mid = path.view_at(1, geo, 640, 360);
+  CHECK(mid.cam.height == Approx(std::sqrt(hopper.cam.height * outlet.cam.height)));
+  CHECK(mid.cam.cy == Approx(0.5 * (hopper.cam.cy + outlet.cam.cy)));
+  const double early = path.view_at(0.1, geo, 640, 360).cam.cy - hopper.cam.cy;
+  CHECK(std::fabs(early) < 0.05 * std::fabs(outlet.cam.cy - hopper.cam.cy));
+  for (const char* bad : {"0:split", "1:hopper,1:outlet", "2:hopper,1:outlet", "x:hopper", "0:funnel", ""}) {
+    INFO(bad);
+    CHECK_THROWS_AS(render::parse_camera_path(bad), core::InputError);
+  }
+  CHECK_THROWS_WITH(render::parse_camera_path("0:split"), Catch::Contains("a path moves one"));
+  CHECK_THROWS_WITH(render::parse_camera_path("2:hopper,1:outlet"), Catch::Contains("times must increase"));
+}
+
 TEST_CASE("the outlet camera is sized by the grain: ten diameters tall at any grain size", "[render]") {
   core::Scene paper;
   const auto at_paper =

@@ -123,11 +123,42 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
   CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
+  insp.execute("color displacement 0.5 from 0.1");
+  CHECK(insp.style.color == render::ColorMode::Displacement);
+  CHECK(insp.style.displacement_max == 0.5);
+  CHECK(insp.style.displacement_from == 0.1);
+  insp.execute("colormap inferno");
+  CHECK(insp.style.colormap == render::Colormap::Inferno);
+  insp.execute("color coordination 1:5");
+  CHECK(insp.style.color_min == 1);
+  CHECK_THROWS_WITH(insp.execute("color speed from 2"), Contains("displacement only"));
+  CHECK_THROWS_WITH(insp.execute("color id 4"), Contains("not id"));
+  CHECK_THROWS_WITH(insp.execute("colormap jet"), Contains("viridis, magma"));
+  CHECK(insp.style.color == render::ColorMode::Coordination);  // a refused line changes nothing
+  insp.execute("color species");
   CHECK_THROWS_WITH(insp.execute("track 0,7"), Contains("grain 7 does not exist; ids run from 0 to 1"));
   insp.execute("track 1");
   CHECK(insp.style.tracked == std::vector<int>{1});
   insp.execute("track off");
   CHECK(insp.style.tracked.empty());
+  // Tags by role and region, found without moving: the arch shown before the rule's first removal (frame 3)
+  // and the grains in a box in the current frame.
+  insp.execute("goto frame 0");
+  const size_t logged = insp.history().size();
+  insp.execute("track arch 1");
+  CHECK(insp.style.tracked == std::vector<int>{0, 1});
+  CHECK(insp.frame_index() == 0);
+  CHECK(insp.history().size() == logged + 1);
+  CHECK(insp.history().back() == "track arch 1");
+  insp.execute("track region 0.3,0.9,0.1,0.7");
+  CHECK(insp.style.tracked == std::vector<int>{1});
+  insp.execute("track clog 1");
+  CHECK(insp.style.tracked == std::vector<int>{0, 1});
+  CHECK_THROWS_WITH(insp.execute("track arch 2"), Contains("not in the trajectory"));
+  CHECK_THROWS_WITH(insp.execute("track region 5,5,6,6"), Contains("no grain's centre is in the box"));
+  CHECK_THROWS_WITH(insp.execute("track region 5,5"), Contains("track region X0,Y0,X1,Y1"));
+  CHECK(insp.frame_index() == 0);
+  insp.execute("track off");
 }
 
 TEST_CASE("snapshots and clips are named by frame and never written over and export clog cuts the clog",

@@ -46,7 +46,11 @@ struct RecordOptions {
                    overlay = "all";
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
-  std::string color_max;  // top of the speed (m/s) or force (N) colour scale; "": the fixed default; "auto"
+  std::string color_max;  // the colour scale: MAX or MIN:MAX; "": the fixed default; "auto"
+  std::string colormap = "viridis";
+  std::string camera_path;                          // key frames T:CAMERA,... (render/camera.h)
+  std::string freeze;                               // EVENT:SECONDS, EVENT clog or rule
+  double displacement_from = 0;                     // s: --color displacement measures from here
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string preset = "veryfast";
   LookOptions looks;  // background, text size, force chains, tracked grains
@@ -151,7 +155,28 @@ struct Plan {
   FrameClock clock;
   render::Style style;
   render::OverlayOptions overlay;
+  render::CameraPath path;  // a camera move (empty: the camera stands)
+  enum class FreezeAt { None, Clog, Rule } freeze_at = FreezeAt::None;
+  double freeze_s = 0;  // video seconds each freeze holds its frame
 };
+
+// --freeze EVENT:SECONDS: hold the picture when a clog forms (the frame where the outlet has been still for
+// clog_min_gap, so the arch is up) or when the clog rule is about to fire (the last frame before it).
+void parse_freeze(const std::string& text, const core::Scene& scene, Plan& plan) {
+  const size_t colon = text.find(':');
+  const std::string event = text.substr(0, colon);
+  char* end = nullptr;
+  const double s = colon == std::string::npos ? NAN : std::strtod(text.c_str() + colon + 1, &end);
+  if ((event != "clog" && event != "rule") || colon == std::string::npos || *end != '\0' || !(s > 0) ||
+      s > 60)
+    throw core::InputError("--freeze " + text +
+                           ": expected clog:SECONDS or rule:SECONDS, 0 < SECONDS <= 60 (video seconds)");
+  if (event == "rule" && !core::resolve(scene).clog_rule)
+    throw core::InputError(
+        "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
+  plan.freeze_at = event == "clog" ? Plan::FreezeAt::Clog : Plan::FreezeAt::Rule;
+  plan.freeze_s = s;
+}
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   Plan plan;
@@ -186,18 +211,25 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
   plan.overlay.place_clear = !plan.overlay.plot;
   const render::CameraSpec camera = render::parse_camera(o.camera);
-  double top = 0;
-  if (!o.color_max.empty()) {
-    if (o.color_max != "auto") {
-      char* end = nullptr;
-      top = std::strtod(o.color_max.c_str(), &end);
-      if (*end != '\0' || !(top > 0) || !std::isfinite(top))
-        throw core::InputError("--color-max " + o.color_max +
-                               ": expected a positive number (m/s or N) or auto");
+  if (!o.camera_path.empty()) plan.path = render::parse_camera_path(o.camera_path);
+  if (!o.freeze.empty()) parse_freeze(o.freeze, scene, plan);
+  plan.style.colormap = render::parse_colormap(o.colormap);
+  if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
+    throw core::InputError("--displacement-from " + num6(o.displacement_from) +
+                           ": allowed range is 0 to 1e6 s");
+  if (o.displacement_from > 0 && plan.style.color != render::ColorMode::Displacement)
+    throw core::InputError("--displacement-from applies to --color displacement, not " + o.color);
+  plan.style.displacement_from = o.displacement_from;
+  const bool look_ahead = o.color_max == "auto" && (plan.style.color == render::ColorMode::Speed ||
+                                                    plan.style.color == render::ColorMode::Force);
+  if (!o.color_max.empty() && !look_ahead) {
+    try {
+      render::set_color_range(plan.style, o.color_max);
+    } catch (const core::InputError& e) {
+      throw core::InputError("--color-max " + o.color_max + ": " + e.what());
     }
-    if (plan.style.color == render::ColorMode::Species)
-      throw core::InputError("--color-max applies to --color speed or force, not species");
   }
+  double top = 0;
   // Panels side by side, equal widths, the same camera (and so the same scales) in each.
   const size_t n_panels = panels.size();
   const int panel_w = video.width / static_cast<int>(n_panels);
@@ -214,7 +246,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     }
   }
   // The look-ahead last: everything it could be refused for has been checked.
-  if (o.color_max == "auto") {
+  if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.
     for (const auto& p : panels)
       top = std::max(top, color_scale_from_data(p.scene, plan.style.color == render::ColorMode::Force, 2.0));
@@ -224,6 +256,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   }
   if (top > 0)
     (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
+  o.looks.resolve_tags(scene, plan.style, o.quiet);
   return plan;
 }
 
@@ -231,20 +264,44 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
 // render and encode stages; the time between pushes is the simulation's share.
 class MovieSink : public Sink {
  public:
-  MovieSink(FramePipeline& pipeline, std::vector<Panel>& panels, const FrameClock& clock, double speed)
-      : pipeline_(pipeline), panels_(panels), clock_(clock), speed_(speed), t0_(Clock::now()) {}
+  MovieSink(FramePipeline& pipeline, std::vector<Panel>& panels, const Plan& plan, double speed, int width)
+      : pipeline_(pipeline),
+        panels_(panels),
+        clock_(plan.clock),
+        plan_(plan),
+        speed_(speed),
+        panel_w_(width / static_cast<int>(panels.size())),
+        height_(plan.video.height),
+        t0_(Clock::now()) {}
   void frame(const FrameTick& tick) override {
     PipelineFrame pf;
     pf.frames = tick.frames;
+    bool freeze = false;
     for (size_t i = 0; i < panels_.size(); ++i) {
       render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.frames[i].t);
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
+      if (!plan_.path.empty()) {
+        render::View v = plan_.path.view_at(tick.frames[i].t, panels_[i].geo, panel_w_, height_);
+        v.rect.x += static_cast<int>(i) * panel_w_;
+        pf.views.push_back({v});
+      }
+      freeze = freeze || freezes(i, tick.frames[i]);
     }
     last_t = tick.frames[0].t;
     slow_frames += tick.slow;
     sim_seconds += since(t0_);
-    open_ = pipeline_.push(std::move(pf));
+    if (freeze) {
+      // Hold this picture for freeze_s of video (the frame itself is the first of them).
+      const long copies = std::max(0L, std::lround(plan_.freeze_s * clock_.video_fps) - 1);
+      for (auto& n : pf.notes)
+        if (n.caption.empty())
+          n.caption = plan_.freeze_at == Plan::FreezeAt::Clog ? "clog formed" : "the clog rule fires next";
+      for (long c = 0; c < copies && open_; ++c) open_ = pipeline_.push(PipelineFrame(pf));
+      frozen_frames += copies;
+      ++freezes_;
+    }
+    if (open_) open_ = pipeline_.push(std::move(pf));
     t0_ = Clock::now();
   }
   bool wants_arch() const override { return true; }
@@ -253,21 +310,38 @@ class MovieSink : public Sink {
   }  // the trajectory keeps them, force colouring shows them
   bool done() const override { return !open_; }
   double last_t = 0, sim_seconds = 0;
-  long slow_frames = 0;
+  long slow_frames = 0, frozen_frames = 0;
+  long freeze_count() const { return freezes_; }
 
  private:
+  // Whether panel i's frame is a freeze's event: the clog timer crossing clog_min_gap (a clog has formed), or
+  // the last frame before the clog rule fires (the timer within one frame of clog_timeout).
+  bool freezes(size_t i, const core::Frame& f) {
+    if (plan_.freeze_at == Plan::FreezeAt::None) return false;
+    while (last_timer_.size() <= i) last_timer_.push_back(0);
+    const double before = last_timer_[i], now = f.since_last_exit;
+    last_timer_[i] = now;
+    const core::Scene& sc = panels_[i].scene;
+    if (plan_.freeze_at == Plan::FreezeAt::Clog) return before < sc.clog_min_gap && now >= sc.clog_min_gap;
+    const double step = clock_.frame_interval;
+    return now < sc.clog_timeout && now + step >= sc.clog_timeout && !f.arch.empty();
+  }
   FramePipeline& pipeline_;
   std::vector<Panel>& panels_;
   const FrameClock& clock_;
+  const Plan& plan_;
   double speed_;
+  int panel_w_, height_;
+  std::vector<double> last_timer_;
+  long freezes_ = 0;
   Clock::time_point t0_;
   bool open_ = true;
 };
 
 // The facts each panel's metadata carries about the recording.
 io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel& p, const sim::Hopper& h,
-                          const Stages& st, long encoded, long slow_frames, size_t n_panels,
-                          bool interrupted_run, const std::string& gl_renderer, double wall,
+                          const Stages& st, long encoded, long slow_frames, long frozen_frames,
+                          size_t n_panels, bool interrupted_run, const std::string& gl_renderer, double wall,
                           const fs::path& movie_path) {
   const double per = 1e3 / std::max(1L, encoded);
   io::Facts facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
@@ -285,10 +359,19 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
                      {"slowmo", o.slowmo, 6},
                      {"slowmo_frames", slow_frames},
                      {"camera", o.camera},
+                     {"camera_path", o.camera_path},
+                     {"freeze", o.freeze},
+                     {"frozen_frames", frozen_frames},
                      {"palette", o.palette},
                      {"color", o.color},
-                     {"color_scale_max", plan.style.color == render::ColorMode::Speed ? plan.style.speed_max
-                                                                                      : plan.style.force_max},
+                     {"color_scale_min", plan.style.color_min, 6},
+                     {"color_scale_max", render::color_scale_max(plan.style), 6},
+                     {"color_scale", plan.style.color == render::ColorMode::Displacement &&
+                                             !(plan.style.displacement_max > 0)
+                                         ? "each frame's largest"
+                                         : "fixed"},
+                     {"colormap", o.colormap},
+                     {"displacement_from_s", o.displacement_from, 6},
                      {"overlay", o.overlay},
                      {"crf", o.crf},
                      {"preset", o.preset},
@@ -314,7 +397,8 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
 std::vector<analysis::Measurements> write_recording_outputs(
     const RecordOptions& o, const Plan& plan, const std::vector<Panel>& panels, const Session& session,
     const io::OutputDir& dir, const io::RunInfo& info, const Stages& st, long encoded, long slow_frames,
-    bool was_interrupted, const std::string& gl_renderer, double wall, const fs::path& movie_path) {
+    long frozen_frames, bool was_interrupted, const std::string& gl_renderer, double wall,
+    const fs::path& movie_path) {
   const size_t n_panels = panels.size();
   const core::Scene& scene = panels.front().scene;
   std::vector<analysis::Measurements> ms;
@@ -322,8 +406,8 @@ std::vector<analysis::Measurements> write_recording_outputs(
     const sim::Hopper& h = session.world(k);
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].scene.duration;
     io::RunInfo pinfo = info;
-    pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, n_panels, was_interrupted,
-                                  gl_renderer, wall, movie_path);
+    pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, frozen_frames, n_panels,
+                                  was_interrupted, gl_renderer, wall, movie_path);
     ms.push_back(write_run_outputs(dir.file(panels[k].subdir), panels[k].scene, h, analysed, pinfo));
   }
   if (n_panels > 1) {
@@ -409,7 +493,7 @@ int record_movie(const RecordOptions& o) {
           trajectory_info(session->world(k), plan.clock.frame_interval, meta), k));
       sinks.push_back(trajectories.back().get());
     }
-    movie = std::make_unique<MovieSink>(pipeline, panels, plan.clock, o.speed);
+    movie = std::make_unique<MovieSink>(pipeline, panels, plan, o.speed, video.width);
     sinks.push_back(movie.get());
     completed = session->run(scene.duration, plan.clock, sinks, interrupted, [&](double t) {
       char extra[96];
@@ -444,9 +528,9 @@ int record_movie(const RecordOptions& o) {
     st.encode = mp4->encode_seconds();
   }
   session->finish();
-  const std::vector<analysis::Measurements> ms =
-      write_recording_outputs(o, plan, panels, *session, dir, info, st, encoded, movie->slow_frames,
-                              was_interrupted, pipeline.gl_renderer(), wall, movie_path);
+  const std::vector<analysis::Measurements> ms = write_recording_outputs(
+      o, plan, panels, *session, dir, info, st, encoded, movie->slow_frames, movie->frozen_frames,
+      was_interrupted, pipeline.gl_renderer(), wall, movie_path);
   dir.commit();
   if (!o.quiet)
     print_recording(o, st, encoded, movie->last_t, wall, was_interrupted, pipeline.gl_renderer(), panels,
@@ -475,6 +559,14 @@ void add_record_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
       ->capture_default_str();
+  cmd->add_option(
+      "--camera-path", o->camera_path,
+      "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet or window:X0,Y0,X1,Y1), "
+      "e.g. 0:hopper,3:outlet,8:outlet,10:hopper; eased between keys, still before and after");
+  cmd->add_option(
+      "--freeze", o->freeze,
+      "hold the picture at each event: clog:SECONDS (a clog has formed) or rule:SECONDS (the last "
+      "frame before the clog rule fires), SECONDS of video");
   cmd->add_option("--png-every", o->png_every, "also write every Nth frame as PNG into NAME/frames (0: none)")
       ->check(whole_number(0, 1000000))
       ->capture_default_str();
@@ -484,7 +576,15 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--preset", o->preset, "x264 preset, ultrafast .. veryslow")->capture_default_str();
   cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")
       ->capture_default_str();
-  cmd->add_option("--color", o->color, "colour disks by species, speed or force")->capture_default_str();
+  cmd->add_option("--color", o->color,
+                  "colour grains by species, speed, force (summed contact force), displacement (since "
+                  "--displacement-from), coordination (contacts per grain) or id (distinct colours)")
+      ->capture_default_str();
+  cmd->add_option("--colormap", o->colormap, "viridis, magma, inferno or cividis (perceptually uniform)")
+      ->capture_default_str();
+  cmd->add_option("--displacement-from", o->displacement_from,
+                  "--color displacement: from where each grain stood at this time, s (0: the outlet opens)")
+      ->capture_default_str();
   cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")
       ->capture_default_str();
   o->looks.add_to(*cmd);
@@ -493,8 +593,9 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_flag("--force", o->force, "replace existing outputs");
   cmd->add_option(
       "--color-max", o->color_max,
-      "top of the colour scale for --color speed (m/s) or force (N), or auto (the 99th percentile "
-      "of the first 2 s of discharge); default: the fixed scale (0.5 m/s, 20 N), the same in every movie");
+      "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts), or auto (speed and "
+      "force: the 99th percentile of the first 2 s of discharge; displacement: each frame's largest); "
+      "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts) the same in every movie, displacement auto");
   cmd->add_option(
       "--compare", o->compare,
       "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "

@@ -1,12 +1,34 @@
 #include "app/services/looks.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
+#include "app/services/recording.h"
 #include "core/error.h"
 #include "core/format.h"
 
 namespace app {
+
+namespace {
+struct Region {
+  double x0, y0, x1, y1, t;
+};
+// "X0,Y0,X1,Y1@T", the box's corners in either order, T >= 0.
+Region parse_region(const std::string& text) {
+  Region r{};
+  char tail = 0;
+  const int n = std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf@%lf%c", &r.x0, &r.y0, &r.x1, &r.y1, &r.t, &tail);
+  if (n != 5 || !std::isfinite(r.x0 + r.y0 + r.x1 + r.y1 + r.t) || r.t < 0 || r.x0 == r.x1 || r.y0 == r.y1)
+    throw core::InputError("--track-region " + text +
+                           ": expected X0,Y0,X1,Y1@T (a box in metres with non-zero width and height, and a "
+                           "time in seconds >= 0), e.g. -0.3,0,0.3,0.4@2");
+  if (r.x0 > r.x1) std::swap(r.x0, r.x1);
+  if (r.y0 > r.y1) std::swap(r.y0, r.y1);
+  return r;
+}
+}  // namespace
 
 void LookOptions::add_to(CLI::App& cmd) {
   cmd.add_option(
@@ -24,6 +46,12 @@ void LookOptions::add_to(CLI::App& cmd) {
          "follow these grains (ids, comma-separated; the inspector's panel and the exports show ids): a "
          "green ring and a trail of their last --trail seconds")
       ->delimiter(',');
+  cmd.add_option("--track-region", track_region,
+                 "follow the grains whose centres are inside the box X0,Y0,X1,Y1 (m) at time T (s): "
+                 "X0,Y0,X1,Y1@T");
+  cmd.add_option("--track-arch", track_arch,
+                 "follow the members of the K-th long-lasting arch (the K-th removal of the clog rule, "
+                 "arches.csv's row K), from the start of the movie");
   cmd.add_option("--trail", trail_s, "length of the tracked grains' trails, s")->capture_default_str();
 }
 
@@ -51,6 +79,9 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
                              " grains), comma-separated");
     style.tracked.push_back(static_cast<int>(v));
   }
+  if (!track_region.empty()) parse_region(track_region);
+  if (track_arch < 0)
+    throw core::InputError("--track-arch " + std::to_string(track_arch) + ": expected K >= 1");
   if (chains.empty()) return;
   // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
   const size_t colon = chains.find(':');
@@ -73,12 +104,41 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   style.chain_max = hi;
 }
 
+void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, bool quiet) const {
+  auto add = [&](const std::vector<int>& ids) {
+    for (int id : ids)
+      if (std::find(style.tracked.begin(), style.tracked.end(), id) == style.tracked.end())
+        style.tracked.push_back(id);
+  };
+  if (!track_region.empty()) {
+    const Region r = parse_region(track_region);
+    if (r.t > scene.duration)
+      throw core::InputError("--track-region " + track_region + ": T is after the run's end (" +
+                             core::format_g(scene.duration, 6) + " s)");
+    const std::vector<int> ids = grains_in_box(scene, r.x0, r.y0, r.x1, r.y1, r.t);
+    if (ids.empty())
+      throw core::InputError("--track-region " + track_region + ": no grain's centre is in the box at " +
+                             core::format_g(r.t, 6) + " s");
+    if (!quiet)
+      std::fprintf(stderr, "siloscope: --track-region: %zu grains in the box at %s s\n", ids.size(),
+                   core::format_g(r.t, 6).c_str());
+    add(ids);
+  }
+  if (track_arch > 0) {
+    const std::vector<int> ids = long_arch_members(scene, track_arch);
+    if (!quiet) std::fprintf(stderr, "siloscope: --track-arch %d: %zu grains\n", track_arch, ids.size());
+    add(ids);
+  }
+}
+
 io::Facts LookOptions::facts(const render::Style& style) const {
   std::string ids;
   for (int id : style.tracked) ids += (ids.empty() ? "" : ",") + std::to_string(id);
   return {{"background", background},
           {"font_scale", font_scale},
           {"tracked_grains", ids},
+          {"track_region", track_region},
+          {"track_arch", track_arch},
           {"trail_s", style.trail_s},
           {"force_chains", style.chains},
           {"force_chain_min_N", style.chain_min},

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.h"
 #include "io/metadata.h"
 #include "render/overlay.h"
 #include "render/palette.h"
@@ -19,6 +20,8 @@ struct LookOptions {
   double font_scale = 1.0;
   std::string chains;              // "": off; "MIN" or "MIN:MAX" in N
   std::vector<std::string> track;  // grain ids to follow
+  std::string track_region;        // "X0,Y0,X1,Y1@T": the grains whose centres are in this box at T s
+  int track_arch = 0;              // K >= 1: the members of the K-th long-lasting arch (the rule removed)
   double trail_s = 2.0;
 
   void add_to(CLI::App& cmd);
@@ -27,6 +30,10 @@ struct LookOptions {
   void apply(int n_grains, bool transparent, render::Style& style, render::OverlayOptions& overlay) const;
   // What the metadata records of them, from the style they were applied to.
   io::Facts facts(const render::Style& style) const;
+  // Grains tagged by region or by role, found by simulating the scene ahead from the same seed (a run is
+  // repeatable, so the recording shows these grains doing what the look-ahead saw); added to style.tracked.
+  // Call after apply (which checks the options' form) and after every other check: it costs a simulation.
+  void resolve_tags(const core::Scene& scene, render::Style& style, bool quiet) const;
 };
 
 }  // namespace app

@@ -55,7 +55,8 @@ void FramePipeline::render_stage() {
     while (frames_.pop(pf)) {
       std::vector<render::PanelInput> in;
       for (size_t k = 0; k < panels_.size(); ++k)
-        in.push_back({&pf.frames[k], panels_[k].geometry, panels_[k].views, panels_[k].overlay_data,
+        in.push_back({&pf.frames[k], panels_[k].geometry,
+                      k < pf.views.size() ? &pf.views[k] : panels_[k].views, panels_[k].overlay_data,
                       k < pf.notes.size() ? &pf.notes[k] : nullptr});
       core::Image img;
       {

@@ -36,7 +36,8 @@ struct PanelLayout {
 // One picture's worth: a frame per panel, and what each panel points out.
 struct PipelineFrame {
   std::vector<core::Frame> frames;
-  std::vector<render::Annotations> notes;  // one per panel (may be empty: nothing to point out)
+  std::vector<render::Annotations> notes;        // one per panel (may be empty: nothing to point out)
+  std::vector<std::vector<render::View>> views;  // one per panel where a camera moves (empty: the layout's)
 };
 
 struct PipelineOutputs {

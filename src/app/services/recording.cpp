@@ -74,4 +74,49 @@ double color_scale_from_data(const core::Scene& scene, bool forces, double secon
   return values[k];
 }
 
+std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, double x1, double y1,
+                               double t) {
+  Session session({scene});
+  std::vector<int> ids;
+  bool taken = false;
+  FunctionSink probe;
+  probe.on_step = [&](const sim::Hopper& h, size_t) {
+    if (h.time() < t - 0.5 * scene.dt) return true;
+    const core::Frame f = h.frame(false, false);
+    for (size_t i = 0; i < f.particles.size(); ++i) {
+      const auto& p = f.particles[i];
+      if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) ids.push_back(static_cast<int>(i));
+    }
+    taken = true;
+    return false;
+  };
+  session.run(std::max(t, 0.0) + scene.dt, FrameClock::none(), {&probe});
+  if (!taken) {  // t at the opening: no step has been taken yet
+    const core::Frame f = session.world(0).frame(false, false);
+    for (size_t i = 0; i < f.particles.size(); ++i) {
+      const auto& p = f.particles[i];
+      if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) ids.push_back(static_cast<int>(i));
+    }
+  }
+  return ids;
+}
+
+std::vector<int> long_arch_members(const core::Scene& scene, int k) {
+  Session session({scene});
+  FunctionSink probe;
+  std::vector<int> ids;
+  probe.on_step = [&](const sim::Hopper& h, size_t) {
+    const auto& arches = h.events().arches;
+    if (static_cast<int>(arches.size()) < k) return true;
+    ids = arches[static_cast<size_t>(k - 1)].ids;
+    return false;
+  };
+  session.run(scene.duration, FrameClock::none(), {&probe});
+  if (ids.empty())
+    throw core::InputError("--track-arch " + std::to_string(k) + ": the run has " +
+                           std::to_string(session.world(0).events().arches.size()) +
+                           " long-lasting arches in its " + core::format_g(scene.duration, 6) + " s");
+  return ids;
+}
+
 }  // namespace app

@@ -20,6 +20,13 @@ namespace app {
 // stayed at rest.
 double color_scale_from_data(const core::Scene& scene, bool forces, double seconds);
 
+// Look-aheads for tagging grains (the run repeats exactly from its seed): the ids of the grains whose centres
+// are in the box at time t (the first frame at or after it, frames every dt), and the members of the k-th
+// long-lasting arch (k >= 1; throws core::InputError naming how many the run has).
+std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, double x1, double y1,
+                               double t);
+std::vector<int> long_arch_members(const core::Scene& scene, int k);
+
 // The annotations record puts on a panel's frames: the members of the last rule removal, ringed where they
 // stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames
 // and kMinSeconds of simulated time.
