@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""The arch gallery sheet of `siloscope gallery`: tiles (PNG) and their index.csv -> one PDF, SVG or PNG.
+"""The arch gallery sheet of `siloscope gallery`: tiles (each a draw list as a table, render/draw_list.h) and
+their index.csv -> one PDF, SVG or PNG. Grains are drawn as circles and regular polygons, walls, bonds and
+halos as paths: the PDF and SVG are vector throughout (no bitmap), text stays text in the SVG.
 
-    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS]
+    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX]
 """
 import math
 import os
 import sys
+import textwrap
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import siloscope  # noqa: E402  one reader of siloscope's files
@@ -14,36 +17,107 @@ from siloscope._tables import read_table  # noqa: E402
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
-import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.patches as mpatches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
-plt.rcParams.update({"svg.hashsalt": "siloscope", "font.size": 8})
+plt.rcParams.update({"svg.hashsalt": "siloscope", "svg.fonttype": "none", "font.size": 8})
+
+TILE_IN = 2.2  # inches per tile
 
 
-def main(tiles, out, title, version, columns=0):
+def colour(text):
+    """#rrggbbaa -> an RGBA tuple; '' or nan -> None."""
+    if not isinstance(text, str) or not text.startswith("#"):
+        return None
+    v = [int(text[k:k + 2], 16) / 255 for k in (1, 3, 5, 7)]
+    return tuple(v)
+
+
+def draw_tile(ax, table, window):
+    """One tile's draw list in its own frame: the window [-w/2, w/2]^2 in metres."""
+    half = 0.5 * window
+    ax.set_xlim(-half, half)
+    ax.set_ylim(-half, half)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for side in ax.spines.values():
+        side.set_linewidth(0.4)
+        side.set_color("#999999")
+    # Metres to points: the axes are TILE_IN wide (less a little) for `window` metres.
+    pt_per_m = 0.92 * TILE_IN * 72 / window
+    clip = ax.patch
+    rows = table.to_dict("records")
+    for r in rows:  # walls first: under the grains
+        if r["kind"] == "wall":
+            ax.plot([r["x"], r["x2"]], [r["y"], r["y2"]], color=colour(r["fill"]), lw=r["width_m"] * pt_per_m,
+                    solid_capstyle="round", clip_path=clip)
+    for r in rows:
+        if r["kind"] not in ("grain", "obstacle"):
+            continue
+        fill, halo = colour(r["fill"]), colour(r["halo"])
+        sides, x, y, rad = int(r["sides"]), r["x"], r["y"], r["r"]
+        if sides == 100:  # a box (the bar obstacle)
+            shape = mpatches.Rectangle((x - r["half_w"], y - r["half_h"]), 2 * r["half_w"], 2 * r["half_h"],
+                                       angle=0.0, facecolor=fill, edgecolor="none")
+        elif 3 <= sides <= 8:
+            # matplotlib's first vertex is at +y (90 degrees) before `orientation`; siloscope's at `angle`.
+            shape = mpatches.RegularPolygon((x, y), sides, radius=rad, orientation=r["angle"] - math.pi / 2,
+                                            facecolor=fill, edgecolor=(0, 0, 0, 0.45), lw=0.3)
+        else:
+            shape = mpatches.Circle((x, y), rad, facecolor=fill, edgecolor=(0, 0, 0, 0.45), lw=0.3)
+        shape.set_clip_path(clip)
+        ax.add_patch(shape)
+        if halo is not None:
+            ring = mpatches.Circle((x, y), rad + 0.006 * window / 1.3, facecolor="none", edgecolor=halo,
+                                   lw=max(0.8, 0.012 * pt_per_m))
+            ring.set_clip_path(clip)
+            ax.add_patch(ring)
+    for kind in ("chain", "bond"):
+        for r in rows:
+            if r["kind"] == kind:
+                ax.plot([r["x"], r["x2"]], [r["y"], r["y2"]], color=colour(r["fill"]),
+                        lw=max(0.6, r["width_m"] * pt_per_m), solid_capstyle="round", clip_path=clip)
+
+
+def label(k, r):
+    shorthand = set(str(r["species"]).split(";")) <= {"original", "added"}
+    who = f"{r['members']} disks ({r['added']} added)" if shorthand else f"{r['members']} grains"
+    aspect = float(r["aspect"])
+    aspect_text = f"h/(s/2) {aspect:.2f}" if math.isfinite(aspect) else "flat"
+    return (f"#{k + 1}  t = {float(r['t_s']):.2f} s, clog {float(r['clog_s']):.1f} s\n"
+            f"{who}, span {100 * float(r['span_m']):.0f} cm, rise {100 * float(r['rise_m']):.0f} cm\n"
+            f"{aspect_text}, \u03b8max {float(r['theta_max_deg']):.0f}\u00b0, "
+            f"{int(float(r['defects']))} defect{'s' if int(float(r['defects'])) != 1 else ''}")
+
+
+def main(tiles, out, title, version, columns=0, tile_px=480):
     try:
-        rows = read_table(os.path.join(tiles, "index.csv"), ("tile", "t_s")).astype(str).to_dict("records")
+        rows = read_table(os.path.join(tiles, "index.csv"), ("tile", "t_s")).to_dict("records")
+        tables = [read_table(os.path.join(tiles, r["tile"]), ("kind", "x", "y")) for r in rows]
     except siloscope.SiloscopeError as e:
         print(f"gallery: {e}", file=sys.stderr)
         sys.exit(2)
     n = len(rows)
     cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
     nrows = math.ceil(n / cols)
-    fig, axes = plt.subplots(nrows, cols, figsize=(2.2 * cols, 2.5 * nrows + 0.4), squeeze=False)
+    width = TILE_IN * cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(width, (TILE_IN + 0.55) * nrows + 0.6), squeeze=False)
     for k, ax in enumerate(axes.flat):
-        ax.axis("off")
         if k >= n:
+            ax.axis("off")
             continue
-        r = rows[k]
-        ax.imshow(mpimg.imread(os.path.join(tiles, r["tile"])))
-        shorthand = set(r["species"].split(";")) <= {"original", "added"}
-        who = f"{r['members']} disks ({r['added']} added)" if shorthand else f"{r['members']} grains"
-        ax.set_title(f"#{k + 1}  t = {float(r['t_s']):.2f} s, clog {float(r['clog_s']):.1f} s\n"
-                     f"{who}, span {100 * float(r['span_m']):.0f} cm", fontsize=7)
-    fig.suptitle(title, fontsize=9)
-    fig.text(0.99, 0.003, f"siloscope {version}; members gold, bonds dark; the state one time step before the "
-             f"clog rule removed each arch", ha="right", va="bottom", fontsize=6, color="#444444")
-    fig.tight_layout(rect=(0, 0.02, 1, 0.97))
+        draw_tile(ax, tables[k], float(rows[k]["window_m"]))
+        ax.set_title(label(k, rows[k]), fontsize=6.5)
+    # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer.
+    chars = max(30, int(width * 72 / (9 * 0.55)))
+    fig.suptitle("\n".join(textwrap.wrap(title, chars)), fontsize=9)
+    footer = (f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
+              f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
+              f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
+    fig.text(0.01, 0.003, "\n".join(textwrap.wrap(footer, int(width * 72 / (6 * 0.55)))), ha="left",
+             va="bottom", fontsize=6, color="#444444")
+    fig.tight_layout(rect=(0, 0.04 + 0.02 / nrows, 1, 0.97))
     # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
     tag = f"siloscope gallery {version}"
     if out.endswith(".pdf"):
@@ -52,10 +126,12 @@ def main(tiles, out, title, version, columns=0):
         meta = {"Date": None, "Creator": tag}
     else:
         meta = {"Software": tag}
-    fig.savefig(out, dpi=150, metadata=meta)
+    # bbox_inches="tight" grows the page to hold every label: nothing is cut at any width.
+    fig.savefig(out, dpi=max(72, int(tile_px / TILE_IN)), metadata=meta, bbox_inches="tight", pad_inches=0.08)
 
 
 if __name__ == "__main__":
     if len(sys.argv) < 5:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0)
+    main(sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0,
+         int(sys.argv[6]) if len(sys.argv) > 6 else 480)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace render {
 
@@ -19,6 +20,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
   out.halo_m = static_cast<float>(arch.halo_m);
   out.bond_m = static_cast<float>(arch.bond_m);
   out.shapes.reserve(frame.particles.size() + 1);
+  out.grains = frame.particles.size();
   std::vector<bool> member(frame.particles.size(), false);
   const bool show_arch = style.show_arch && !frame.arch.empty();
   const float arch_alpha = frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
@@ -95,6 +97,58 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       out.bonds.push_back(seg);
     }
   }
+  return out;
+}
+
+namespace {
+std::string hex(const float* c) {
+  char buf[16];
+  auto b = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x%02x", b(c[0]), b(c[1]), b(c[2]), b(c[3]));
+  return buf;
+}
+}  // namespace
+
+std::string draw_list_csv(const DrawList& list, double cx, double cy, double angle, double half_w,
+                          double half_h) {
+  const double ca = std::cos(angle), sa = std::sin(angle);
+  auto to_view = [&](double x, double y, double& u, double& v) {
+    u = ca * (x - cx) - sa * (y - cy);
+    v = sa * (x - cx) + ca * (y - cy);
+  };
+  std::string out = "kind,x,y,r,angle,sides,half_w,half_h,x2,y2,width_m,fill,halo\n";
+  char row[256];
+  auto inside = [&](double u, double v, double reach) {
+    return std::fabs(u) <= half_w + reach && std::fabs(v) <= half_h + reach;
+  };
+  auto segment = [&](const char* kind, const SegmentInstance& s, double width) {
+    double u1, v1, u2, v2;
+    to_view(s.ax, s.ay, u1, v1);
+    to_view(s.bx, s.by, u2, v2);
+    // Kept if its bounding box meets the window.
+    if (std::max(u1, u2) < -half_w - width || std::min(u1, u2) > half_w + width ||
+        std::max(v1, v2) < -half_h - width || std::min(v1, v2) > half_h + width)
+      return;
+    std::snprintf(row, sizeof row, "%s,%.6g,%.6g,0,0,0,0,0,%.6g,%.6g,%.6g,%s,\n", kind, u1, v1, u2, v2, width,
+                  hex(s.color).c_str());
+    out += row;
+  };
+  for (const auto& w : list.walls) segment("wall", w, list.wall_m);
+  for (size_t k = 0; k < list.shapes.size(); ++k) {
+    const ShapeInstance& d = list.shapes[k];
+    double u, v;
+    to_view(d.x, d.y, u, v);
+    if (!inside(u, v, d.r + list.halo_m)) continue;
+    const bool obstacle = k >= list.grains;
+    std::snprintf(row, sizeof row, "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g,0,0,0,%s,%s\n",
+                  obstacle ? "obstacle" : "grain", u, v, d.r, d.shape[0] + angle,
+                  static_cast<int>(d.shape[1]), d.shape[2], d.shape[3], hex(d.fill).c_str(),
+                  d.halo[3] > 0 ? hex(d.halo).c_str() : "");
+    out += row;
+  }
+  for (size_t k = 0; k < list.chains.size(); ++k)
+    segment("chain", list.chains[k], k < list.chain_width_m.size() ? list.chain_width_m[k] : 0.01);
+  for (const auto& b : list.bonds) segment("bond", b, list.bond_m);
   return out;
 }
 

@@ -4,6 +4,7 @@
 // built, tested and extended (force chains, trails) without a context.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/frame.h"
@@ -36,6 +37,7 @@ struct SegmentInstance {
 
 struct DrawList {
   std::vector<ShapeInstance> shapes;    // grains, then the obstacle
+  size_t grains = 0;                    // how many of the shapes are grains
   std::vector<SegmentInstance> walls;   // drawn under the grains
   std::vector<SegmentInstance> trails;  // tracked grains' trails, over the grains
   std::vector<float> trail_width_m;
@@ -50,5 +52,14 @@ struct DrawList {
 DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
                          const ArchStyle& arch = {}, const std::vector<float>* values = nullptr,
                          double value_top = 0);
+
+// The draw list as a table for vector output (the gallery's PDF and SVG, snapshots): one row per shape,
+// wall, bond and chain segment, in the view's own frame (metres from the camera's centre, the view's turn
+// applied, so that the window shown is [-w/2, w/2] x [-h/2, h/2]), only what reaches into the window.
+// Columns: kind (grain, obstacle, wall, bond, chain), x, y, r (bounding radius), angle (rad), sides (0 disk,
+// 3-8 polygon, 100 box), half_w, half_h, x2, y2 (a segment's other end), width_m, fill and halo (#rrggbbaa).
+// r is a polygon's circumradius; a polygon's first vertex is at `angle` from the x axis.
+std::string draw_list_csv(const DrawList& list, double cx, double cy, double angle, double half_w,
+                          double half_h);
 
 }  // namespace render

@@ -69,6 +69,11 @@ void Painter::paint(core::Image& img, const std::vector<PanelInput>& panels, con
   const auto t0 = std::chrono::steady_clock::now();
   target_->bind();
   const bool window_info_left = info_left_;  // info_left() is about the window's picture, not this image
+  // An information box placed by free space needs its size, known once drawn at this image size: the first
+  // picture of a size is laid out once before it is drawn (a snapshot, a movie's first frame).
+  if (overlay.place_clear && overlay.any() && (w != laid_out_w_ || h != laid_out_h_))
+    draw(panels, style, overlay, w, h);
+  laid_out_w_ = w, laid_out_h_ = h;
   draw(panels, style, overlay, w, h);
   info_left_ = window_info_left;
   const auto t1 = std::chrono::steady_clock::now();

@@ -71,6 +71,7 @@ class Painter {
   std::unique_ptr<Target> target_;
   PaintTiming timing_;
   bool info_left_ = false;
+  int laid_out_w_ = 0, laid_out_h_ = 0;  // the image size the overlays' boxes were last laid out at
 };
 
 }  // namespace render

@@ -93,7 +93,13 @@ std::string Inspector::output_name(const std::string& pattern, const std::string
 }
 
 core::Image Inspector::render_current(Painter& p, int w, int h) const {
-  return p.paint(current(), geo_, views(w, h), style, overlay, overlay_data, w, h);
+  // Pictures (snapshots, clips) place the information box where it covers the fewest grains, as movies do
+  // (with the discharge plot, the plot takes the free space and the box keeps the top-right corner); it
+  // stays in the picture.
+  render::OverlayOptions o = overlay;
+  o.place_clear = !o.plot;
+  o.may_leave = false;
+  return p.paint(current(), geo_, views(w, h), style, o, overlay_data, w, h);
 }
 
 long Inspector::in_range(long k) const {

@@ -1,4 +1,5 @@
 // Issue 16: export for the field's tools, and the scene command.
+#include <stb_image.h>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -147,16 +148,42 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   auto r = cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.svg").string() + " --tile 160");
   REQUIRE(r.code == 0);
   CHECK_THAT(r.output, Catch::Matchers::Contains(std::to_string(n) + " arches"));
+  // Vector: no bitmap anywhere, grains as paths (about 60 in each outlet view), labels as text with the
+  // arch's descriptors.
   const std::string svg = slurp(d / "sheet.svg");
-  long images = 0;
-  for (size_t at = svg.find("<image"); at != std::string::npos; at = svg.find("<image", at + 1)) ++images;
-  CHECK(images == n);
-  CHECK(
+  auto count = [](const std::string& text, const std::string& what) {
+    long c = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++c;
+    return c;
+  };
+  CHECK(count(svg, "<image") == 0);
+  CHECK(count(svg, "<path") > 40 * n);
+  CHECK(count(svg, "\u03b8max") == n + 1);  // each tile, and the footer that explains it
+  CHECK(count(svg, "span ") == n);
+  CHECK(count(svg, "rise ") >= n);
+  REQUIRE(
       cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.pdf").string() + " --tile 160").code ==
       0);
-  CHECK(
-      cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.png").string() + " --tile 160").code ==
-      0);
+  const std::string pdf = slurp(d / "sheet.pdf");
+  CHECK(pdf.rfind("%PDF", 0) == 0);
+  CHECK(count(pdf, "/Subtype /Image") == 0);
+  // One column: the narrowest sheet; its title and footer are wrapped, never cut: nothing touches the edges.
+  REQUIRE(cli("gallery " + (d / "run").string() + " --columns 1 --out " + (d / "sheet.png").string() +
+              " --tile 160")
+              .code == 0);
+  int w = 0, h = 0, c = 0;
+  unsigned char* px = stbi_load((d / "sheet.png").c_str(), &w, &h, &c, 3);
+  REQUIRE(px);
+  long inked = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x : {0, 1, w - 2, w - 1})
+      for (int k = 0; k < 3; ++k) inked += px[(static_cast<size_t>(y) * w + x) * 3 + k] < 240;
+  for (int x = 0; x < w; ++x)
+    for (int y : {0, 1, h - 2, h - 1})
+      for (int k = 0; k < 3; ++k) inked += px[(static_cast<size_t>(y) * w + x) * 3 + k] < 240;
+  stbi_image_free(px);
+  CHECK(inked == 0);
+  CHECK(h > w);  // the tiles stacked
   // Its own sheet is replaced with --force; a user's file is not.
   CHECK(
       cli("gallery " + (d / "run").string() + " --force --out " + (d / "sheet.png").string() + " --tile 160")

@@ -412,3 +412,44 @@ TEST_CASE("a comparison movie's information boxes and scale bars cover no grain 
   CHECK(overlay_px > 10000);  // the boxes are there
   CHECK(on_grains == 0);
 }
+
+TEST_CASE("an inspector snapshot at 3000x2000 places its information box clear of the grains",
+          "[ui][render]") {
+  // The first picture of a size used to keep the box top-right (its size was not yet known), over the funnel.
+  fs::path d = temp_dir("snapshot_clear");
+  REQUIRE(test::cli("record " + test::kScene +
+                    " --duration 8 --size 320x180 --no-movie --png-every 1000 --quiet --out " +
+                    (d / "run").string())
+              .code == 0);
+  // Every element but the zoom box (an outline over the whole-hopper panel by design).
+  std::ofstream(d / "s.txt") << "goto frame 240\noverlay time,counts,rate,timer,arch,legend,scale\nsnapshot "
+                             << (d / "with.png").string() << " 3000x2000\noverlay none\nsnapshot "
+                             << (d / "without.png").string() << " 3000x2000\n";
+  REQUIRE(test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "s.txt").string()).code ==
+          0);
+  const Png a = read_png(d / "with.png");
+  const Png b = read_png(d / "without.png");
+  REQUIRE(a.w == 3000);
+  io::Trajectory t(d / "run" / "trajectory.sstraj");
+  const core::Frame f = t.frame(240);
+  const auto views =
+      render::layout_views(render::parse_camera("split"), core::make_geometry(core::Scene{}), 3000, 2000);
+  long overlay_px = 0, on_grains = 0;
+  for (int y = 0; y < a.h; ++y)
+    for (int x = 0; x < a.w; ++x) {
+      if (std::memcmp(a.at(x, y), b.at(x, y), 3) == 0) continue;
+      ++overlay_px;
+      for (const auto& v : views) {
+        if (x < v.rect.x || x >= v.rect.x + v.rect.w || y < v.rect.y || y >= v.rect.y + v.rect.h) continue;
+        const core::Vec2 w = v.pixel_to_world({x + 0.5, y + 0.5});
+        for (const auto& p : f.particles)
+          if (std::hypot(w.x - p.x, w.y - p.y) < p.radius) {
+            ++on_grains;
+            break;
+          }
+      }
+    }
+  INFO(overlay_px << " overlay pixels, " << on_grains << " on grains");
+  CHECK(overlay_px > 50000);
+  CHECK(on_grains == 0);
+}

@@ -11,16 +11,16 @@
 #include "app/services/common.h"
 #include "app/services/process.h"
 #include "app/services/session.h"
+#include "core/arch.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "record/png.h"
 #include "render/camera.h"
-#include "render/context.h"
-#include "render/painter.h"
+#include "render/draw_list.h"
+#include "render/overlay.h"
 #include "sim/hopper.h"
 
 namespace app {
@@ -67,18 +67,22 @@ int gallery(const GalleryOptions& o) {
     }
   } cleanup{tmp};
 
-  render::OffscreenContext ctx;
-  render::Painter painter;
   render::Style style;
   style.palette = render::parse_palette(o.palette);
   const core::Geometry geo = core::make_geometry(scene);
-  const auto views = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile);
-  const render::OverlayData data = render::overlay_data_for(scene);  // the species' colours; no overlay drawn
-  // Re-simulate the run, one frame one step before each recorded rule firing: the clog as it stood.
+  // The outlet camera of a square tile: the window each tile shows.
+  const render::View view = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile).front();
+  const render::OverlayData data = render::overlay_data_for(scene);  // the species' colours
+  style.species_colors = data.species_colors;
+  // Re-simulate the run, one frame one step before each recorded rule firing: the clog as it stood. Each tile
+  // is the draw list of that frame as a table (vector shapes: the sheet draws them as circles, polygons and
+  // paths in PDF and SVG alike), with the arch's descriptors (core::arch_descriptors) in the index.
   std::vector<long> at;
   for (size_t k = 0; k < n; ++k) at.push_back(std::lround(recorded.arches[k].t / scene.dt) - 1);
   Session session({scene});
-  std::string index = "tile,t_s,clog_s,members,added,species,method,span_m\n";
+  std::string index =
+      "tile,t_s,clog_s,members,added,species,method,span_m,rise_m,aspect,theta_max_deg,defects,angle_sd_deg,"
+      "window_m\n";
   size_t k = 0;
   FunctionSink tiles;
   tiles.on_frame = [&](const FrameTick& tick) {
@@ -86,11 +90,14 @@ int gallery(const GalleryOptions& o) {
     core::Frame f = tick.frames[0];
     f.arch = a.ids;
     f.since_last_exit = a.clog_duration;
-    core::Image img =
-        painter.paint(f, geo, views, style, render::OverlayOptions::none(), data, o.tile, o.tile);
+    render::ArchStyle arch;
+    arch.halo_m = arch.bond_m = 0.012 * geo.grain_diameter / 0.13;
+    const render::DrawList list = render::build_draw_list(f, geo, style, arch);
+    const double half = 0.5 * view.cam.height;
     char name[32];
-    std::snprintf(name, sizeof name, "tile_%03zu.png", k);
-    record::write_png(tmp / name, img);
+    std::snprintf(name, sizeof name, "tile_%03zu.csv", k);
+    io::write_file_atomic(tmp / name,
+                          render::draw_list_csv(list, view.cam.cx, view.cam.cy, view.cam.angle, half, half));
     int added = 0;
     std::string species;
     for (auto s : a.species) {
@@ -98,9 +105,16 @@ int gallery(const GalleryOptions& o) {
       const size_t i = static_cast<size_t>(core::species_index(s));
       species += std::string(species.empty() ? "" : ";") + (i < names.size() ? names[i] : "?");
     }
+    std::vector<core::Vec2> pos;
+    std::vector<double> radius;
+    for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
+    const core::ArchDescriptors ad = core::arch_descriptors(a.ids, pos, radius);
     index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) +
              "," + std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
-             core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "\n";
+             core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "," +
+             core::format_g(ad.rise, 4) + "," + core::format_g(ad.aspect, 4) + "," +
+             core::format_g(ad.theta_max_deg, 4) + "," + std::to_string(ad.defects) + "," +
+             core::format_g(ad.angle_sd_deg, 4) + "," + core::format_g(2 * half, 6) + "\n";
     ++k;
   };
   session.run(recorded.arches[n - 1].t + 0.5 * scene.dt, FrameClock::at_steps(at), {&tiles});
@@ -122,8 +136,9 @@ int gallery(const GalleryOptions& o) {
       " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")";
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
-  const int status = run_python(script_path("gallery.py"), {tmp.string(), partial.string(), title,
-                                                            io::version_string(), std::to_string(o.columns)});
+  const int status =
+      run_python(script_path("gallery.py"), {tmp.string(), partial.string(), title, io::version_string(),
+                                             std::to_string(o.columns), std::to_string(o.tile)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
@@ -142,7 +157,7 @@ void add_gallery_command(CLI::App& app, Action& action) {
   cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("run", o->run, "a run or recording directory (metadata.toml, arches.csv)")->required();
   cmd->add_option("--out", o->out, "the sheet: .pdf, .svg or .png")->required();
-  cmd->add_option("--tile", o->tile, "tile size in pixels")
+  cmd->add_option("--tile", o->tile, "tile size in pixels of a PNG sheet (PDF and SVG are vector)")
       ->check(whole_number(120, 2000))
       ->capture_default_str();
   cmd->add_option("--columns", o->columns, "tiles per row (0: about square)")->check(whole_number(0, 20));
