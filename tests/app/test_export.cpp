@@ -161,6 +161,16 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   CHECK(count(svg, "\u03b8max") == n + 1);  // each tile, and the footer that explains it
   CHECK(count(svg, "span ") == n);
   CHECK(count(svg, "rise ") >= n);
+  // Force chains: each tile's contact network on top (more paths), the range named in the title.
+  REQUIRE(cli("gallery " + (d / "run").string() + " --force-chains 1:10 --out " + (d / "chains.svg").string())
+              .code == 0);
+  const std::string chains = slurp(d / "chains.svg");
+  CHECK(count(chains, "<path") > count(svg, "<path") + 5 * n);
+  CHECK(count(chains, "force chains from 1 N") == 1);
+  auto bad = cli("gallery " + (d / "run").string() + " --force-chains 5:1 --out " + (d / "x.svg").string());
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.output, Catch::Matchers::Contains("--force-chains 5:1"));
+  CHECK_FALSE(fs::exists(d / "x.svg"));
   REQUIRE(
       cli("gallery " + (d / "run").string() + " --out " + (d / "sheet.pdf").string() + " --tile 160").code ==
       0);

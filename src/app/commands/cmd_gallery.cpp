@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "app/services/common.h"
+#include "app/services/looks.h"
 #include "app/services/process.h"
 #include "app/services/session.h"
 #include "core/arch.h"
@@ -30,6 +31,7 @@ namespace fs = std::filesystem;
 
 struct GalleryOptions {
   std::string run, out, palette = "paper";
+  std::string chains;  // --force-chains MIN[:MAX]: the contact network of each tile
   int tile = 480, columns = 0, max_arches = 60;
   bool force = false;
 };
@@ -69,6 +71,12 @@ int gallery(const GalleryOptions& o) {
 
   render::Style style;
   style.palette = render::parse_palette(o.palette);
+  if (!o.chains.empty()) {
+    LookOptions looks;  // the same option, parsed and checked as record's
+    looks.chains = o.chains;
+    render::OverlayOptions unused;
+    looks.apply(1, false, style, unused);
+  }
   const core::Geometry geo = core::make_geometry(scene);
   // The outlet camera of a square tile: the window each tile shows.
   const render::View view = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile).front();
@@ -85,6 +93,7 @@ int gallery(const GalleryOptions& o) {
       "window_m\n";
   size_t k = 0;
   FunctionSink tiles;
+  tiles.forces = style.chains;
   tiles.on_frame = [&](const FrameTick& tick) {
     const core::ArchEvent& a = recorded.arches[k];
     core::Frame f = tick.frames[0];
@@ -133,7 +142,10 @@ int gallery(const GalleryOptions& o) {
                  ", mu = " + core::format_g(scene.mu) + " A m^2, kick " +
                  core::format_g(scene.kick_impulse_max) + " N s, seed " + std::to_string(scene.seed)
            : data.title) +
-      " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")";
+      " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")" +
+      (style.chains ? "; force chains from " + core::format_g(style.chain_min, 4) + " N, viridis to " +
+                          core::format_g(style.chain_max, 4) + " N"
+                    : "");
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
   const int status =
@@ -165,6 +177,10 @@ void add_gallery_command(CLI::App& app, Action& action) {
       ->check(whole_number(1, 1000))
       ->capture_default_str();
   cmd->add_option("--palette", o->palette, "paper or colorblind")->capture_default_str();
+  cmd->add_option(
+      "--force-chains", o->chains,
+      "draw each tile's contact network: pairs with a normal force of at least MIN newtons, width and "
+      "colour growing up to MAX (MIN or MIN:MAX)");
   cmd->add_flag("--force", o->force, "replace an earlier gallery sheet");
   cmd->callback([o, &action] { action = [o] { return gallery(*o); }; });
 }
