@@ -33,11 +33,12 @@ def colour(text):
     return tuple(v)
 
 
-def draw_tile(ax, table, window):
-    """One tile's draw list in its own frame: the window [-w/2, w/2]^2 in metres."""
-    half = 0.5 * window
+def draw_tile(ax, table, window, height=None, width_in=TILE_IN):
+    """A draw list in its own frame: the window [-w/2, w/2] x [-h/2, h/2] in metres (h = w: a square tile),
+    on axes about width_in inches wide."""
+    half, half_h = 0.5 * window, 0.5 * (height if height else window)
     ax.set_xlim(-half, half)
-    ax.set_ylim(-half, half)
+    ax.set_ylim(-half_h, half_h)
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -45,7 +46,7 @@ def draw_tile(ax, table, window):
         side.set_linewidth(0.4)
         side.set_color("#999999")
     # Metres to points: the axes are TILE_IN wide (less a little) for `window` metres.
-    pt_per_m = 0.92 * TILE_IN * 72 / window
+    pt_per_m = 0.92 * width_in * 72 / window
     clip = ax.patch
     rows = table.to_dict("records")
     for r in rows:  # walls first: under the grains
@@ -69,7 +70,7 @@ def draw_tile(ax, table, window):
         shape.set_clip_path(clip)
         ax.add_patch(shape)
         if halo is not None:
-            ring = mpatches.Circle((x, y), rad + 0.006 * window / 1.3, facecolor="none", edgecolor=halo,
+            ring = mpatches.Circle((x, y), rad + 0.006, facecolor="none", edgecolor=halo,
                                    lw=max(0.8, 0.012 * pt_per_m))
             ring.set_clip_path(clip)
             ax.add_patch(ring)

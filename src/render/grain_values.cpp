@@ -48,19 +48,29 @@ std::vector<float> coordination(const core::Frame& f) {
   return z;
 }
 
-const std::vector<float>& GrainValues::update(const core::Frame& f, const Style& style) {
+const std::vector<float>& GrainValues::update(const core::Frame& f, const Style& style,
+                                              const core::Frame* reference) {
   values_.clear();
   largest_ = 0;
   if (style.color == ColorMode::Coordination) {
     values_ = coordination(f);
   } else if (style.color == ColorMode::Displacement) {
     if (have_ref_ && (f.t < ref_t_ || ref_x_.size() != f.particles.size())) have_ref_ = false;
-    if (!have_ref_ && f.t >= style.displacement_from) {
-      ref_x_.resize(f.particles.size());
-      ref_y_.resize(f.particles.size());
-      for (size_t i = 0; i < f.particles.size(); ++i)
-        ref_x_[i] = f.particles[i].x, ref_y_[i] = f.particles[i].y;
-      ref_t_ = f.t;
+    const core::Frame* r =
+        reference && reference->particles.size() == f.particles.size() ? reference : nullptr;
+    if (r && r->t <= f.t) {
+      have_ref_ = false;  // the caller's reference, every time
+    } else if (!have_ref_ && f.t >= style.displacement_from) {
+      r = &f;
+    } else {
+      r = nullptr;
+    }
+    if (r) {
+      ref_x_.resize(r->particles.size());
+      ref_y_.resize(r->particles.size());
+      for (size_t i = 0; i < r->particles.size(); ++i)
+        ref_x_[i] = r->particles[i].x, ref_y_[i] = r->particles[i].y;
+      ref_t_ = r->t;
       have_ref_ = true;
     }
     values_.assign(f.particles.size(), 0.0f);

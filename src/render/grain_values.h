@@ -23,7 +23,10 @@ class GrainValues {
   // Displacement: from where each grain stood in the first frame at or after style.displacement_from (0
   // before it); a grain re-injected since then (now more than two of its diameters higher than it was: the
   // grains of a silo fall) has none (NaN). A frame earlier than the reference (a jump back) drops it.
-  const std::vector<float>& update(const core::Frame& f, const Style& style);
+  // `reference`: where each grain stood at the reference time, when the caller knows it (the inspector, from
+  // its trajectory: frames drawn out of order); null: the first frame drawn at or after the time.
+  const std::vector<float>& update(const core::Frame& f, const Style& style,
+                                   const core::Frame* reference = nullptr);
   // The largest finite value of the last update (the top of a scale taken from each frame's data).
   double largest() const { return largest_; }
 

@@ -28,6 +28,8 @@ struct PanelInput {
   const std::vector<View>* views;
   const OverlayData* data;
   const Annotations* notes = nullptr;  // what to point out (a rule removal, a caption), if anything
+  const core::Frame* reference =
+      nullptr;  // displacement colouring: the frame at the reference time, if known
 };
 
 struct PaintTiming {
@@ -55,9 +57,9 @@ class Painter {
              const OverlayOptions& overlay, int w, int h);
   // One panel.
   core::Image paint(const core::Frame& f, const core::Geometry& geo, const std::vector<View>& views,
-                    const Style& style, const OverlayOptions& overlay, const OverlayData& data, int w,
-                    int h) {
-    return paint({{&f, &geo, &views, &data}}, style, overlay, w, h);
+                    const Style& style, const OverlayOptions& overlay, const OverlayData& data, int w, int h,
+                    const core::Frame* reference = nullptr) {
+    return paint({{&f, &geo, &views, &data, nullptr, reference}}, style, overlay, w, h);
   }
   const PaintTiming& timing() const { return timing_; }
   // The last draw left the first panel's information box out of the picture (OverlayOptions::may_leave).

@@ -130,6 +130,30 @@ void set_color_range(Style& style, const std::string& text) {
   }
 }
 
+void set_chains(Style& style, const std::string& text, const std::string& option) {
+  // MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
+  const size_t colon = text.find(':');
+  char* end = nullptr;
+  const double lo = std::strtod(text.c_str(), &end);
+  double hi = Style{}.chain_max;
+  bool ok = end != text.c_str() && (*end == '\0' || *end == ':') && lo >= 0 && std::isfinite(lo);
+  if (ok && colon != std::string::npos) {
+    const char* s = text.c_str() + colon + 1;
+    hi = std::strtod(s, &end);
+    ok = end != s && *end == '\0' && std::isfinite(hi);
+  }
+  if (!ok || !(hi > lo)) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", Style{}.chain_max);
+    throw core::InputError(
+        option + " " + text +
+        ": expected MIN or MIN:MAX in N with 0 <= MIN < MAX (e.g. 2 or 2:30; MAX default " + buf + ")");
+  }
+  style.chains = true;
+  style.chain_min = lo;
+  style.chain_max = hi;
+}
+
 Rgba species_color(Palette p, core::Species s) {
   // Beyond the first two: Okabe-Ito bluish green, orange, reddish purple, sky blue, yellow, then grey.
   static const Rgba more[] = {{0.0f, 0.62f, 0.451f, 1},

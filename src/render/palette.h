@@ -58,6 +58,8 @@ const char* color_mode_name(ColorMode m);
 // Set the colour scale's range of the style's mode from "MAX", "MIN:MAX" or (displacement) "auto": each
 // frame's largest; throws core::InputError naming what is allowed.
 void set_color_range(Style& style, const std::string& text);
+// Switch force chains on from "MIN" or "MIN:MAX" (N); throws core::InputError naming `option` and the form.
+void set_chains(Style& style, const std::string& text, const std::string& option);
 const char* colormap_name(Colormap m);
 // The colour scale's quantity and unit for the colour bar, e.g. "speed [m/s]"; "" for species and id.
 std::string color_scale_label(const Style& s);

@@ -9,6 +9,8 @@
 
 #include "core/error.h"
 #include "core/scene.h"
+#include "render/draw_list.h"
+#include "render/grain_values.h"
 
 namespace ui {
 
@@ -27,8 +29,8 @@ double to_double(const std::string& s, const char* what) {
   return v;
 }
 const char* kCommands =
-    "goto, step, next, prev, zoom, pan, color, colormap, palette, overlay, arch, track, snapshot, export, "
-    "print";
+    "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
+    "freeze, snapshot, export, print";
 }  // namespace
 
 Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
@@ -63,6 +65,7 @@ void Inspector::set_frame(long k) {
 }
 
 std::vector<render::View> Inspector::views(int w, int h) const {
+  if (!path.empty()) return {path.view_at(traj_.time(frame_), geo_, w, h)};
   auto vs = render::layout_views(camera, geo_, w, h);
   // Zoom and pan apply to the most magnified view (the outlet in split), the one a user inspects.
   render::View* main = &vs.front();
@@ -92,6 +95,14 @@ std::string Inspector::output_name(const std::string& pattern, const std::string
   return out;
 }
 
+core::Frame Inspector::reference_frame() const {
+  // The first frame at or after the displacement's reference time (none: colouring by something else).
+  if (style.color != render::ColorMode::Displacement) return {};
+  for (long k = 0; k < traj_.size(); ++k)
+    if (traj_.time(k) >= style.displacement_from - 1e-9) return traj_.frame(k);
+  return {};
+}
+
 core::Image Inspector::render_current(Painter& p, int w, int h) const {
   // Pictures (snapshots, clips) place the information box where it covers the fewest grains, as movies do
   // (with the discharge plot, the plot takes the free space and the box keeps the top-right corner); it
@@ -99,7 +110,9 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   render::OverlayOptions o = overlay;
   o.place_clear = !o.plot;
   o.may_leave = false;
-  return p.paint(current(), geo_, views(w, h), style, o, overlay_data, w, h);
+  const core::Frame ref = reference_frame();
+  return p.paint(current(), geo_, views(w, h), style, o, overlay_data, w, h,
+                 ref.particles.empty() ? nullptr : &ref);
 }
 
 long Inspector::in_range(long k) const {
@@ -237,7 +250,41 @@ std::string Inspector::print_frame() {
 std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
   if (!painter || !files_) throw core::InputError("snapshot needs a renderer and files");
   const std::string path = output_name(pattern, "snapshot " + pattern);
-  files_->write_png(path, render_current(*painter, w, h));
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".svg" || ext == ".pdf") {
+    // Vector: the main view (the most magnified: the outlet in split) as circles, polygons and paths.
+    const std::vector<render::View> vs = views(w, h);
+    const render::View* v = &vs.front();
+    for (const auto& c : vs)
+      if (c.px_per_m() > v->px_per_m()) v = &c;
+    const core::Frame f = current();
+    render::Style st = style;
+    st.species_colors = overlay_data.species_colors;
+    const double half_h = 0.5 * v->cam.height, half_w = half_h * v->rect.w / std::max(1, v->rect.h);
+    // The grains' values as the pictures colour them (displacement from the reference frame, coordination).
+    render::GrainValues gv;
+    const core::Frame ref = reference_frame();
+    const std::vector<float>& values = gv.update(f, st, ref.particles.empty() ? nullptr : &ref);
+    if (st.color == render::ColorMode::Displacement && !(st.displacement_max > 0))
+      st.displacement_max = std::max(gv.largest(), st.color_min + 1e-6);
+    const std::string table =
+        render::draw_list_csv(render::build_draw_list(f, geo_, st, {}, &values, render::color_scale_max(st)),
+                              v->cam.cx, v->cam.cy, v->cam.angle, half_w, half_h);
+    char caption[160];
+    std::snprintf(caption, sizeof caption, "t = %.3f s (frame %ld), clog timer %.2f s, arch: %zu grains", f.t,
+                  frame_, f.since_last_exit, f.arch.size());
+    std::string text = caption;
+    const std::string scale = render::color_scale_label(st);
+    if (!scale.empty()) {
+      char range[96];
+      std::snprintf(range, sizeof range, " from %.3g to %.3g (%s)", st.color_min, render::color_scale_max(st),
+                    render::colormap_name(st.colormap));
+      text += "\ncolour: " + scale + range;
+    }
+    files_->write_vector(path, table, 2 * half_w, 2 * half_h, text);
+  } else {
+    files_->write_png(path, render_current(*painter, w, h));
+  }
   last_output = path;
   log("snapshot " + pattern + " " + std::to_string(w) + "x" + std::to_string(h));
   return path;
@@ -253,9 +300,17 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
   const std::string path = output_name(pattern, "export " + pattern);
   auto movie = files_->open_movie(path, width, height, fps);
   const long keep = frame_;
+  const long copies = freeze_at ? std::max(0L, std::lround(freeze_s * fps) - 1) : 0;
   for (long k = from; k <= to; ++k) {
     frame_ = k;
-    movie->add(render_current(*painter, width, height));
+    const core::Image img = render_current(*painter, width, height);
+    movie->add(img);
+    // A freeze: the clog timer crossing clog_min_gap here, or the rule firing before the next frame.
+    const bool event = freeze_at == 1 ? k > 0 && traj_.since_last_exit(k - 1) < traj_.clog_min_gap() &&
+                                            traj_.since_last_exit(k) >= traj_.clog_min_gap()
+                                      : freeze_at == 2 && k + 1 < traj_.size() &&
+                                            traj_.long_arches(k + 1) > traj_.long_arches(k);
+    for (long c = 0; event && c < copies; ++c) movie->add(img);
   }
   frame_ = keep;
   movie->finish();
@@ -344,6 +399,37 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       style = next;
       return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
     }
+    if (cmd == "chains") {
+      // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
+      need(1, "chains MIN[:MAX]|off (newtons)");
+      if (a[1] == "off") return style.chains = false, log("chains off");
+      if (!traj_.has_contacts())
+        throw core::InputError(
+            "chains: this trajectory has no contacts beside it (contacts.sscon: record and run "
+            "--trajectory-fps write one; runs made before they did have none)");
+      render::set_chains(style, a[1], "chains");
+      return log("chains " + a[1]);
+    }
+    if (cmd == "camera-path") {
+      // camera-path T:CAMERA,... | off: pictures follow the key frames by each frame's time (record
+      // --camera-path).
+      need(1, "camera-path T:CAMERA,T:CAMERA,... | camera-path off");
+      if (a[1] == "off") return path = {}, log("camera-path off");
+      path = render::parse_camera_path(a[1]);
+      return log("camera-path " + a[1]);
+    }
+    if (cmd == "freeze") {
+      // freeze clog|rule SECONDS | off: clips hold the picture at each event (record --freeze).
+      if (a.size() == 2 && a[1] == "off") return freeze_at = 0, log("freeze off");
+      need(2, "freeze clog|rule SECONDS | freeze off");
+      const double sec = to_double(a[2], "SECONDS");
+      if ((a[1] != "clog" && a[1] != "rule") || !(sec > 0) || sec > 60)
+        throw core::InputError(
+            "usage: freeze clog|rule SECONDS (0 < SECONDS <= 60, video seconds) | freeze off");
+      freeze_at = a[1] == "clog" ? 1 : 2;
+      freeze_s = sec;
+      return log("freeze " + a[1] + " " + a[2]);
+    }
     if (cmd == "colormap")
       return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
                                                                 log("colormap " + a[1]);
@@ -407,7 +493,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "print") return (void)print_frame();
     if (cmd == "snapshot") {
-      if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png [WxH]");
+      if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png|.svg|.pdf [WxH]");
       int w = 1920, h = 1080;
       if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
       return (void)snapshot(a[1], w, h, painter);

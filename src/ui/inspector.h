@@ -75,6 +75,7 @@ class Inspector {
   const std::vector<std::string>& history() const { return history_; }
 
   long frame_index() const { return frame_; }
+  bool has_contacts() const { return traj_.has_contacts(); }
   void set_frame(long k);  // clamps to the trajectory
   core::Frame current() const { return traj_.frame(frame_); }
   const std::vector<ClogSpan>& clogs() const { return clogs_; }
@@ -86,10 +87,20 @@ class Inspector {
   // The views for an image of w x h: the camera preset, then zoom and pan.
   std::vector<render::View> views(int w, int h) const;
   core::Image render_current(Painter& p, int w, int h) const;
+  // The frame displacement is measured from (the first at or after style.displacement_from); empty when the
+  // colouring is not by displacement.
+  core::Frame reference_frame() const;
 
   render::CameraSpec camera;  // split
-  double zoom = 1.0;          // magnification on top of the preset
-  core::Vec2 pan{0, 0};       // m
+  // A camera move (script `camera-path`): while set, pictures follow it by each frame's time (zoom and pan
+  // do not apply).
+  render::CameraPath path;
+  // Clips hold the picture this many video seconds at each clog as it forms (freeze_at 1) or the last frame
+  // before the clog rule fires (2); 0: off. Script `freeze`.
+  int freeze_at = 0;
+  double freeze_s = 0;
+  double zoom = 1.0;     // magnification on top of the preset
+  core::Vec2 pan{0, 0};  // m
   render::Style style;
   render::OverlayOptions overlay;
   render::OverlayData overlay_data;

@@ -99,6 +99,10 @@ void draw_view(Inspector& insp, PanelState& ps) {
     insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
   ImGui::SameLine();
   ImGui::Checkbox("arch", &insp.style.show_arch);
+  if (insp.has_contacts()) {  // the run kept its contacts: force chains as record draws them
+    ImGui::SameLine();
+    ImGui::Checkbox("force chains", &insp.style.chains);
+  }
   auto& o = insp.overlay;
   ImGui::Checkbox("time", &o.time);
   ImGui::SameLine();

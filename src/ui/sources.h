@@ -16,11 +16,12 @@ class FrameSource {
   virtual ~FrameSource() = default;
   virtual long size() const = 0;
   virtual core::Frame frame(long k) const = 0;
-  virtual double time(long k) const = 0;             // s
-  virtual double since_last_exit(long k) const = 0;  // s: the clog timer at frame k
-  virtual int long_arches(long k) const = 0;         // arches the clog rule removed up to frame k
-  virtual double frame_interval() const = 0;         // s between frames
-  virtual double clog_min_gap() const = 0;           // s: a gap at least this long is a clog
+  virtual double time(long k) const = 0;               // s
+  virtual double since_last_exit(long k) const = 0;    // s: the clog timer at frame k
+  virtual int long_arches(long k) const = 0;           // arches the clog rule removed up to frame k
+  virtual double frame_interval() const = 0;           // s between frames
+  virtual double clog_min_gap() const = 0;             // s: a gap at least this long is a clog
+  virtual bool has_contacts() const { return false; }  // frames carry their contacts (force chains)
 };
 
 // A movie being written: frames in order, then finish() (the file appears only then).
@@ -41,6 +42,11 @@ class ImageFiles {
   virtual void check_movie(int width, int height, int fps) const = 0;
   virtual std::unique_ptr<MovieSink> open_movie(const std::string& path, int width, int height,
                                                 int fps) const = 0;
+  // A vector picture (.svg or .pdf): a draw list as a table (render::draw_list_csv) of a window width_m x
+  // height_m, with a caption; written whole under a temporary name and renamed. Throws core::RuntimeFault
+  // when it cannot be made.
+  virtual void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
+                            double height_m, const std::string& caption) const = 0;
 };
 
 }  // namespace ui

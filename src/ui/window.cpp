@@ -197,7 +197,10 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   render::OverlayOptions overlay = insp.overlay;
   // Views are zoomed and panned at will: keep the information box off the container, or beside the picture.
   overlay.place_clear = overlay.may_leave = true;
-  painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data}}, insp.style, overlay, fw, fh, scene_w);
+  const core::Frame ref = insp.reference_frame();  // displacement from the trajectory's own reference frame
+  painter.draw(
+      {{&f, &insp.geometry(), &views, &insp.overlay_data, nullptr, ref.particles.empty() ? nullptr : &ref}},
+      insp.style, overlay, fw, fh, scene_w);
   imgui_frame(win, fw, fh, [&] {
     panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh),
            static_cast<float>(scene_h));

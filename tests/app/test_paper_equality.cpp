@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <sstream>
 
 #include "helpers.h"
 
@@ -53,8 +54,19 @@ TEST_CASE("every committed campaign analyses to its committed points.csv", "[app
     INFO(name);
     REQUIRE(test::sh("mkdir -p " + (d / name).string() + " && tar -xJf " + packed.string() + " -C " +
                      (d / name).string()) == 0);
+    // The keys the campaign told its points apart by (sweep passes its grid's own), as the committed
+    // analysis recorded them: `by = ["obstacle_height", "obstacle"]`.
+    std::string by;
+    {
+      std::istringstream meta(slurp(e.path() / "analysis/metadata.toml"));
+      for (std::string line; std::getline(meta, line);)
+        if (line.rfind("by = [", 0) == 0)
+          for (size_t q = line.find('"'); q != std::string::npos;
+               q = line.find('"', line.find('"', q + 1) + 1))
+            by += " --by " + line.substr(q + 1, line.find('"', q + 1) - q - 1);
+    }
     const auto r =
-        cli("analyze " + (d / name / "runs").string() + " --out " + (d / name / "analysis").string());
+        cli("analyze " + (d / name / "runs").string() + " --out " + (d / name / "analysis").string() + by);
     REQUIRE(r.code == 0);
     CHECK(slurp(d / name / "analysis/points.csv") == slurp(e.path() / "analysis/points.csv"));
     CHECK(slurp(d / name / "analysis/survival.csv") == slurp(e.path() / "analysis/survival.csv"));

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "fixtures.h"
 #include "helpers.h"
+#include "io/contacts.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
 
@@ -110,4 +111,40 @@ TEST_CASE(
   refused(16, &negative, 8, "exit counts (-3");
   const float far = 1e30f;
   refused(40 + 4 * io::kTrajectoryMaxArch + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
+}
+
+TEST_CASE("contacts files: each frame's contacts read back, a cut file read to its last whole frame",
+          "[io]") {
+  const auto d = test::temp_dir("contacts");
+  const auto p = d / "contacts.sscon";
+  {
+    io::ContactsWriter w(p, 4);
+    w.add({{0, 1, 2.5f}, {2, 3, 0.0f}});
+    w.add({});
+    w.add({{1, 3, 7.25f}});
+    w.close();
+  }
+  io::Contacts c(p, 4);
+  REQUIRE(c.size() == 3);
+  const auto f0 = c.frame(0);
+  REQUIRE(f0.size() == 2);
+  CHECK(f0[0].a == 0);
+  CHECK(f0[0].b == 1);
+  CHECK(f0[0].force == 2.5f);
+  CHECK(c.frame(1).empty());
+  CHECK(c.frame(2)[0].force == 7.25f);
+  CHECK(c.frame(3).empty());  // beyond the last frame: none
+  // Cut inside the last frame: two frames remain.
+  std::filesystem::resize_file(p, std::filesystem::file_size(p) - 5);
+  CHECK(io::Contacts(p, 4).size() == 2);
+  // Foreign, another grain count, an id out of range: named.
+  CHECK_THROWS_WITH(io::Contacts(p, 5), Catch::Contains("holds 4 grains where the trajectory has 5"));
+  std::ofstream(d / "x.sscon") << "SILOTRAJ and more bytes";
+  CHECK_THROWS_WITH(io::Contacts(d / "x.sscon", 4), Catch::Contains("no SILOCONT header"));
+  {
+    io::ContactsWriter w(d / "bad.sscon", 4);
+    w.add({{0, 9, 1.0f}});
+    w.close();
+  }
+  CHECK_THROWS_WITH(io::Contacts(d / "bad.sscon", 4), Catch::Contains("names grain 9; ids run from 0 to 3"));
 }

@@ -453,3 +453,120 @@ TEST_CASE("an inspector snapshot at 3000x2000 places its information box clear o
   CHECK(overlay_px > 50000);
   CHECK(on_grains == 0);
 }
+
+TEST_CASE("the inspector draws force chains from a recording's contacts, and says when a run has none",
+          "[ui][render]") {
+  fs::path d = temp_dir("inspector_chains");
+  REQUIRE(test::cli("record " + test::kScene +
+                    " --duration 8 --size 320x180 --no-movie --png-every 1000 --quiet --out " +
+                    (d / "run").string())
+              .code == 0);
+  REQUIRE(fs::exists(d / "run" / "contacts.sscon"));
+  std::ofstream(d / "s.txt") << "goto frame 238\noverlay none\nsnapshot " << (d / "plain.png").string()
+                             << " 640x360\nchains 1:10\nsnapshot " << (d / "chains.png").string()
+                             << " 640x360\nsnapshot " << (d / "v.svg").string() << " 640x360\nsnapshot "
+                             << (d / "v.pdf").string() << "\nchains off\nsnapshot "
+                             << (d / "plain.svg").string() << " 640x360\n";
+  REQUIRE(test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "s.txt").string()).code ==
+          0);
+  const Png a = read_png(d / "plain.png"), b = read_png(d / "chains.png");
+  // The chains are drawn in the colour map over the grains: many pixels change, and some are viridis' dark
+  // purple end (a weak chain), which no grain or wall has.
+  long changed = 0, purple = 0;
+  const render::Rgba weak = render::colormap(0.0);
+  for (int y = 0; y < a.h; ++y)
+    for (int x = 0; x < a.w; ++x) {
+      changed += std::memcmp(a.at(x, y), b.at(x, y), 3) != 0;
+      purple += near(b.at(x, y), weak, 25);
+    }
+  CHECK(changed > 2000);
+  CHECK(purple > 50);
+  // The vector snapshots: no bitmap, grains and chains as paths, the caption as text.
+  const std::string svg = test::slurp(d / "v.svg"), plain = test::slurp(d / "plain.svg");
+  auto count = [](const std::string& text, const std::string& what) {
+    long c = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++c;
+    return c;
+  };
+  CHECK(count(svg, "<image") == 0);
+  CHECK(count(plain, "<path") > 60);                        // the grains in the outlet view, the walls
+  CHECK(count(svg, "<path") > count(plain, "<path") + 10);  // and the chains
+  CHECK(count(svg, "(frame 238)") == 1);
+  const std::string pdf = test::slurp(d / "v.pdf");
+  CHECK(pdf.rfind("%PDF", 0) == 0);
+  CHECK(count(pdf, "/Subtype /Image") == 0);
+  // Displacement is measured from the trajectory's frame at the reference time, however the inspector got to
+  // the frame shown: straight there, or stepping from earlier.
+  std::ofstream(d / "u.txt") << "overlay none\ncolor displacement 0.3 from 6\ngoto frame 230\nsnapshot "
+                             << (d / "direct.png").string() << " 320x180\n";
+  std::ofstream(d / "w.txt") << "overlay none\ncolor displacement 0.3 from 6\ngoto frame 200\nsnapshot "
+                             << (d / "early.png").string() << " 320x180\ngoto frame 230\nsnapshot "
+                             << (d / "stepped.png").string() << " 320x180\n";
+  REQUIRE(test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "u.txt").string()).code ==
+          0);
+  REQUIRE(test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "w.txt").string()).code ==
+          0);
+  const Png direct = read_png(d / "direct.png"), stepped = read_png(d / "stepped.png");
+  CHECK(direct.px == stepped.px);
+  // Without the contacts file: one clear line.
+  fs::remove(d / "run" / "contacts.sscon");
+  std::ofstream(d / "t.txt") << "chains 2\n";
+  auto r = test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "t.txt").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Contains("t.txt:1") && Contains("no contacts beside it"));
+}
+
+namespace {
+// Counts what a clip would hold, and remembers each picture's hash.
+struct CountingFiles : ui::ImageFiles {
+  mutable std::vector<std::size_t> frames;
+  struct Sink : ui::MovieSink {
+    std::vector<std::size_t>* out;
+    void add(const core::Image& img) override {
+      out->push_back(std::hash<std::string>{}(std::string(img.rgba.begin(), img.rgba.end())));
+    }
+    void finish() override {}
+  };
+  void write_png(const std::string&, const core::Image&) const override {}
+  void write_vector(const std::string&, const std::string&, double, double,
+                    const std::string&) const override {}
+  void check_movie(int, int, int) const override {}
+  std::unique_ptr<ui::MovieSink> open_movie(const std::string&, int, int, int) const override {
+    auto s = std::make_unique<Sink>();
+    s->out = &frames;
+    return s;
+  }
+};
+}  // namespace
+
+TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, and follow a camera path",
+          "[ui]") {
+  gl();
+  fs::path d = temp_dir("freeze");
+  io::Trajectory t(test::synthetic_trajectory(d));
+  const app::TrajectoryFrames frames(t);
+  CountingFiles files;
+  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Painter painter;
+  // The synthetic clog: the timer passes clog_min_gap at frame 2; the rule fires between frames 3 and 4.
+  insp.execute("freeze clog 1", &painter);
+  insp.execute("export " + (d / "a.mp4").string() + " 0 4 160x120 10", &painter);
+  REQUIRE(files.frames.size() == 5 + 9);
+  for (size_t k = 3; k < 12; ++k) CHECK(files.frames[k] == files.frames[2]);
+  files.frames.clear();
+  insp.execute("freeze rule 0.5", &painter);
+  insp.execute("export " + (d / "b.mp4").string() + " 0 4 160x120 10", &painter);
+  REQUIRE(files.frames.size() == 5 + 4);
+  CHECK(files.frames[4] == files.frames[3]);
+  files.frames.clear();
+  insp.execute("freeze off", &painter);
+  insp.execute("camera-path 0:hopper,0.1:outlet", &painter);
+  const double h0 = insp.views(160, 120).front().cam.height;
+  insp.execute("goto frame 4", &painter);
+  CHECK(insp.views(160, 120).front().cam.height < 0.5 * h0);  // zoomed in on the outlet by t = 0.13 s
+  CHECK(insp.views(160, 120).size() == 1);
+  insp.execute("camera-path off", &painter);
+  CHECK(insp.views(160, 120).size() == 2);  // back to split
+  CHECK_THROWS_WITH(insp.execute("freeze jam 2"), Contains("freeze clog|rule SECONDS"));
+  CHECK_THROWS_WITH(insp.execute("camera-path 0:split"), Contains("a path moves one"));
+}

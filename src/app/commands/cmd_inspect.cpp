@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "app/services/common.h"
 #include "app/services/inspect_files.h"
@@ -48,7 +49,17 @@ int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   io::Trajectory traj(trajectory_path(o.path));
   const core::Scene scene = core::parse_scene(traj.info().metadata, o.path + " (trajectory metadata)");
-  const TrajectoryFrames frames(traj);
+  // The contacts beside the trajectory, when the run kept them (recordings do): force chains in the
+  // inspector.
+  std::unique_ptr<io::Contacts> contacts;
+  const fs::path contacts_path = trajectory_path(o.path).parent_path() / "contacts.sscon";
+  if (fs::exists(contacts_path)) {
+    contacts = std::make_unique<io::Contacts>(contacts_path, traj.info().n_particles);
+    if (contacts->size() != traj.size() && !o.quiet)
+      std::fprintf(stderr, "siloscope: %s holds %ld frames of the trajectory's %ld; later frames have none\n",
+                   contacts_path.c_str(), contacts->size(), traj.size());
+  }
+  const TrajectoryFrames frames(traj, contacts.get());
   const RecordFiles files;
   ui::Inspector insp(frames, scene, &files);
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,4 +1,10 @@
 #include "app/services/inspect_files.h"
+#include <unistd.h>
+#include "app/services/process.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "io/metadata.h"
+#include "io/output.h"
 
 #include "record/mp4.h"
 #include "record/png.h"
@@ -36,6 +42,26 @@ void RecordFiles::check_movie(int width, int height, int fps) const {
 std::unique_ptr<ui::MovieSink> RecordFiles::open_movie(const std::string& path, int width, int height,
                                                        int fps) const {
   return std::make_unique<Mp4Sink>(path, settings(width, height, fps));
+}
+
+void RecordFiles::write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
+                               double height_m, const std::string& caption) const {
+  // The table beside the picture under a temporary name; matplotlib draws it (src/figures/snapshot.py).
+  const std::string pid = std::to_string(::getpid());
+  const std::filesystem::path table = path + ".table-" + pid + ".csv";
+  const std::filesystem::path partial =
+      path + ".partial-" + pid + std::filesystem::path(path).extension().string();
+  io::write_file_atomic(table, draw_list_csv);
+  const int status =
+      run_python(script_path("snapshot.py"), {table.string(), partial.string(), core::format_g(width_m, 9),
+                                              core::format_g(height_m, 9), caption, io::version_string()});
+  std::error_code ec;
+  std::filesystem::remove(table, ec);
+  if (status != 0) {
+    std::filesystem::remove(partial, ec);
+    throw core::RuntimeFault(path + ": the matplotlib script snapshot.py failed");
+  }
+  io::rename_into_place(partial, path);
 }
 
 }  // namespace app

@@ -2,6 +2,7 @@
 // MP4 files.
 #pragma once
 
+#include "io/contacts.h"
 #include "io/trajectory.h"
 #include "ui/sources.h"
 
@@ -9,9 +10,16 @@ namespace app {
 
 class TrajectoryFrames : public ui::FrameSource {
  public:
-  explicit TrajectoryFrames(const io::Trajectory& t) : t_(t) {}
+  // With the run's contacts (contacts.sscon), frames carry them: force chains and the solver's coordination.
+  explicit TrajectoryFrames(const io::Trajectory& t, const io::Contacts* contacts = nullptr)
+      : t_(t), contacts_(contacts) {}
   long size() const override { return t_.size(); }
-  core::Frame frame(long k) const override { return t_.frame(k); }
+  core::Frame frame(long k) const override {
+    core::Frame f = t_.frame(k);
+    if (contacts_) f.contacts = contacts_->frame(k);
+    return f;
+  }
+  bool has_contacts() const override { return contacts_ && contacts_->size() > 0; }
   double time(long k) const override { return t_.time(k); }
   double since_last_exit(long k) const override { return t_.since_last_exit(k); }
   int long_arches(long k) const override { return t_.long_arches(k); }
@@ -20,6 +28,7 @@ class TrajectoryFrames : public ui::FrameSource {
 
  private:
   const io::Trajectory& t_;
+  const io::Contacts* contacts_;
 };
 
 class RecordFiles : public ui::ImageFiles {
@@ -28,6 +37,8 @@ class RecordFiles : public ui::ImageFiles {
   void check_movie(int width, int height, int fps) const override;
   std::unique_ptr<ui::MovieSink> open_movie(const std::string& path, int width, int height,
                                             int fps) const override;
+  void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
+                    double height_m, const std::string& caption) const override;
 };
 
 }  // namespace app

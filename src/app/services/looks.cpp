@@ -83,25 +83,7 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   if (track_arch < 0)
     throw core::InputError("--track-arch " + std::to_string(track_arch) + ": expected K >= 1");
   if (chains.empty()) return;
-  // --force-chains MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
-  const size_t colon = chains.find(':');
-  char* end = nullptr;
-  const double lo = std::strtod(chains.c_str(), &end);
-  double hi = style.chain_max;
-  bool ok = end != chains.c_str() && (*end == '\0' || *end == ':') && lo >= 0 && std::isfinite(lo);
-  if (ok && colon != std::string::npos) {
-    const char* s = chains.c_str() + colon + 1;
-    hi = std::strtod(s, &end);
-    ok = end != s && *end == '\0' && std::isfinite(hi);
-  }
-  if (!ok || !(hi > lo))
-    throw core::InputError(
-        "--force-chains " + chains +
-        ": expected MIN or MIN:MAX in N with 0 <= MIN < MAX (e.g. 2 or 2:30; MAX default " +
-        num(style.chain_max) + ")");
-  style.chains = true;
-  style.chain_min = lo;
-  style.chain_max = hi;
+  render::set_chains(style, chains, "--force-chains");
 }
 
 void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, bool quiet) const {

@@ -1,0 +1,114 @@
+#include "io/contacts.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace io {
+
+namespace {
+constexpr char kMagic[8] = {'S', 'I', 'L', 'O', 'C', 'O', 'N', 'T'};
+constexpr std::uint32_t kVersion = 1;
+void put32(std::vector<unsigned char>& b, std::uint32_t v) {
+  for (int k = 0; k < 4; ++k) b.push_back(static_cast<unsigned char>(v >> (8 * k)));
+}
+std::uint32_t get32(const unsigned char* p) {
+  return p[0] | (p[1] << 8) | (p[2] << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
+}
+}  // namespace
+
+ContactsWriter::ContactsWriter(const std::filesystem::path& path, std::uint32_t n_particles)
+    : path_(path.string()) {
+  f_ = std::fopen(path_.c_str(), "wb");
+  if (!f_) throw core::RuntimeFault("cannot write contacts " + path_ + ": " + std::strerror(errno));
+  std::vector<unsigned char> head(kMagic, kMagic + 8);
+  put32(head, kVersion);
+  put32(head, n_particles);
+  if (std::fwrite(head.data(), 1, head.size(), f_) != head.size())
+    throw core::RuntimeFault("cannot write contacts " + path_ + ": " + std::strerror(errno));
+}
+
+ContactsWriter::~ContactsWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void ContactsWriter::add(const std::vector<core::Contact>& contacts) {
+  buf_.clear();
+  put32(buf_, frames_++);
+  put32(buf_, static_cast<std::uint32_t>(contacts.size()));
+  for (const auto& c : contacts) {
+    std::uint32_t f;
+    std::memcpy(&f, &c.force, 4);
+    put32(buf_, static_cast<std::uint32_t>(c.a));
+    put32(buf_, static_cast<std::uint32_t>(c.b));
+    put32(buf_, f);
+  }
+  if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
+    throw core::RuntimeFault("cannot write contacts " + path_ + ": " + std::strerror(errno));
+}
+
+void ContactsWriter::close() {
+  if (!f_) return;
+  const bool ok = std::fflush(f_) == 0;
+  const int err = errno;
+  const bool closed = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (!ok || !closed)
+    throw core::RuntimeFault("cannot finish contacts " + path_ + ": " + std::strerror(ok ? errno : err));
+}
+
+Contacts::Contacts(const std::filesystem::path& path, std::uint32_t n_particles) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw core::InputError(name + ": not a contacts file (not a regular file)");
+  std::ifstream in(path, std::ios::binary);
+  data_.assign(std::istreambuf_iterator<char>(in), {});
+  if (data_.size() < 16 || std::memcmp(data_.data(), kMagic, 8) != 0)
+    throw core::InputError(name + ": not a siloscope contacts file (no SILOCONT header)");
+  if (get32(&data_[8]) != kVersion)
+    throw core::InputError(name + ": contacts file version " + std::to_string(get32(&data_[8])) +
+                           "; this build reads version " + std::to_string(kVersion));
+  if (get32(&data_[12]) != n_particles)
+    throw core::InputError(name + ": holds " + std::to_string(get32(&data_[12])) +
+                           " grains where the trajectory has " + std::to_string(n_particles));
+  size_t at = 16;
+  while (at + 8 <= data_.size()) {
+    const std::uint32_t frame = get32(&data_[at]), count = get32(&data_[at + 4]);
+    if (frame != offsets_.size())
+      throw core::InputError(name + ": frame " + std::to_string(frame) + " where frame " +
+                             std::to_string(offsets_.size()) + " was due");
+    const size_t end = at + 8 + 12 * static_cast<size_t>(count);
+    if (end > data_.size()) break;  // a partial last frame (a crash): dropped
+    for (size_t k = at + 8; k < end; k += 12) {
+      const std::uint32_t a = get32(&data_[k]), b = get32(&data_[k + 4]);
+      if (a >= n_particles || b >= n_particles)
+        throw core::InputError(name + ": frame " + std::to_string(frame) + " names grain " +
+                               std::to_string(std::max(a, b)) + "; ids run from 0 to " +
+                               std::to_string(n_particles - 1));
+    }
+    offsets_.push_back(at + 4);
+    at = end;
+  }
+}
+
+std::vector<core::Contact> Contacts::frame(long k) const {
+  std::vector<core::Contact> out;
+  if (k < 0 || k >= size()) return out;
+  const size_t at = offsets_[static_cast<size_t>(k)];
+  const std::uint32_t count = get32(&data_[at]);
+  out.reserve(count);
+  for (size_t p = at + 4; p < at + 4 + 12 * static_cast<size_t>(count); p += 12) {
+    core::Contact c;
+    c.a = static_cast<int>(get32(&data_[p]));
+    c.b = static_cast<int>(get32(&data_[p + 4]));
+    const std::uint32_t f = get32(&data_[p + 8]);
+    std::memcpy(&c.force, &f, 4);
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace io
