@@ -94,6 +94,15 @@ void draw_view(Inspector& insp, PanelState& ps) {
     if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
       act(insp, ps, [&] { insp.set_color(colors[k].second, colors[k].first); });
   }
+  if (insp.style.color != render::ColorMode::Species && insp.style.color != render::ColorMode::Id) {
+    // The colour map of the scale (the script line `colormap NAME`).
+    for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
+                   render::Colormap::Cividis}) {
+      if (m != render::Colormap::Viridis) ImGui::SameLine();
+      if (ImGui::RadioButton(render::colormap_name(m), insp.style.colormap == m))
+        act(insp, ps, [&] { insp.execute(std::string("colormap ") + render::colormap_name(m)); });
+    }
+  }
   bool cb = insp.style.palette == render::Palette::ColorBlind;
   if (ImGui::Checkbox("colour-blind palette", &cb))
     insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
@@ -139,7 +148,7 @@ void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
       ImGui::Text("arch: %zu grains%s", f.arch.size(), clogging);
     ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
     const auto d = core::arch_descriptors(f.arch, pos, rad);
-    ImGui::Text(
+    ImGui::TextWrapped(
         "rise %.3f m, aspect rise/(span/2) %.2f, theta_max %.0f deg, %d defect%s, bead angles sd %.0f deg",
         d.rise, d.aspect, d.theta_max_deg, d.defects, d.defects == 1 ? "" : "s", d.angle_sd_deg);
     std::string members;

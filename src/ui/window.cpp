@@ -377,6 +377,14 @@ void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const r
     ImGui::SameLine();
   }
   ImGui::NewLine();
+  if (st.style.color != render::ColorMode::Species && st.style.color != render::ColorMode::Id) {
+    for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
+                   render::Colormap::Cividis}) {
+      if (ImGui::RadioButton(render::colormap_name(m), st.style.colormap == m)) st.style.colormap = m;
+      ImGui::SameLine();
+    }
+    ImGui::NewLine();
+  }
   ImGui::Checkbox("arch", &st.style.show_arch);
   ImGui::SameLine();
   ImGui::Checkbox("force chains", &st.style.chains);
