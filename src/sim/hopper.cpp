@@ -377,7 +377,10 @@ void Hopper::reinject(int id) {
     }
   }
   throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) +
-                           " at t = " + fmt4(t_) + " s");
+                           " at t = " + fmt4(t_) +
+                           " s: the top of the container is full (the outlet passes grains faster than they "
+                           "can fall clear of the top); a taller container (hopper_height or silo_height) or "
+                           "fewer grains leaves room");
 }
 
 core::ContactGraph Hopper::contact_graph() const {
