@@ -255,6 +255,12 @@ TEST_CASE("record tags grains by region at a time and by role (a long-lasting ar
   CHECK_THAT(slurp(d / "a" / "metadata.toml"),
              Catch::Matchers::Contains("tracked_grains = \"" + ids + "\"") &&
                  Catch::Matchers::Contains("track_arch = 1"));
+  // The arch of the first clog as it formed: clogs.csv's first clog; its arch is the one the rule later
+  // removed (the clog lasted to the rule).
+  REQUIRE(cli(base + (d / "c").string() + " --track-clog 1").code == 0);
+  CHECK_THAT(slurp(d / "c" / "metadata.toml"),
+             Catch::Matchers::Contains("track_clog = 1") &&
+                 Catch::Matchers::Contains("tracked_grains = \"" + ids + "\""));
   REQUIRE(cli(base + (d / "b").string() + " --track-region 0.3,0,-0.3,0.5@2").code == 0);
   const std::string meta = slurp(d / "b" / "metadata.toml");
   const auto at = meta.find("tracked_grains = \"");
@@ -264,6 +270,7 @@ TEST_CASE("record tags grains by region at a time and by role (a long-lasting ar
   const std::pair<const char*, const char*> bad[] = {
       {" --track-arch 40", "the run has 1 long-lasting arches"},
       {" --track-arch -1", "expected K >= 1"},
+      {" --track-clog 9", "the run has 1 clogs"},
       {" --track-region 0,0,1@2", "X0,Y0,X1,Y1@T"},
       {" --track-region 0,0,0,1@2", "non-zero width"},
       {" --track-region 0,0,1,1@20", "after the run's end"},

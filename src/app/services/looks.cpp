@@ -52,6 +52,10 @@ void LookOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--track-arch", track_arch,
                  "follow the members of the K-th long-lasting arch (the K-th removal of the clog rule, "
                  "arches.csv's row K), from the start of the movie");
+  cmd.add_option(
+      "--track-clog", track_clog,
+      "follow the members of the arch standing as the K-th clog forms (clogs.csv's row K), from the "
+      "start of the movie");
   cmd.add_option("--trail", trail_s, "length of the tracked grains' trails, s")->capture_default_str();
 }
 
@@ -82,6 +86,8 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   if (!track_region.empty()) parse_region(track_region);
   if (track_arch < 0)
     throw core::InputError("--track-arch " + std::to_string(track_arch) + ": expected K >= 1");
+  if (track_clog < 0)
+    throw core::InputError("--track-clog " + std::to_string(track_clog) + ": expected K >= 1");
   if (chains.empty()) return;
   render::set_chains(style, chains, "--force-chains");
 }
@@ -106,6 +112,11 @@ void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, b
                    core::format_g(r.t, 6).c_str());
     add(ids);
   }
+  if (track_clog > 0) {
+    const std::vector<int> ids = clog_arch_members(scene, track_clog);
+    if (!quiet) std::fprintf(stderr, "siloscope: --track-clog %d: %zu grains\n", track_clog, ids.size());
+    add(ids);
+  }
   if (track_arch > 0) {
     const std::vector<int> ids = long_arch_members(scene, track_arch);
     if (!quiet) std::fprintf(stderr, "siloscope: --track-arch %d: %zu grains\n", track_arch, ids.size());
@@ -121,6 +132,7 @@ io::Facts LookOptions::facts(const render::Style& style) const {
           {"tracked_grains", ids},
           {"track_region", track_region},
           {"track_arch", track_arch},
+          {"track_clog", track_clog},
           {"trail_s", style.trail_s},
           {"force_chains", style.chains},
           {"force_chain_min_N", style.chain_min},

@@ -22,6 +22,7 @@ struct LookOptions {
   std::vector<std::string> track;  // grain ids to follow
   std::string track_region;        // "X0,Y0,X1,Y1@T": the grains whose centres are in this box at T s
   int track_arch = 0;              // K >= 1: the members of the K-th long-lasting arch (the rule removed)
+  int track_clog = 0;              // K >= 1: the members of the arch standing as the K-th clog forms
   double trail_s = 2.0;
 
   void add_to(CLI::App& cmd);

@@ -119,4 +119,32 @@ std::vector<int> long_arch_members(const core::Scene& scene, int k) {
   return ids;
 }
 
+std::vector<int> clog_arch_members(const core::Scene& scene, int k) {
+  Session session({scene});
+  FunctionSink probe;
+  std::vector<int> ids;
+  int formed = 0;
+  double before = 0;
+  probe.on_step = [&](const sim::Hopper& h, size_t) {
+    // A clog is counted when the outlet has been still for clog_min_gap (as clogs.csv and the inspector's
+    // `goto clog K` count them); its arch is the one standing then.
+    const core::Frame f = h.frame(true, false);
+    const bool crossed = before < scene.clog_min_gap && f.since_last_exit >= scene.clog_min_gap;
+    before = f.since_last_exit;
+    if (!crossed || ++formed < k) return true;
+    ids = f.arch;
+    return false;
+  };
+  session.run(scene.duration, FrameClock::none(), {&probe});
+  if (formed < k)
+    throw core::InputError("--track-clog " + std::to_string(k) + ": the run has " + std::to_string(formed) +
+                           " clogs in its " + core::format_g(scene.duration, 6) + " s");
+  if (ids.empty())
+    throw core::InputError(
+        "--track-clog " + std::to_string(k) +
+        ": no arch blocks the outlet as that clog forms (grains resting on the floor or an "
+        "obstacle block it without one)");
+  return ids;
+}
+
 }  // namespace app

@@ -26,6 +26,8 @@ double color_scale_from_data(const core::Scene& scene, bool forces, double secon
 std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, double x1, double y1,
                                double t);
 std::vector<int> long_arch_members(const core::Scene& scene, int k);
+// The members of the arch standing when the k-th clog forms (k >= 1; the outlet still for clog_min_gap).
+std::vector<int> clog_arch_members(const core::Scene& scene, int k);
 
 // The annotations record puts on a panel's frames: the members of the last rule removal, ringed where they
 // stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames
