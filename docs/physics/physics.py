@@ -47,6 +47,16 @@ def ci95(samples):
     return float(a.mean()), float(tq * a.std(ddof=1) / math.sqrt(n)), n
 
 
+def wilson(k, n, z=1.96):
+    """95% Wilson score interval of a proportion k/n."""
+    if n == 0:
+        return math.nan, math.nan
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
 def mean_square_radius(scene):
     sp = scene["species"][0]
     if sp.get("size", "fixed") == "uniform":
@@ -97,7 +107,8 @@ def beverloo(results, out, lines):
             label=rf"Beverloo: $C\phi$ = {c_phi:.2f}, k = {k:.2f}")
     ax.set_xlabel("outlet D / mean grain diameter d")
     ax.set_ylabel("mass flow rate W [kg/s per m of depth]")
-    ax.set_title(f"flat silo W = {scene['silo_width']:g} m, {scene['species'][0]['count']} grains")
+    ax.set_title(f"flat silo {scene['silo_width']:g} m x {scene['silo_height']:g} m, "
+                 f"{scene['species'][0]['count']} grains")
     ax.legend(fontsize=7)
     ys = [(m / (scene["density"] * math.sqrt(G))) ** (2 / 3) for m in means]
     bx.plot(ds / d, ys, "o")
@@ -121,8 +132,11 @@ def beverloo(results, out, lines):
               f"- **C phi = {c_phi:.3f}** (95% interval {c_lo:.3f}-{c_hi:.3f}), **k = {k:.2f}** ({k_lo:.2f}-{k_hi:.2f})",
               "- mass flow rate per outlet: " + ", ".join(
                   f"D = {D / d:g} d: {m:.3f} +- {e:.3f} kg/s" for D, m, e in zip(ds, means, errs)),
-              f"- the literature's range for 2D silos: k about 1-2, C phi about 0.6-1 (model.md: this model in a 3 m "
-              f"silo gave k = 1.70 +- 0.07, C phi = 0.95)", "", "![Beverloo fit](figures/beverloo.png)", ""]
+              f"- the literature's range for 2D silos: k about 1-2, C phi about 0.6-1: both fitted values lie in it. "
+              f"model.md quotes k = 1.70 +- 0.07, C phi = 0.95 for this model in a 3 m silo; the fit here differs "
+              f"beyond both intervals, and model.md does not say how that figure was measured (the silo's height, "
+              f"the fill, whether the clogged time counts), so the two are not directly comparable", "",
+              "![Beverloo fit](figures/beverloo.png)", ""]
 
 
 def avalanche_table(campaign):
@@ -235,7 +249,9 @@ def harmonic(results, out, lines):
         ax.step(s["t_s"], s["survival"], where="post", color=color, label=f"$\\Gamma$ = {g:g}")
         ax.fill_between(s["t_s"], s["survival_lo95"], s["survival_hi95"], step="post", color=color, alpha=0.15, lw=0)
         clogs, broken, censored = int(s["clogs"].iloc[0]), int(s["clogs_broken"].iloc[0]), int(s["clogs_run_end"].iloc[0])
-        s10 = float(s[s["t_s"] <= 10]["survival"].iloc[-1]) if (s["t_s"] <= 10).any() else 1.0
+        upto = s[s["t_s"] <= 10]
+        s10 = (float(upto["survival"].iloc[-1]), float(upto["survival_lo95"].iloc[-1]),
+               float(upto["survival_hi95"].iloc[-1])) if len(upto) else (1.0, 1.0, 1.0)
         rows.append((g, clogs, broken, censored, row["q_per_s"], row["q_per_s_ci95"], s10, int(row["n_runs"])))
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -244,7 +260,7 @@ def harmonic(results, out, lines):
     ax.set_title(f"vibrated flat silo, f = {scene['vibration_frequency']:g} Hz, rule off")
     ax.legend(fontsize=7)
     bx.plot([r[0] for r in rows], [r[3] / r[1] if r[1] else math.nan for r in rows], "o-", label="clogs never broken")
-    bx.plot([r[0] for r in rows], [r[6] for r in rows], "s--", label="P(clog lasts > 10 s)")
+    bx.plot([r[0] for r in rows], [r[6][0] for r in rows], "s--", label="P(clog lasts > 10 s)")
     bx.set_xlabel(r"$\Gamma = A (2\pi f)^2 / g$")
     bx.set_ylabel("fraction")
     bx.set_ylim(-0.02, 1.02)
@@ -259,10 +275,17 @@ def harmonic(results, out, lines):
               f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per Gamma. Survival of the clogs' "
               "durations by Kaplan-Meier (the run's end censors the last clog of a run), 95% bands by Greenwood:", "",
               "| Gamma | realizations | clogs | broken by the drive or spontaneous | never broken (censored at the "
-              "run's end) | P(clog lasts > 10 s) | Q [grains/s] |", "|---|---|---|---|---|---|---|"]
+              "run's end) | P(clog lasts > 10 s) (95%) | Q [grains/s] |", "|---|---|---|---|---|---|---|"]
     for g, clogs, broken, censored, q, qh, s10, n in rows:
-        lines.append(f"| {g:g} | {n} | {clogs} | {broken} | {censored} ({censored / clogs:.0%} of clogs) | "
-                     f"{s10:.2f} | {q:.2f} +- {qh:.2f} |" if clogs else f"| {g:g} | {n} | 0 | - | - | - | {q:.2f} |")
+        lo, hi = wilson(censored, clogs)
+        lines.append(f"| {g:g} | {n} | {clogs} | {broken} | {censored} ({censored / clogs:.0%}, 95% {lo:.0%}-{hi:.0%}) | "
+                     f"{s10[0]:.2f} ({s10[1]:.2f}-{s10[2]:.2f}) | {q:.2f} +- {qh:.2f} |"
+                     if clogs else f"| {g:g} | {n} | 0 | - | - | - | {q:.2f} |")
+    lines += ["", "The share never broken is of clogs (Wilson interval; clogs of one realization are not "
+              "independent, so it is a little optimistic); P(clog lasts > 10 s) is the Kaplan-Meier estimate with "
+              "its Greenwood band. At Gamma = 0.5 (the floor's acceleration never reaches g) most clogs stand "
+              "to the end of the run; from Gamma = 1 on almost every clog breaks within seconds, faster the "
+              "stronger the drive (the survival curves move left as Gamma grows)."]
     lines += ["", "![Harmonic drive](figures/harmonic.png)", ""]
 
 

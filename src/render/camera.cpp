@@ -157,7 +157,8 @@ CameraPath parse_camera_path(const std::string& spec) {
     bool starts_key = false;
     if (colon != std::string::npos && colon > 0) {
       char* end = nullptr;
-      std::strtod(part.substr(0, colon).c_str(), &end);
+      const std::string head = part.substr(0, colon);  // alive while `end` points into it
+      std::strtod(head.c_str(), &end);
       starts_key = *end == '\0';
     }
     if (starts_key || cur.empty()) {
@@ -173,7 +174,8 @@ CameraPath parse_camera_path(const std::string& spec) {
     if (colon == std::string::npos || colon == 0)
       throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
     char* end = nullptr;
-    const double t = std::strtod(item.substr(0, colon).c_str(), &end);
+    const std::string time = item.substr(0, colon);  // alive while `end` points into it
+    const double t = std::strtod(time.c_str(), &end);
     if (*end != '\0' || !std::isfinite(t))
       throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
     CameraSpec cam;

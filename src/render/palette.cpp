@@ -105,7 +105,8 @@ void set_color_range(Style& style, const std::string& text) {
     const size_t colon = text.find(':');
     char* end = nullptr;
     if (colon != std::string::npos) {
-      lo = std::strtod(text.substr(0, colon).c_str(), &end);
+      const std::string bottom = text.substr(0, colon);  // alive while `end` points into it
+      lo = std::strtod(bottom.c_str(), &end);
       if (*end != '\0' || colon == 0) lo = NAN;
     }
     const std::string top = colon == std::string::npos ? text : text.substr(colon + 1);
