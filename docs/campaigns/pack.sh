@@ -2,7 +2,7 @@
 # Pack a finished campaign's results for the repository: what `analyze` needs and nothing more.
 #   docs/campaigns/pack.sh RESULTS DEST      e.g. docs/campaigns/pack.sh results/obstacle docs/campaigns/obstacle
 # DEST gets campaign.toml, runs/runs.tar.xz (each realization's metadata.toml, exits.csv, clogs.csv, arches.csv,
-# and any *.refused.toml) and analysis/ (points, realizations, survival, avalanches, metadata). The test suite
+# and any *.refused.toml) and analysis/ (points, realizations, survival, avalanches, clog survival, species, metadata). The test suite
 # re-analyses every pack and compares.
 set -euo pipefail
 src=${1:?usage: pack.sh RESULTS DEST}
@@ -19,7 +19,7 @@ tar -C "$src" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T /t
   | xz -9e > "$dest/runs/runs.tar.xz.partial"
 rm -f /tmp/pack-$$.list
 mv "$dest/runs/runs.tar.xz.partial" "$dest/runs/runs.tar.xz"
-for f in points.csv realizations.csv survival.csv avalanches.csv metadata.toml; do
+for f in points.csv realizations.csv survival.csv avalanches.csv clog_survival.csv species.csv metadata.toml; do
   cp "$src/analysis/$f" "$dest/analysis/"
 done
 echo "packed $(tar -tJf "$dest/runs/runs.tar.xz" | grep -c metadata.toml) realizations into $dest ($(du -sh "$dest" | cut -f1))"
