@@ -65,6 +65,13 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   return d;
 }
 
+// How many times `what` occurs in `text` (overlapping occurrences counted).
+inline long count_of(const std::string& text, const std::string& what) {
+  long c = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++c;
+  return c;
+}
+
 inline std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream ss;

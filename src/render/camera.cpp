@@ -212,4 +212,21 @@ View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) cons
   return a;
 }
 
+long Freeze::copies(double fps) const {
+  return at == At::None ? 0 : std::max(0L, std::lround(seconds * fps) - 1);
+}
+
+Freeze parse_freeze(const std::string& event, const std::string& seconds, const std::string& what,
+                    const std::string& form) {
+  Freeze f;
+  char* end = nullptr;
+  const double s = std::strtod(seconds.c_str(), &end);
+  if ((event != "clog" && event != "rule") || seconds.empty() || *end != '\0' || !(s > 0) || s > 60)
+    throw core::InputError(what + ": expected " + form + ", 0 < SECONDS <= 60 (video seconds)");
+  f.at = event == "clog" ? Freeze::At::Clog : Freeze::At::Rule;
+  f.seconds = s;
+  f.text = event + ":" + seconds;
+  return f;
+}
+
 }  // namespace render

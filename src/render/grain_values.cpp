@@ -88,4 +88,9 @@ const std::vector<float>& GrainValues::update(const core::Frame& f, const Style&
   return values_;
 }
 
+void GrainValues::settle_scale(Style& style) const {
+  if (style.color == ColorMode::Displacement && !(style.displacement_max > 0))
+    style.displacement_max = std::max(largest_, style.color_min + 1e-6);
+}
+
 }  // namespace render

@@ -29,6 +29,9 @@ class GrainValues {
                                    const core::Frame* reference = nullptr);
   // The largest finite value of the last update (the top of a scale taken from each frame's data).
   double largest() const { return largest_; }
+  // A displacement scale taken from the data (displacement_max 0): set it to this frame's largest, as the
+  // colour bar and the grains show it. Any other style is left as it is.
+  void settle_scale(Style& style) const;
 
  private:
   std::vector<float> values_, ref_x_, ref_y_;

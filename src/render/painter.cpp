@@ -35,9 +35,7 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
       if (valued) {
         while (values_.size() <= k) values_.emplace_back();
         values = &values_[k].update(*p.frame, panel_style, p.reference);
-        // A displacement scale taken from the data: this frame's largest (the colour bar shows it).
-        if (panel_style.color == ColorMode::Displacement && !(panel_style.displacement_max > 0))
-          panel_style.displacement_max = std::max(values_[k].largest(), panel_style.color_min + 1e-6);
+        values_[k].settle_scale(panel_style);  // the colour bar shows the same scale
       }
       DrawList list =
           build_draw_list(*p.frame, *p.geometry, panel_style, {}, values, color_scale_max(panel_style));

@@ -93,6 +93,20 @@ double color_scale_max(const Style& s) {
   }
 }
 
+namespace {
+// "A" or "A:B", finite numbers, nothing else: the number of values read (1 or 2), 0 if malformed.
+int read_range(const std::string& text, double& a, double& b) {
+  const size_t colon = text.find(':');
+  auto number = [](const std::string& t, double& v) {
+    char* end = nullptr;
+    v = std::strtod(t.c_str(), &end);
+    return !t.empty() && *end == '\0' && std::isfinite(v);
+  };
+  if (colon == std::string::npos) return number(text, a) ? 1 : 0;
+  return number(text.substr(0, colon), a) && number(text.substr(colon + 1), b) ? 2 : 0;
+}
+}  // namespace
+
 void set_color_range(Style& style, const std::string& text) {
   if (style.color == ColorMode::Species || style.color == ColorMode::Id)
     throw core::InputError("a colour range applies to speed, force, displacement and coordination, not " +
@@ -102,16 +116,12 @@ void set_color_range(Style& style, const std::string& text) {
     if (style.color != ColorMode::Displacement)
       throw core::InputError("auto: each frame's own range is for displacement; give MAX or MIN:MAX");
   } else {
-    const size_t colon = text.find(':');
-    char* end = nullptr;
-    if (colon != std::string::npos) {
-      const std::string bottom = text.substr(0, colon);  // alive while `end` points into it
-      lo = std::strtod(bottom.c_str(), &end);
-      if (*end != '\0' || colon == 0) lo = NAN;
-    }
-    const std::string top = colon == std::string::npos ? text : text.substr(colon + 1);
-    hi = std::strtod(top.c_str(), &end);
-    if (*end != '\0' || top.empty() || !std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo) || lo < 0)
+    // MAX, or MIN:MAX.
+    double a = 0, b = 0;
+    const int n = read_range(text, a, b);
+    lo = n == 2 ? a : 0;
+    hi = n == 2 ? b : a;
+    if (n == 0 || !(hi > lo) || lo < 0)
       throw core::InputError("colour range " + text +
                              ": expected MAX or MIN:MAX with 0 <= MIN < MAX, or auto");
   }
@@ -133,17 +143,9 @@ void set_color_range(Style& style, const std::string& text) {
 
 void set_chains(Style& style, const std::string& text, const std::string& option) {
   // MIN[:MAX] (N): contacts at least MIN drawn, width and colour growing up to MAX.
-  const size_t colon = text.find(':');
-  char* end = nullptr;
-  const double lo = std::strtod(text.c_str(), &end);
-  double hi = Style{}.chain_max;
-  bool ok = end != text.c_str() && (*end == '\0' || *end == ':') && lo >= 0 && std::isfinite(lo);
-  if (ok && colon != std::string::npos) {
-    const char* s = text.c_str() + colon + 1;
-    hi = std::strtod(s, &end);
-    ok = end != s && *end == '\0' && std::isfinite(hi);
-  }
-  if (!ok || !(hi > lo)) {
+  double lo = 0, hi = Style{}.chain_max;
+  const int n = read_range(text, lo, hi);
+  if (n == 0 || lo < 0 || !(hi > lo)) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", Style{}.chain_max);
     throw core::InputError(

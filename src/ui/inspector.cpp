@@ -8,30 +8,12 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/scene.h"
 #include "render/draw_list.h"
 #include "render/grain_values.h"
 
 namespace ui {
-
-namespace {
-long to_long(const std::string& s, const char* what) {
-  char* end = nullptr;
-  long v = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || *end) throw core::InputError(std::string(what) + " '" + s + "' is not a whole number");
-  return v;
-}
-double to_double(const std::string& s, const char* what) {
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end || !std::isfinite(v))
-    throw core::InputError(std::string(what) + " '" + s + "' is not a number");
-  return v;
-}
-const char* kCommands =
-    "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
-    "freeze, snapshot, export, print";
-}  // namespace
 
 Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
     : traj_(traj), files_(files), scene_(scene), geo_(core::make_geometry(scene)) {
@@ -236,6 +218,34 @@ void Inspector::show_arch(bool on) {
   log(on ? "arch on" : "arch off");
 }
 
+void Inspector::track_region(double x0, double y0, double x1, double y1) {
+  const std::string text = core::format_g(x0, 6) + "," + core::format_g(y0, 6) + "," + core::format_g(x1, 6) +
+                           "," + core::format_g(y1, 6);
+  if (x0 > x1) std::swap(x0, x1);
+  if (y0 > y1) std::swap(y0, y1);
+  std::vector<int> ids;
+  const auto& ps = traj_.frame(frame_).particles;
+  for (size_t i = 0; i < ps.size(); ++i)
+    if (ps[i].x >= x0 && ps[i].x <= x1 && ps[i].y >= y0 && ps[i].y <= y1) ids.push_back(static_cast<int>(i));
+  if (ids.empty()) throw core::InputError("track region " + text + ": no grain's centre is in the box");
+  style.tracked = ids;
+  log("track region " + text);
+}
+
+void Inspector::track_arch_of(bool clog, long k) {
+  // Found as goto finds it, without moving (the frame and the history stay).
+  const long keep = frame_;
+  const size_t logged = history_.size();
+  clog ? goto_clog(k) : goto_arch(k);
+  const std::vector<int> ids = traj_.frame(frame_).arch;
+  frame_ = keep;
+  history_.resize(logged);
+  const std::string line = std::string("track ") + (clog ? "clog " : "arch ") + std::to_string(k);
+  if (ids.empty()) throw core::InputError(line + ": no arch stands in that frame");
+  style.tracked = ids;
+  log(line);
+}
+
 std::string Inspector::print_frame() {
   const core::Frame f = current();
   std::ostringstream o;
@@ -265,8 +275,7 @@ std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painte
     render::GrainValues gv;
     const core::Frame ref = reference_frame();
     const std::vector<float>& values = gv.update(f, st, ref.particles.empty() ? nullptr : &ref);
-    if (st.color == render::ColorMode::Displacement && !(st.displacement_max > 0))
-      st.displacement_max = std::max(gv.largest(), st.color_min + 1e-6);
+    gv.settle_scale(st);
     const std::string table =
         render::draw_list_csv(render::build_draw_list(f, geo_, st, {}, &values, render::color_scale_max(st)),
                               v->cam.cx, v->cam.cy, v->cam.angle, half_w, half_h);
@@ -300,16 +309,18 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
   const std::string path = output_name(pattern, "export " + pattern);
   auto movie = files_->open_movie(path, width, height, fps);
   const long keep = frame_;
-  const long copies = freeze_at ? std::max(0L, std::lround(freeze_s * fps) - 1) : 0;
+  const long copies = freeze.copies(fps);
+  using At = render::Freeze::At;
   for (long k = from; k <= to; ++k) {
     frame_ = k;
     const core::Image img = render_current(*painter, width, height);
     movie->add(img);
     // A freeze: the clog timer crossing clog_min_gap here, or the rule firing before the next frame.
-    const bool event = freeze_at == 1 ? k > 0 && traj_.since_last_exit(k - 1) < traj_.clog_min_gap() &&
-                                            traj_.since_last_exit(k) >= traj_.clog_min_gap()
-                                      : freeze_at == 2 && k + 1 < traj_.size() &&
-                                            traj_.long_arches(k + 1) > traj_.long_arches(k);
+    const bool event = freeze.at == At::Clog
+                           ? k > 0 && core::clog_formed(traj_.since_last_exit(k - 1),
+                                                        traj_.since_last_exit(k), traj_.clog_min_gap())
+                           : freeze.at == At::Rule && k + 1 < traj_.size() &&
+                                 traj_.long_arches(k + 1) > traj_.long_arches(k);
     for (long c = 0; event && c < copies; ++c) movie->add(img);
   }
   frame_ = keep;
@@ -334,212 +345,6 @@ std::string Inspector::export_clog(const std::string& pattern, int width, int he
   const long from = std::max(0L, hit->first - std::lround(1.0 / dt));
   const long to = std::min(traj_.size() - 1, hit->last + std::lround(0.5 / dt));
   return export_frames(pattern, from, to, width, height, fps, painter);
-}
-
-namespace {
-// A script line's words, a comment cut off.
-std::vector<std::string> words_of(const std::string& line) {
-  std::stringstream ss(line);
-  std::vector<std::string> a;
-  for (std::string word; ss >> word;) {
-    if (word[0] == '#') break;
-    a.push_back(word);
-  }
-  return a;
-}
-}  // namespace
-
-void Inspector::execute(const std::string& line, Painter* painter) {
-  const std::vector<std::string> a = words_of(line);
-  if (a.empty()) return;
-  const std::string& cmd = a[0];
-  auto need = [&](size_t n, const char* usage) {
-    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
-  };
-  try {
-    if (cmd == "goto") {
-      if (a.size() == 2 && a[1] == "start") return goto_start();
-      if (a.size() == 2 && a[1] == "end") return goto_end();
-      need(2, "goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end");
-      if (a[1] == "frame") return goto_frame(to_long(a[2], "frame"));
-      if (a[1] == "time") return goto_time(to_double(a[2], "time"));
-      if (a[1] == "clog") return goto_clog(to_long(a[2], "clog"));
-      if (a[1] == "arch") return goto_arch(to_long(a[2], "arch"));
-      throw core::InputError("goto frame|time|clog|arch|start|end");
-    }
-    if (cmd == "step") return need(1, "step N"), step_frames(to_long(a[1], "step"));
-    if (cmd == "next" || cmd == "prev") {
-      need(1, "next clog | prev clog");
-      if (a[1] != "clog") throw core::InputError("usage: next clog | prev clog");
-      return next_clog(cmd == "next");
-    }
-    if (cmd == "zoom") {
-      if (a.size() == 3 && a[1] == "by") return zoom_by(to_double(a[2], "zoom factor"));
-      need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
-      return set_camera(render::parse_camera(a[1]));
-    }
-    if (cmd == "pan")
-      return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
-    if (cmd == "color") {
-      // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
-      // displacement; speed and force keep their defaults) and, for displacement, the reference time.
-      const char* usage =
-          "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
-      if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
-      const render::ColorMode m = render::parse_color_mode(a[1]);
-      size_t k = 2;
-      render::Style next = style;
-      next.color = m;
-      if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
-      if (k < a.size()) {
-        if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
-          throw core::InputError(std::string("usage: ") + usage + " (from T: displacement only)");
-        next.displacement_from = to_double(a[k + 1], "from");
-      }
-      style = next;
-      return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
-    }
-    if (cmd == "chains") {
-      // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
-      need(1, "chains MIN[:MAX]|off (newtons)");
-      if (a[1] == "off") return style.chains = false, log("chains off");
-      if (!traj_.has_contacts())
-        throw core::InputError(
-            "chains: this trajectory has no contacts beside it (contacts.sscon: record and run "
-            "--trajectory-fps write one; runs made before they did have none)");
-      render::set_chains(style, a[1], "chains");
-      return log("chains " + a[1]);
-    }
-    if (cmd == "camera-path") {
-      // camera-path T:CAMERA,... | off: pictures follow the key frames by each frame's time (record
-      // --camera-path).
-      need(1, "camera-path T:CAMERA,T:CAMERA,... | camera-path off");
-      if (a[1] == "off") return path = {}, log("camera-path off");
-      path = render::parse_camera_path(a[1]);
-      return log("camera-path " + a[1]);
-    }
-    if (cmd == "freeze") {
-      // freeze clog|rule SECONDS | off: clips hold the picture at each event (record --freeze).
-      if (a.size() == 2 && a[1] == "off") return freeze_at = 0, log("freeze off");
-      need(2, "freeze clog|rule SECONDS | freeze off");
-      const double sec = to_double(a[2], "SECONDS");
-      if ((a[1] != "clog" && a[1] != "rule") || !(sec > 0) || sec > 60)
-        throw core::InputError(
-            "usage: freeze clog|rule SECONDS (0 < SECONDS <= 60, video seconds) | freeze off");
-      freeze_at = a[1] == "clog" ? 1 : 2;
-      freeze_s = sec;
-      return log("freeze " + a[1] + " " + a[2]);
-    }
-    if (cmd == "colormap")
-      return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
-                                                                log("colormap " + a[1]);
-    if (cmd == "palette")
-      return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]);
-    if (cmd == "overlay")
-      return need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale"), set_overlay(a[1]);
-    if (cmd == "arch") {
-      need(1, "arch on|off");
-      if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
-      return show_arch(a[1] == "on");
-    }
-    if (cmd == "track") {
-      // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
-      // track region X0,Y0,X1,Y1: the grains whose centres are in the box in this frame; track arch K: the
-      // members of the K-th long-lasting arch (the arch shown on the frame before the rule removed it);
-      // track clog K: the arch standing where clog K is shown (goto clog K).
-      if (a.size() == 3 && (a[1] == "region" || a[1] == "arch" || a[1] == "clog")) {
-        std::vector<int> ids;
-        if (a[1] == "region") {
-          double x0, y0, x1, y1;
-          char tail = 0;
-          if (std::sscanf(a[2].c_str(), "%lf,%lf,%lf,%lf%c", &x0, &y0, &x1, &y1, &tail) != 4)
-            throw core::InputError("usage: track region X0,Y0,X1,Y1 (metres)");
-          if (x0 > x1) std::swap(x0, x1);
-          if (y0 > y1) std::swap(y0, y1);
-          const auto& ps = traj_.frame(frame_).particles;
-          for (size_t i = 0; i < ps.size(); ++i)
-            if (ps[i].x >= x0 && ps[i].x <= x1 && ps[i].y >= y0 && ps[i].y <= y1)
-              ids.push_back(static_cast<int>(i));
-          if (ids.empty())
-            throw core::InputError("track region " + a[2] + ": no grain's centre is in the box");
-        } else {
-          // Found as goto finds it, without moving (the frame and the history stay).
-          const long keep = frame_;
-          const size_t logged = history_.size();
-          a[1] == "arch" ? goto_arch(to_long(a[2], "K")) : goto_clog(to_long(a[2], "K"));
-          ids = traj_.frame(frame_).arch;
-          frame_ = keep;
-          history_.resize(logged);
-          if (ids.empty())
-            throw core::InputError("track " + a[1] + " " + a[2] + ": no arch stands in that frame");
-        }
-        style.tracked = ids;
-        log("track " + a[1] + " " + a[2]);
-        return;
-      }
-      need(1, "track ID[,ID...]|off | track region X0,Y0,X1,Y1 | track arch K | track clog K");
-      style.tracked.clear();
-      if (a[1] == "off") return;
-      const long n = static_cast<long>(traj_.frame(frame_).particles.size());
-      std::stringstream ids(a[1]);
-      for (std::string id; std::getline(ids, id, ',');) {
-        const long v = to_long(id, "ID");
-        if (v < 0 || v >= n)
-          throw core::InputError("track: grain " + id + " does not exist; ids run from 0 to " +
-                                 std::to_string(n - 1));
-        style.tracked.push_back(static_cast<int>(v));
-      }
-      return;
-    }
-    if (cmd == "print") return (void)print_frame();
-    if (cmd == "snapshot") {
-      if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png|.svg|.pdf [WxH]");
-      int w = 1920, h = 1080;
-      if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
-      return (void)snapshot(a[1], w, h, painter);
-    }
-    if (cmd == "export") return export_command(a, painter);
-  } catch (const core::InputError& e) {
-    throw core::InputError("'" + line + "': " + e.what());
-  }
-  throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
-}
-
-void Inspector::export_command(const std::vector<std::string>& a, Painter* painter) {
-  const bool clog = a.size() >= 3 && a[1] == "clog";
-  if (clog ? a.size() > 5 : (a.size() < 4 || a.size() > 6))
-    throw core::InputError(
-        clog ? "usage: export clog FILE.mp4 [WxH] [FPS]"
-             : "usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
-  const size_t opt = clog ? 3 : 4;  // index of the first optional argument
-  int width = 1280, height = 720;
-  if (a.size() > opt) render::parse_size(a[opt], "export size", width, height);
-  const int fps = a.size() > opt + 1
-                      ? static_cast<int>(to_long(a[opt + 1], "FPS"))
-                      : std::max(1, static_cast<int>(std::lround(1.0 / traj_.frame_interval())));
-  if (clog)
-    export_clog(a[2], width, height, fps, painter);
-  else
-    export_frames(a[1], to_long(a[2], "FROM"), to_long(a[3], "TO"), width, height, fps, painter);
-}
-
-int run_script(Inspector& insp, Painter& painter, const std::string& path) {
-  core::check_text_file(path, "inspector script", "");
-  std::ifstream in(path);
-  if (!in) throw core::InputError(path + ": cannot open script");
-  int line_no = 0, commands = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_no;
-    try {
-      const size_t before = line.find_first_not_of(" \t");
-      if (before == std::string::npos || line[before] == '#') continue;
-      insp.execute(line, &painter);
-      ++commands;
-    } catch (const core::InputError& e) {
-      throw core::InputError(path + ":" + std::to_string(line_no) + ": " + e.what());
-    }
-  }
-  return commands;
 }
 
 }  // namespace ui

@@ -65,6 +65,10 @@ class Inspector {
   void set_palette(render::Palette p, const std::string& name);
   void set_overlay(const std::string& spec);
   void show_arch(bool on);
+  // Follow the grains whose centres are in the box (m) in this frame, or the members of the arch where
+  // `goto clog K` / `goto arch K` lands (found without moving).
+  void track_region(double x0, double y0, double x1, double y1);
+  void track_arch_of(bool clog, long k);
   std::string print_frame();
   // Files are never written over; patterns may hold {frame} and {t}. Return the path written.
   std::string snapshot(const std::string& pattern, int w, int h, Painter* painter);
@@ -95,10 +99,8 @@ class Inspector {
   // A camera move (script `camera-path`): while set, pictures follow it by each frame's time (zoom and pan
   // do not apply).
   render::CameraPath path;
-  // Clips hold the picture this many video seconds at each clog as it forms (freeze_at 1) or the last frame
-  // before the clog rule fires (2); 0: off. Script `freeze`.
-  int freeze_at = 0;
-  double freeze_s = 0;
+  // Clips hold the picture at each clog as it forms or before the clog rule fires (script `freeze`).
+  render::Freeze freeze;
   double zoom = 1.0;     // magnification on top of the preset
   core::Vec2 pan{0, 0};  // m
   render::Style style;

@@ -151,11 +151,7 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   // Vector: no bitmap anywhere, grains as paths (about 60 in each outlet view), labels as text with the
   // arch's descriptors.
   const std::string svg = slurp(d / "sheet.svg");
-  auto count = [](const std::string& text, const std::string& what) {
-    long c = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++c;
-    return c;
-  };
+  const auto count = test::count_of;
   CHECK(count(svg, "<image") == 0);
   CHECK(count(svg, "<path") > 40 * n);
   CHECK(count(svg, "\u03b8max") == n + 1);  // each tile, and the footer that explains it

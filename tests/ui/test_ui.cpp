@@ -483,11 +483,7 @@ TEST_CASE("the inspector draws force chains from a recording's contacts, and say
   CHECK(purple > 50);
   // The vector snapshots: no bitmap, grains and chains as paths, the caption as text.
   const std::string svg = test::slurp(d / "v.svg"), plain = test::slurp(d / "plain.svg");
-  auto count = [](const std::string& text, const std::string& what) {
-    long c = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++c;
-    return c;
-  };
+  const auto count = test::count_of;
   CHECK(count(svg, "<image") == 0);
   CHECK(count(plain, "<path") > 60);                        // the grains in the outlet view, the walls
   CHECK(count(svg, "<path") > count(plain, "<path") + 10);  // and the chains

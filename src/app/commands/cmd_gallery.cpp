@@ -9,7 +9,6 @@
 #include <filesystem>
 
 #include "app/services/common.h"
-#include "app/services/looks.h"
 #include "app/services/process.h"
 #include "app/services/session.h"
 #include "core/arch.h"
@@ -71,12 +70,7 @@ int gallery(const GalleryOptions& o) {
 
   render::Style style;
   style.palette = render::parse_palette(o.palette);
-  if (!o.chains.empty()) {
-    LookOptions looks;  // the same option, parsed and checked as record's
-    looks.chains = o.chains;
-    render::OverlayOptions unused;
-    looks.apply(1, false, style, unused);
-  }
+  if (!o.chains.empty()) render::set_chains(style, o.chains, "--force-chains");  // as record's
   const core::Geometry geo = core::make_geometry(scene);
   // The outlet camera of a square tile: the window each tile shows.
   const render::View view = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile).front();

@@ -156,27 +156,8 @@ struct Plan {
   render::Style style;
   render::OverlayOptions overlay;
   render::CameraPath path;  // a camera move (empty: the camera stands)
-  enum class FreezeAt { None, Clog, Rule } freeze_at = FreezeAt::None;
-  double freeze_s = 0;  // video seconds each freeze holds its frame
+  render::Freeze freeze;    // --freeze EVENT:SECONDS (off: none)
 };
-
-// --freeze EVENT:SECONDS: hold the picture when a clog forms (the frame where the outlet has been still for
-// clog_min_gap, so the arch is up) or when the clog rule is about to fire (the last frame before it).
-void parse_freeze(const std::string& text, const core::Scene& scene, Plan& plan) {
-  const size_t colon = text.find(':');
-  const std::string event = text.substr(0, colon);
-  char* end = nullptr;
-  const double s = colon == std::string::npos ? NAN : std::strtod(text.c_str() + colon + 1, &end);
-  if ((event != "clog" && event != "rule") || colon == std::string::npos || *end != '\0' || !(s > 0) ||
-      s > 60)
-    throw core::InputError("--freeze " + text +
-                           ": expected clog:SECONDS or rule:SECONDS, 0 < SECONDS <= 60 (video seconds)");
-  if (event == "rule" && !core::resolve(scene).clog_rule)
-    throw core::InputError(
-        "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
-  plan.freeze_at = event == "clog" ? Plan::FreezeAt::Clog : Plan::FreezeAt::Rule;
-  plan.freeze_s = s;
-}
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   Plan plan;
@@ -212,7 +193,15 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   plan.overlay.place_clear = !plan.overlay.plot;
   const render::CameraSpec camera = render::parse_camera(o.camera);
   if (!o.camera_path.empty()) plan.path = render::parse_camera_path(o.camera_path);
-  if (!o.freeze.empty()) parse_freeze(o.freeze, scene, plan);
+  if (!o.freeze.empty()) {
+    const size_t colon = o.freeze.find(':');
+    plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
+                                       colon == std::string::npos ? "" : o.freeze.substr(colon + 1),
+                                       "--freeze " + o.freeze, "clog:SECONDS or rule:SECONDS");
+    if (plan.freeze.at == render::Freeze::At::Rule && !core::resolve(scene).clog_rule)
+      throw core::InputError(
+          "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
+  }
   plan.style.colormap = render::parse_colormap(o.colormap);
   if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
     throw core::InputError("--displacement-from " + num6(o.displacement_from) +
@@ -292,14 +281,12 @@ class MovieSink : public Sink {
     slow_frames += tick.slow;
     sim_seconds += since(t0_);
     if (freeze) {
-      // Hold this picture for freeze_s of video (the frame itself is the first of them).
-      const long copies = std::max(0L, std::lround(plan_.freeze_s * clock_.video_fps) - 1);
+      // Hold this picture for the freeze's seconds of video (the frame itself is the first of them).
+      const long copies = plan_.freeze.copies(clock_.video_fps);
       for (auto& n : pf.notes)
-        if (n.caption.empty())
-          n.caption = plan_.freeze_at == Plan::FreezeAt::Clog ? "clog formed" : "the clog rule fires next";
+        if (n.caption.empty()) n.caption = plan_.freeze.caption();
       for (long c = 0; c < copies && open_; ++c) open_ = pipeline_.push(PipelineFrame(pf));
       frozen_frames += copies;
-      ++freezes_;
     }
     if (open_) open_ = pipeline_.push(std::move(pf));
     t0_ = Clock::now();
@@ -311,18 +298,17 @@ class MovieSink : public Sink {
   bool done() const override { return !open_; }
   double last_t = 0, sim_seconds = 0;
   long slow_frames = 0, frozen_frames = 0;
-  long freeze_count() const { return freezes_; }
 
  private:
   // Whether panel i's frame is a freeze's event: the clog timer crossing clog_min_gap (a clog has formed), or
   // the last frame before the clog rule fires (the timer within one frame of clog_timeout).
   bool freezes(size_t i, const core::Frame& f) {
-    if (plan_.freeze_at == Plan::FreezeAt::None) return false;
+    if (!plan_.freeze) return false;
     while (last_timer_.size() <= i) last_timer_.push_back(0);
     const double before = last_timer_[i], now = f.since_last_exit;
     last_timer_[i] = now;
     const core::Scene& sc = panels_[i].scene;
-    if (plan_.freeze_at == Plan::FreezeAt::Clog) return before < sc.clog_min_gap && now >= sc.clog_min_gap;
+    if (plan_.freeze.at == render::Freeze::At::Clog) return core::clog_formed(before, now, sc.clog_min_gap);
     const double step = clock_.frame_interval;
     return now < sc.clog_timeout && now + step >= sc.clog_timeout && !f.arch.empty();
   }
@@ -333,7 +319,6 @@ class MovieSink : public Sink {
   double speed_;
   int panel_w_, height_;
   std::vector<double> last_timer_;
-  long freezes_ = 0;
   Clock::time_point t0_;
   bool open_ = true;
 };

@@ -78,26 +78,24 @@ std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, d
                                double t) {
   Session session({scene});
   std::vector<int> ids;
-  bool taken = false;
-  FunctionSink probe;
-  probe.on_step = [&](const sim::Hopper& h, size_t) {
-    if (h.time() < t - 0.5 * scene.dt) return true;
+  auto take = [&](const sim::Hopper& h) {
     const core::Frame f = h.frame(false, false);
     for (size_t i = 0; i < f.particles.size(); ++i) {
       const auto& p = f.particles[i];
       if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) ids.push_back(static_cast<int>(i));
     }
-    taken = true;
+  };
+  if (t < 0.5 * scene.dt) {  // at the opening: no step is taken
+    take(session.world(0));
+    return ids;
+  }
+  FunctionSink probe;
+  probe.on_step = [&](const sim::Hopper& h, size_t) {
+    if (h.time() < t - 0.5 * scene.dt) return true;
+    take(h);
     return false;
   };
-  session.run(std::max(t, 0.0) + scene.dt, FrameClock::none(), {&probe});
-  if (!taken) {  // t at the opening: no step has been taken yet
-    const core::Frame f = session.world(0).frame(false, false);
-    for (size_t i = 0; i < f.particles.size(); ++i) {
-      const auto& p = f.particles[i];
-      if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) ids.push_back(static_cast<int>(i));
-    }
-  }
+  session.run(t + scene.dt, FrameClock::none(), {&probe});
   return ids;
 }
 
@@ -129,7 +127,7 @@ std::vector<int> clog_arch_members(const core::Scene& scene, int k) {
     // A clog is counted when the outlet has been still for clog_min_gap (as clogs.csv and the inspector's
     // `goto clog K` count them); its arch is the one standing then.
     const core::Frame f = h.frame(true, false);
-    const bool crossed = before < scene.clog_min_gap && f.since_last_exit >= scene.clog_min_gap;
+    const bool crossed = core::clog_formed(before, f.since_last_exit, scene.clog_min_gap);
     before = f.since_last_exit;
     if (!crossed || ++formed < k) return true;
     ids = f.arch;

@@ -1,0 +1,212 @@
+// The inspector's script language (docs/inspector.md): each line parsed into one of the Inspector's typed
+// actions (ui/inspector.h), which do the work and log the line that repeats them.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "render/camera.h"
+#include "render/palette.h"
+#include "ui/inspector.h"
+
+namespace ui {
+
+namespace {
+long to_long(const std::string& s, const char* what) {
+  char* end = nullptr;
+  long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end) throw core::InputError(std::string(what) + " '" + s + "' is not a whole number");
+  return v;
+}
+double to_double(const std::string& s, const char* what) {
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || !std::isfinite(v))
+    throw core::InputError(std::string(what) + " '" + s + "' is not a number");
+  return v;
+}
+const char* kCommands =
+    "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
+    "freeze, snapshot, export, print";
+
+// A script line's words, a comment cut off.
+std::vector<std::string> words_of(const std::string& line) {
+  std::stringstream ss(line);
+  std::vector<std::string> a;
+  for (std::string word; ss >> word;) {
+    if (word[0] == '#') break;
+    a.push_back(word);
+  }
+  return a;
+}
+}  // namespace
+
+void Inspector::execute(const std::string& line, Painter* painter) {
+  const std::vector<std::string> a = words_of(line);
+  if (a.empty()) return;
+  const std::string& cmd = a[0];
+  auto need = [&](size_t n, const char* usage) {
+    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
+  };
+  try {
+    if (cmd == "goto") {
+      if (a.size() == 2 && a[1] == "start") return goto_start();
+      if (a.size() == 2 && a[1] == "end") return goto_end();
+      need(2, "goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end");
+      if (a[1] == "frame") return goto_frame(to_long(a[2], "frame"));
+      if (a[1] == "time") return goto_time(to_double(a[2], "time"));
+      if (a[1] == "clog") return goto_clog(to_long(a[2], "clog"));
+      if (a[1] == "arch") return goto_arch(to_long(a[2], "arch"));
+      throw core::InputError("goto frame|time|clog|arch|start|end");
+    }
+    if (cmd == "step") return need(1, "step N"), step_frames(to_long(a[1], "step"));
+    if (cmd == "next" || cmd == "prev") {
+      need(1, "next clog | prev clog");
+      if (a[1] != "clog") throw core::InputError("usage: next clog | prev clog");
+      return next_clog(cmd == "next");
+    }
+    if (cmd == "zoom") {
+      if (a.size() == 3 && a[1] == "by") return zoom_by(to_double(a[2], "zoom factor"));
+      need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
+      return set_camera(render::parse_camera(a[1]));
+    }
+    if (cmd == "pan")
+      return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
+    if (cmd == "color") {
+      // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
+      // displacement; speed and force keep their defaults) and, for displacement, the reference time.
+      const char* usage =
+          "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
+      if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
+      const render::ColorMode m = render::parse_color_mode(a[1]);
+      size_t k = 2;
+      render::Style next = style;
+      next.color = m;
+      if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
+      if (k < a.size()) {
+        if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
+          throw core::InputError(std::string("usage: ") + usage + " (from T: displacement only)");
+        next.displacement_from = to_double(a[k + 1], "from");
+      }
+      style = next;
+      return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
+    }
+    if (cmd == "chains") {
+      // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
+      need(1, "chains MIN[:MAX]|off (newtons)");
+      if (a[1] == "off") return style.chains = false, log("chains off");
+      if (!traj_.has_contacts())
+        throw core::InputError(
+            "chains: this trajectory has no contacts beside it (contacts.sscon: record and run "
+            "--trajectory-fps write one; runs made before they did have none)");
+      render::set_chains(style, a[1], "chains");
+      return log("chains " + a[1]);
+    }
+    if (cmd == "camera-path") {
+      // camera-path T:CAMERA,... | off: pictures follow the key frames by each frame's time (record
+      // --camera-path).
+      need(1, "camera-path T:CAMERA,T:CAMERA,... | camera-path off");
+      if (a[1] == "off") return path = {}, log("camera-path off");
+      path = render::parse_camera_path(a[1]);
+      return log("camera-path " + a[1]);
+    }
+    if (cmd == "freeze") {
+      // freeze clog|rule SECONDS | off: clips hold the picture at each event (record --freeze).
+      const char* form = "freeze clog|rule SECONDS | freeze off";
+      if (a.size() == 2 && a[1] == "off") return freeze = {}, log("freeze off");
+      if (a.size() != 3) throw core::InputError(std::string("usage: ") + form);
+      freeze = render::parse_freeze(a[1], a[2], "freeze", form);
+      return log("freeze " + a[1] + " " + a[2]);
+    }
+    if (cmd == "colormap")
+      return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
+                                                                log("colormap " + a[1]);
+    if (cmd == "palette")
+      return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]);
+    if (cmd == "overlay")
+      return need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale"), set_overlay(a[1]);
+    if (cmd == "arch") {
+      need(1, "arch on|off");
+      if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
+      return show_arch(a[1] == "on");
+    }
+    if (cmd == "track") {
+      // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
+      // track region X0,Y0,X1,Y1 | track arch K | track clog K: tagged by region or role
+      // (Inspector::track_*).
+      if (a.size() == 3 && a[1] == "region") {
+        double x0, y0, x1, y1;
+        char tail = 0;
+        if (std::sscanf(a[2].c_str(), "%lf,%lf,%lf,%lf%c", &x0, &y0, &x1, &y1, &tail) != 4)
+          throw core::InputError("usage: track region X0,Y0,X1,Y1 (metres)");
+        return track_region(x0, y0, x1, y1);
+      }
+      if (a.size() == 3 && (a[1] == "arch" || a[1] == "clog"))
+        return track_arch_of(a[1] == "clog", to_long(a[2], "K"));
+      need(1, "track ID[,ID...]|off | track region X0,Y0,X1,Y1 | track arch K | track clog K");
+      style.tracked.clear();
+      if (a[1] == "off") return;
+      const long n = static_cast<long>(traj_.frame(frame_).particles.size());
+      std::stringstream ids(a[1]);
+      for (std::string id; std::getline(ids, id, ',');) {
+        const long v = to_long(id, "ID");
+        if (v < 0 || v >= n)
+          throw core::InputError("track: grain " + id + " does not exist; ids run from 0 to " +
+                                 std::to_string(n - 1));
+        style.tracked.push_back(static_cast<int>(v));
+      }
+      return;
+    }
+    if (cmd == "print") return (void)print_frame();
+    if (cmd == "snapshot") {
+      if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png|.svg|.pdf [WxH]");
+      int w = 1920, h = 1080;
+      if (a.size() == 3) render::parse_size(a[2], "snapshot size", w, h);
+      return (void)snapshot(a[1], w, h, painter);
+    }
+    if (cmd == "export") return export_command(a, painter);
+  } catch (const core::InputError& e) {
+    throw core::InputError("'" + line + "': " + e.what());
+  }
+  throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
+}
+
+void Inspector::export_command(const std::vector<std::string>& a, Painter* painter) {
+  const bool clog = a.size() >= 3 && a[1] == "clog";
+  if (clog ? a.size() > 5 : (a.size() < 4 || a.size() > 6))
+    throw core::InputError(
+        clog ? "usage: export clog FILE.mp4 [WxH] [FPS]"
+             : "usage: export FILE.mp4 FROM TO [WxH] [FPS] | export clog FILE.mp4 [WxH] [FPS]");
+  const size_t opt = clog ? 3 : 4;  // index of the first optional argument
+  int width = 1280, height = 720;
+  if (a.size() > opt) render::parse_size(a[opt], "export size", width, height);
+  const int fps = a.size() > opt + 1
+                      ? static_cast<int>(to_long(a[opt + 1], "FPS"))
+                      : std::max(1, static_cast<int>(std::lround(1.0 / traj_.frame_interval())));
+  if (clog)
+    export_clog(a[2], width, height, fps, painter);
+  else
+    export_frames(a[1], to_long(a[2], "FROM"), to_long(a[3], "TO"), width, height, fps, painter);
+}
+
+int run_script(Inspector& insp, Painter& painter, const std::string& path) {
+  core::check_text_file(path, "inspector script", "");
+  std::ifstream in(path);
+  if (!in) throw core::InputError(path + ": cannot open script");
+  int line_no = 0, commands = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    try {
+      const size_t before = line.find_first_not_of(" \t");
+      if (before == std::string::npos || line[before] == '#') continue;
+      insp.execute(line, &painter);
+      ++commands;
+    } catch (const core::InputError& e) {
+      throw core::InputError(path + ":" + std::to_string(line_no) + ": " + e.what());
+    }
+  }
+  return commands;
+}
+
+}  // namespace ui
