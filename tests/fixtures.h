@@ -43,8 +43,8 @@ struct StagedArch {
 };
 
 // A five-frame trajectory of two disks: an original disk moving right along y = 0.5 (x = -0.2 + 0.1 k), an
-// added disk resting at (0.2, 0.8). Frames 2 and 3 are clogged (timer >= 0.5 s) and hold the arch [0, 1]; a
-// rule removal is counted at frame 4.
+// added disk resting at (0.2, 0.8). Frames 2 and 3 are clogged (clog 1 open, timer >= 0.5 s) and hold the
+// arch [0, 1]; the rule removes it at frame 4 (its events block says so).
 inline std::filesystem::path synthetic_trajectory(const std::filesystem::path& dir) {
   core::Scene s;
   core::apply_overrides(s, {"n_total=2", "chi=0.5"});
@@ -62,8 +62,23 @@ inline std::filesystem::path synthetic_trajectory(const std::filesystem::path& d
     f.particles = {{static_cast<float>(-0.2 + 0.1 * k), 0.5f, 0, 0, 0, 0.065f, 0, core::Species::Original},
                    {0.2f, 0.8f, 0, 0, 0, 0.026f, 0, core::Species::Added}};
     f.since_last_exit = (k == 2 || k == 3) ? 1.0 + k : 0.0;
-    if (k >= 2 && k <= 3) f.arch = {0, 1};
-    w.add(f, k == 4 ? 1 : 0);
+    core::StepEvents e;
+    if (k >= 2 && k <= 3) {
+      f.arch = {0, 1};
+      f.clog_open = f.clog_arrested = true;
+      f.clog_number = 1;
+    }
+    if (k == 4) {
+      core::ArchEvent a;
+      a.t = f.t;
+      a.ids = {0, 1};
+      a.species = {core::Species::Original, core::Species::Added};
+      a.x = {0.0f, 0.2f};
+      a.y = {0.5f, 0.8f};
+      e.rule_removed.push_back(a);
+      e.clogs_closed.push_back({0.0, f.t, core::ClogEnd::Rule, true});
+    }
+    w.add(f, k == 4 ? 1 : 0, e);
   }
   w.close();
   return p;

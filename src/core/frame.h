@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,17 @@ struct Frame {
   double t = 0;                     // s since the aperture opened (negative while settling)
   std::uint64_t step = 0;           // time steps since the start of settling
   std::vector<Particle> particles;  // indexed by particle id
-  std::vector<int> arch;            // ids of the current blocking arch, left to right; empty if none
-  double since_last_exit = 0;       // s, the clog timer
-  std::int64_t exits_original = 0;  // exits so far of each species
+  // The clog open at this frame, as the simulation's step reported it (core/events.h): its arch (ids left to
+  // right; empty when no clog is open or none was found), whether one is open, its row of clogs.csv, start
+  // and arrest, and the seconds until the rule falls due (infinity with the rule off).
+  std::vector<int> arch;
+  bool clog_open = false;
+  int clog_number = 0;
+  double clog_start = 0;  // s
+  bool clog_arrested = false;
+  double rule_due_in = std::numeric_limits<double>::infinity();  // s
+  double since_last_exit = 0;                                    // s, the clog timer
+  std::int64_t exits_original = 0;                               // exits so far of each species
   std::int64_t exits_added = 0;
   double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
   // Grain-grain contacts with their normal forces, when forces were asked for (a live simulation's frames;

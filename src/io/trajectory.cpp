@@ -14,6 +14,9 @@ namespace io {
 
 namespace {
 constexpr char kMagic[8] = {'S', 'I', 'L', 'O', 'T', 'R', 'A', 'J'};
+constexpr char kEventsMagic[8] = {'S', 'I', 'L', 'O', 'E', 'V', 'T', 'S'};
+constexpr char kEndMagic[8] = {'S', 'I', 'L', 'O', 'E', 'N', 'D', 0};
+constexpr std::uint32_t kOpen = 1, kArrested = 2;  // frame flags
 constexpr size_t kFixedHeader = 64;
 
 size_t pad8(size_t n) {
@@ -32,8 +35,14 @@ T get(const unsigned char* b, size_t at) {
 }
 }  // namespace
 
-size_t TrajectoryWriter::frame_bytes(std::uint32_t n) {
-  return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + 24 * size_t(n);
+// The fixed part of a frame before the particle arrays: 168 bytes in version 1, 192 from version 2 (the open
+// clog's start, the time until the rule is due, its number and flags).
+static size_t frame_head(std::uint32_t version) {
+  return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + (version >= 2 ? 24 : 0);
+}
+
+size_t TrajectoryWriter::frame_bytes(std::uint32_t n, std::uint32_t version) {
+  return frame_head(version) + 24 * size_t(n);
 }
 
 TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const TrajectoryInfo& info)
@@ -61,6 +70,7 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Traj
   std::memcpy(&h[after_arrays + 4], info.metadata.data(), info.metadata.size());
   if (std::fwrite(h.data(), 1, h.size(), f_) != h.size())
     throw core::RuntimeFault("cannot write trajectory " + path_);
+  bytes_ = h.size();
   buf_.resize(frame_bytes(n_));
 }
 
@@ -68,8 +78,15 @@ TrajectoryWriter::~TrajectoryWriter() {
   if (f_) std::fclose(f_);
 }
 
-void TrajectoryWriter::add(const core::Frame& f, int long_arches) {
+void TrajectoryWriter::add_events(const core::StepEvents& e) {
+  events_.exits.insert(events_.exits.end(), e.exits.begin(), e.exits.end());
+  events_.clogs.insert(events_.clogs.end(), e.clogs_closed.begin(), e.clogs_closed.end());
+  events_.arches.insert(events_.arches.end(), e.rule_removed.begin(), e.rule_removed.end());
+}
+
+void TrajectoryWriter::add(const core::Frame& f, int long_arches, const core::StepEvents& since_last) {
   if (f.particles.size() != n_) throw core::RuntimeFault("trajectory: frame with a different particle count");
+  add_events(since_last);
   std::fill(buf_.begin(), buf_.end(), 0);
   put<double>(buf_, 0, f.t);
   put<double>(buf_, 8, f.since_last_exit);
@@ -80,7 +97,12 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches) {
   put<std::int32_t>(buf_, 36, count);
   for (int k = 0; k < kTrajectoryMaxArch; ++k)
     put<std::int32_t>(buf_, 40 + 4 * k, k < count ? f.arch[k] : -1);
-  const size_t base = 40 + 4 * kTrajectoryMaxArch, n = n_;
+  const size_t clog_at = 40 + 4 * kTrajectoryMaxArch;
+  put<double>(buf_, clog_at, f.clog_start);
+  put<double>(buf_, clog_at + 8, f.rule_due_in);
+  put<std::int32_t>(buf_, clog_at + 16, f.clog_number);
+  put<std::uint32_t>(buf_, clog_at + 20, (f.clog_open ? kOpen : 0) | (f.clog_arrested ? kArrested : 0));
+  const size_t base = frame_head(kTrajectoryVersion), n = n_;
   for (size_t i = 0; i < n; ++i) {
     const auto& p = f.particles[i];
     put<float>(buf_, base + 4 * i, p.x);
@@ -92,13 +114,62 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches) {
   }
   if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
     throw core::RuntimeFault("cannot write trajectory " + path_ + ": " + std::strerror(errno));
+  bytes_ += buf_.size();
   // Whole frames reach the file as the run goes, so a cut-off run keeps what it recorded.
   if (++frames_ % 30 == 0) std::fflush(f_);
 }
 
+namespace {
+std::vector<unsigned char> events_block(const core::Events& ev, std::uint64_t offset) {
+  std::vector<unsigned char> b(24 + 16 * ev.exits.size() + 24 * ev.clogs.size());
+  std::memcpy(b.data(), kEventsMagic, 8);
+  put<std::uint32_t>(b, 8, static_cast<std::uint32_t>(ev.exits.size()));
+  put<std::uint32_t>(b, 12, static_cast<std::uint32_t>(ev.clogs.size()));
+  put<std::uint32_t>(b, 16, static_cast<std::uint32_t>(ev.arches.size()));
+  size_t at = 24;
+  for (const auto& e : ev.exits) {
+    put<double>(b, at, e.t);
+    put<std::int32_t>(b, at + 8, e.id);
+    put<std::uint32_t>(b, at + 12, static_cast<std::uint32_t>(core::species_index(e.species)));
+    at += 16;
+  }
+  for (const auto& c : ev.clogs) {
+    put<double>(b, at, c.start);
+    put<double>(b, at + 8, c.end);
+    put<std::uint32_t>(b, at + 16, static_cast<std::uint32_t>(c.ended_by));
+    put<std::uint32_t>(b, at + 20, c.arrested ? 1 : 0);
+    at += 24;
+  }
+  for (const auto& a : ev.arches) {
+    b.resize(at + 48 + 16 * a.ids.size());
+    put<double>(b, at, a.t);
+    put<double>(b, at + 8, a.clog_duration);
+    put<double>(b, at + 16, a.geometry.span);
+    put<double>(b, at + 24, a.geometry.height);
+    put<double>(b, at + 32, a.geometry.max_angle_deg);
+    put<std::uint32_t>(b, at + 40, static_cast<std::uint32_t>(a.ids.size()));
+    put<std::uint32_t>(b, at + 44, static_cast<std::uint32_t>(a.method));
+    at += 48;
+    for (size_t k = 0; k < a.ids.size(); ++k) {
+      put<std::int32_t>(b, at, a.ids[k]);
+      put<std::uint32_t>(b, at + 4, static_cast<std::uint32_t>(core::species_index(a.species[k])));
+      put<float>(b, at + 8, k < a.x.size() ? a.x[k] : 0.0f);
+      put<float>(b, at + 12, k < a.y.size() ? a.y[k] : 0.0f);
+      at += 16;
+    }
+  }
+  b.resize(at + 16);
+  put<std::uint64_t>(b, at, offset);
+  std::memcpy(&b[at + 8], kEndMagic, 8);
+  return b;
+}
+}  // namespace
+
 void TrajectoryWriter::close() {
   if (!f_) return;
-  const bool ok = std::fflush(f_) == 0;
+  const std::vector<unsigned char> block = events_block(events_, bytes_);
+  const bool wrote = std::fwrite(block.data(), 1, block.size(), f_) == block.size();
+  const bool ok = wrote && std::fflush(f_) == 0;
   const bool closed = std::fclose(f_) == 0;
   f_ = nullptr;
   if (!ok || !closed)
@@ -130,25 +201,30 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   if (data.size() < kFixedHeader || std::memcmp(data.data(), kMagic, 8) != 0)
     throw core::InputError(p + ": not a siloscope trajectory (no SILOTRAJ header)");
   const auto version = get<std::uint32_t>(data.data(), 8);
-  if (version != kTrajectoryVersion)
+  if (version < 1 || version > kTrajectoryVersion)
     throw core::InputError(p + ": trajectory version " + std::to_string(version) +
-                           "; this siloscope reads version " + std::to_string(kTrajectoryVersion));
+                           "; this siloscope reads versions 1 to " + std::to_string(kTrajectoryVersion));
+  version_ = version;
   const auto header = get<std::uint32_t>(data.data(), 12);
   info_.n_particles = get<std::uint32_t>(data.data(), 16);
   const auto max_arch = get<std::uint32_t>(data.data(), 20);
   const auto fbytes = get<std::uint32_t>(data.data(), 24);
   const size_t after_arrays = pad8(kFixedHeader + 5 * size_t(info_.n_particles));
-  if (max_arch != kTrajectoryMaxArch || fbytes != TrajectoryWriter::frame_bytes(info_.n_particles) ||
+  if (max_arch != kTrajectoryMaxArch || fbytes != TrajectoryWriter::frame_bytes(info_.n_particles, version) ||
       header > data.size() || header < after_arrays + 4)
     throw core::InputError(p + ": corrupted trajectory header");
   info_.frame_interval = get<double>(data.data(), 32);
   info_.clog_timeout = get<double>(data.data(), 40);
   info_.clog_min_gap = get<double>(data.data(), 48);
   info_.radius_original = get<double>(data.data(), 56);
-  // The inspector divides by these: they must be positive and finite.
-  for (double v : {info_.frame_interval, info_.clog_timeout, info_.radius_original})
+  // The inspector divides by these: they must be positive and finite. clog_timeout 0 is the rule switched
+  // off.
+  for (double v : {info_.frame_interval, info_.radius_original})
     if (!(v > 0 && v < 1e6))
       throw core::InputError(p + ": corrupted trajectory header (a time or length out of range)");
+  if (!(info_.clog_timeout >= 0 && info_.clog_timeout < 1e6))
+    throw core::InputError(p + ": corrupted trajectory header (clog_timeout " +
+                           core::format_shortest(info_.clog_timeout) + " s; allowed: 0 (rule off) to 1e6 s)");
   if (!(info_.clog_min_gap >= 0 && info_.clog_min_gap < 1e6))
     throw core::InputError(p + ": corrupted trajectory header (clog_min_gap)");
   const size_t n = info_.n_particles;
@@ -179,20 +255,100 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
     if (setup_ && setup_->n_total == static_cast<int>(n))
       sides_[i] = static_cast<std::uint8_t>(setup_->species[static_cast<size_t>(sp)].sides);
   }
-  const size_t body = data.size() - header;
-  truncated_ = body % fbytes != 0;
-  data_ = std::move(data);
-  header_ = header;
-  frame_bytes_ = fbytes;
-  count_ = static_cast<long>(body / fbytes);
-  for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
   for (size_t i = 0; i < n; ++i)
     if (!(info_.radius[i] > 0 && info_.radius[i] < 1e6))
       throw core::InputError(p + ": corrupted trajectory header (radius of particle " + std::to_string(i) +
                              ")");
+  data_ = std::move(data);
+  header_ = header;
+  frame_bytes_ = fbytes;
+  const size_t frames_end = read_events(p);
+  const size_t body = frames_end - header;
+  truncated_ = body % fbytes != 0;
+  count_ = static_cast<long>(body / fbytes);
+  for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
+  check_frames(p);
+  if (!events_complete_) rebuild_clogs();
+}
+
+size_t Trajectory::read_events(const std::string& p) {
+  // Version 2 ends with the events block and a 16-byte footer pointing at it; a file without the footer was
+  // cut off (its frames run to the end) or is version 1.
+  const size_t size = data_.size();
+  if (version_ < 2 || size < header_ + 16 || std::memcmp(&data_[size - 8], kEndMagic, 8) != 0) return size;
+  const std::uint64_t offset = get<std::uint64_t>(data_.data(), size - 16);
+  const std::string bad = p + ": corrupted events block (";
+  if (offset < header_ || offset + 24 > size - 16 || (offset - header_) % frame_bytes_ != 0 ||
+      std::memcmp(&data_[offset], kEventsMagic, 8) != 0)
+    throw core::InputError(bad + "its offset " + std::to_string(offset) + " points at no events)");
+  const unsigned char* b = data_.data();
+  const size_t end = size - 16;
+  const std::uint64_t n_exits = get<std::uint32_t>(b, offset + 8),
+                      n_clogs = get<std::uint32_t>(b, offset + 12),
+                      n_arches = get<std::uint32_t>(b, offset + 16);
+  size_t at = offset + 24;
+  // Sizes are checked before anything is read or allocated.
+  if (n_exits * 16 + n_clogs * 24 + n_arches * 48 > end - at)
+    throw core::InputError(bad + std::to_string(n_exits) + " exits, " + std::to_string(n_clogs) +
+                           " clogs and " + std::to_string(n_arches) + " arches do not fit in its " +
+                           std::to_string(end - at) + " bytes)");
+  const size_t n = info_.n_particles;
+  auto time_ok = [](double t) { return std::isfinite(t) && t >= 0 && t < 1e9; };
+  auto species_ok = [&](std::uint32_t s) { return s < 16 && (!setup_ || s < setup_->species.size()); };
+  for (std::uint64_t k = 0; k < n_exits; ++k, at += 16) {
+    core::ExitEvent e{get<double>(b, at), get<std::int32_t>(b, at + 8),
+                      static_cast<core::Species>(get<std::uint32_t>(b, at + 12))};
+    if (!time_ok(e.t) || e.id < 0 || static_cast<size_t>(e.id) >= n ||
+        !species_ok(get<std::uint32_t>(b, at + 12)))
+      throw core::InputError(bad + "exit " + std::to_string(k + 1) +
+                             " has a time, id or species out of range)");
+    events_.exits.push_back(e);
+  }
+  for (std::uint64_t k = 0; k < n_clogs; ++k, at += 24) {
+    const auto how = get<std::uint32_t>(b, at + 16), arrested = get<std::uint32_t>(b, at + 20);
+    core::ClogEvent c{get<double>(b, at), get<double>(b, at + 8), static_cast<core::ClogEnd>(how),
+                      arrested == 1};
+    if (!time_ok(c.start) || !time_ok(c.end) || c.end < c.start || how > 3 || arrested > 1)
+      throw core::InputError(bad + "clog " + std::to_string(k + 1) + " has times or an ending out of range)");
+    events_.clogs.push_back(c);
+  }
+  for (std::uint64_t k = 0; k < n_arches; ++k) {
+    if (at + 48 > end) throw core::InputError(bad + "arch " + std::to_string(k + 1) + " is cut off)");
+    core::ArchEvent a;
+    a.t = get<double>(b, at);
+    a.clog_duration = get<double>(b, at + 8);
+    a.geometry = {get<double>(b, at + 16), get<double>(b, at + 24), get<double>(b, at + 32)};
+    const std::uint64_t count = get<std::uint32_t>(b, at + 40);
+    const auto method = get<std::uint32_t>(b, at + 44);
+    at += 48;
+    if (!time_ok(a.t) || !time_ok(a.clog_duration) || method > 1 || count > n || count * 16 > end - at)
+      throw core::InputError(bad + "arch " + std::to_string(k + 1) + " has values out of range)");
+    a.method = static_cast<core::ArchMethod>(method);
+    for (std::uint64_t j = 0; j < count; ++j, at += 16) {
+      const auto id = get<std::int32_t>(b, at);
+      const auto sp = get<std::uint32_t>(b, at + 4);
+      const float x = get<float>(b, at + 8), y = get<float>(b, at + 12);
+      if (id < 0 || static_cast<size_t>(id) >= n || !species_ok(sp) || !std::isfinite(x) || !std::isfinite(y))
+        throw core::InputError(bad + "member " + std::to_string(j + 1) + " of arch " + std::to_string(k + 1) +
+                               " is out of range)");
+      a.ids.push_back(id);
+      a.species.push_back(static_cast<core::Species>(sp));
+      a.x.push_back(x);
+      a.y.push_back(y);
+    }
+    events_.arches.push_back(std::move(a));
+  }
+  if (at != end)
+    throw core::InputError(bad + std::to_string(end - at) + " bytes left over after its events)");
+  events_complete_ = true;
+  return offset;
+}
+
+void Trajectory::check_frames(const std::string& p) const {
+  const size_t n = info_.n_particles;
   // Every number a frame holds must be finite: a corrupted frame is named, never drawn as an empty silo.
   static const char* kFields[] = {"x", "y", "angle", "vx", "vy", "force"};
-  const size_t base = 40 + 4 * kTrajectoryMaxArch;
+  const size_t base = frame_head(version_);
   // Finite but impossible values are refused as well: time must run forwards, exit counts never fall below
   // zero or go down, and a grain cannot be farther from the container than the container's own size (1 km
   // when the metadata holds no scene).
@@ -217,6 +373,13 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
                              std::to_string(last_orig) + ", " + std::to_string(last_added) + ")");
     last_orig = orig, last_added = added;
     if (get<double>(b, 8) < 0) throw core::InputError(frame + "its time since the last exit is negative");
+    if (version_ >= 2) {
+      const size_t c = 40 + 4 * kTrajectoryMaxArch;
+      const double start = get<double>(b, c), due = get<double>(b, c + 8);
+      if (!std::isfinite(start) || std::isnan(due) || get<std::int32_t>(b, c + 16) < 0 ||
+          get<std::uint32_t>(b, c + 20) > 3)
+        throw core::InputError(frame + "its clog state (start, rule time, number or flags) is out of range");
+    }
     for (size_t a = 0; a < 2; ++a)
       for (size_t i = 0; i < n; ++i) {
         const float v = get<float>(b, base + 4 * (a * n + i));
@@ -237,6 +400,40 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   }
 }
 
+void Trajectory::rebuild_clogs() {
+  // Without the events block: a clog is a stretch of frames with a clog open (version 2: the frame's flag;
+  // version 1: the timer at least clog_min_gap). Its start is the frame's clog start (or t - timer); its end
+  // the last exit or rule firing before the next frame that shows none open (t - timer there).
+  events_.clogs.clear();
+  const bool driven = setup_ && (setup_->drive.kick_impulse_max > 0 || setup_->drive.vibrating());
+  bool open = false;
+  core::ClogEvent c{};
+  int number = 0;
+  for (long k = 0; k < count_; ++k) {
+    const core::Frame f = frame(k);
+    if (open && (!f.clog_open || f.clog_number != number)) {
+      c.end = f.t - f.since_last_exit;
+      const bool removed = long_arches(k) > (k > 0 ? long_arches(k - 1) : 0);
+      c.ended_by = removed                ? core::ClogEnd::Rule
+                   : c.arrested && driven ? core::ClogEnd::Vibration
+                                          : core::ClogEnd::Spontaneous;
+      events_.clogs.push_back(c);
+      open = false;
+    }
+    if (f.clog_open && !open) {
+      open = true;
+      number = f.clog_number;
+      c = {f.clog_start, f.t, core::ClogEnd::RunEnd, f.clog_arrested};
+    }
+    if (open) c.arrested = c.arrested || f.clog_arrested;
+  }
+  if (open) {
+    c.end = time(count_ - 1);
+    c.ended_by = core::ClogEnd::RunEnd;
+    events_.clogs.push_back(c);
+  }
+}
+
 double Trajectory::time(long k) const {
   return get<double>(record(k), 0);
 }
@@ -254,15 +451,30 @@ core::Frame Trajectory::frame(long k) const {
   f.since_last_exit = get<double>(b, 8);
   f.exits_original = get<std::int64_t>(b, 16);
   f.exits_added = get<std::int64_t>(b, 24);
+  const size_t c = 40 + 4 * kTrajectoryMaxArch;
+  if (version_ >= 2) {
+    f.clog_start = get<double>(b, c);
+    f.rule_due_in = get<double>(b, c + 8);
+    f.clog_number = get<std::int32_t>(b, c + 16);
+    const auto flags = get<std::uint32_t>(b, c + 20);
+    f.clog_open = (flags & kOpen) != 0;
+    f.clog_arrested = (flags & kArrested) != 0;
+  } else {
+    // Version 1 kept only the timer: a clog is open once it reaches clog_min_gap.
+    f.clog_open = f.since_last_exit >= info_.clog_min_gap && f.t > 0;
+    f.clog_start = f.t - f.since_last_exit;
+    f.rule_due_in = info_.clog_timeout > 0 ? std::max(0.0, info_.clog_timeout - f.since_last_exit) : INFINITY;
+  }
   const int count = get<std::int32_t>(b, 36);
   const size_t n = info_.n_particles;
   for (int j = 0; j < std::min(count, kTrajectoryMaxArch); ++j) {
     const int id = get<std::int32_t>(b, 40 + 4 * j);
     if (id >= 0 && static_cast<size_t>(id) < n) f.arch.push_back(id);
   }
-  // Trajectories written before arches were checked (core::blocks_outlet) may hold one-grain "arches".
-  if (f.arch.size() < 2) f.arch.clear();
-  const size_t base = 40 + 4 * kTrajectoryMaxArch;
+  // An arch is shown only while a clog is open (version 1 files stored one in flowing frames too), and never
+  // a one-grain "arch" (written before arches were checked by core::blocks_outlet).
+  if (f.arch.size() < 2 || !f.clog_open) f.arch.clear();
+  const size_t base = frame_head(version_);
   f.particles.resize(n);
   for (size_t i = 0; i < n; ++i) {
     core::Particle& q = f.particles[i];

@@ -1,18 +1,28 @@
-// Trajectory files (.sstraj): every recorded frame of a run, for the inspector and for users' own analysis.
-// Version 1, little-endian, documented in docs/trajectory.md (with a numpy reader in a few lines):
+// Trajectory files (.sstraj): every recorded frame of a run and the run's events, for the inspector and for
+// users' own analysis. Version 2, little-endian, documented in docs/trajectory.md (with a numpy reader):
 //
-//   header, 64 bytes:  char magic[8] = "SILOTRAJ"; u32 version = 1; u32 header_bytes; u32 n_particles;
-//                      u32 max_arch; u32 frame_bytes; u32 reserved; f64 frame_interval_s; f64 clog_timeout_s;
-//                      f64 clog_min_gap_s; f64 radius_original_m
-//   then:              f32 radius_m[n]; u8 species[n] (0 original, 1 added); zero padding to 8 bytes;
+//   header, 64 bytes:  char magic[8] = "SILOTRAJ"; u32 version = 2; u32 header_bytes; u32 n_particles;
+//                      u32 max_arch; u32 frame_bytes; u32 reserved; f64 frame_interval_s; f64 clog_timeout_s
+//                      (0: the rule is off); f64 clog_min_gap_s; f64 radius_original_m
+//   then:              f32 radius_m[n]; u8 species[n]; zero padding to 8 bytes;
 //                      u32 scene_bytes; the run's metadata (TOML text); zero padding to 8 bytes
 //   frames, from header_bytes on, each frame_bytes long:
 //                      f64 t_s; f64 since_last_exit_s; i64 exits_original; i64 exits_added; i32 long_arches;
-//                      i32 arch_count; i32 arch[max_arch] (ids left to right, -1 padded);
-//                      f32 x_m[n]; f32 y_m[n]; f32 angle_rad[n]; f32 vx_m_s[n]; f32 vy_m_s[n]; f32 force_n[n]
+//                      i32 arch_count; i32 arch[max_arch] (the open clog's arch, ids left to right, -1
+//                      padded); f64 clog_start_s; f64 rule_due_in_s (inf: rule off); i32 clog_number; u32
+//                      flags (bit 0: a clog is open, bit 1: it is arrested); f32 x_m[n]; f32 y_m[n]; f32
+//                      angle_rad[n]; f32 vx_m_s[n]; f32 vy_m_s[n]; f32 force_n[n]
+//   events, when the run ended normally (written at close):
+//                      char magic[8] = "SILOEVTS"; u32 n_exits; u32 n_clogs; u32 n_arches; u32 reserved;
+//                      n_exits x {f64 t_s; i32 id; u32 species};
+//                      n_clogs x {f64 start_s; f64 end_s; u32 ended_by; u32 arrested};
+//                      n_arches x {f64 t_s; f64 clog_duration_s; f64 span_m; f64 height_m; f64 max_angle_deg;
+//                                  u32 count; u32 method; count x {i32 id; u32 species; f32 x_m; f32 y_m}};
+//                      then u64 events_offset; char magic[8] = "SILOEND" (the file's last 16 bytes)
 //
 // Frames are appended as the run goes; a reader takes every complete frame, so a file cut off by a crash
-// reads up to its last whole frame.
+// reads up to its last whole frame (its events then come from the frames' clog states). Version 1 files
+// (frames without the clog state, no events) still open: their clogs are rebuilt from the frames' timers.
 #pragma once
 
 #include <cstdint>
@@ -22,12 +32,13 @@
 #include <string>
 #include <vector>
 
+#include "core/events.h"
 #include "core/frame.h"
 #include "core/setup.h"
 
 namespace io {
 
-constexpr std::uint32_t kTrajectoryVersion = 1;
+constexpr std::uint32_t kTrajectoryVersion = 2;
 constexpr int kTrajectoryMaxArch = 32;
 
 struct TrajectoryInfo {
@@ -45,17 +56,22 @@ class TrajectoryWriter {
   ~TrajectoryWriter();
   TrajectoryWriter(const TrajectoryWriter&) = delete;
   TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
-  void add(const core::Frame& f, int long_arches);
-  void close();  // flush; throws core::RuntimeFault on a write error (a full disk)
+  // A frame, and what the steps reported since the previous one (kept for the events block).
+  void add(const core::Frame& f, int long_arches, const core::StepEvents& since_last = {});
+  // Events reported after the last frame (the clog the run's end closed).
+  void add_events(const core::StepEvents& e);
+  void close();  // the events block, flush; throws core::RuntimeFault on a write error (a full disk)
   long frames() const { return frames_; }
-  static size_t frame_bytes(std::uint32_t n);
+  static size_t frame_bytes(std::uint32_t n, std::uint32_t version = kTrajectoryVersion);
 
  private:
   std::FILE* f_ = nullptr;
   std::string path_;
   std::uint32_t n_;
   long frames_ = 0;
+  std::uint64_t bytes_ = 0;  // written so far
   std::vector<unsigned char> buf_;
+  core::Events events_;
 };
 
 // Reads a whole trajectory into memory (a 150 s run at 30 fps is ~28 MB).
@@ -73,6 +89,12 @@ class Trajectory {
   int long_arches(long k) const { return long_arches_[static_cast<size_t>(k)]; }
   double since_last_exit(long k) const;
   double time(long k) const;
+  std::uint32_t version() const { return version_; }
+  // The run's events: exits, clogs (the rows of clogs.csv) and the rule's removals (arches.csv). Complete
+  // when events_complete(); otherwise (a cut-off file, or version 1) the clogs are rebuilt from the frames
+  // and the last may lack its end (its end is then the last frame's time, ended_by RunEnd).
+  const core::Events& events() const { return events_; }
+  bool events_complete() const { return events_complete_; }
 
  private:
   TrajectoryInfo info_;
@@ -84,9 +106,15 @@ class Trajectory {
     return data_.data() + header_ + static_cast<size_t>(k) * frame_bytes_;
   }
   bool truncated_ = false;
+  std::uint32_t version_ = kTrajectoryVersion;
+  core::Events events_;
+  bool events_complete_ = false;
   std::unique_ptr<core::Setup> setup_;  // from the metadata's scene, when it holds a valid one
   std::vector<std::uint8_t> sides_;     // each grain's shape (0: disk)
   void parse(std::vector<unsigned char> data, const std::string& p);
+  size_t read_events(const std::string& p);  // returns where the frames end
+  void check_frames(const std::string& p) const;
+  void rebuild_clogs();
 };
 
 }  // namespace io

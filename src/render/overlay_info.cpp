@@ -60,7 +60,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
                 f.t > 0 ? f.exits_original / f.t : 0.0,
                 shorthand ? "originals" : d.species_names.front().c_str());
   if (o.timer) {
-    const bool clogged = f.since_last_exit >= d.clog_min_gap;
+    const bool clogged = f.clog_open;  // as the simulation's step reported it
     const double frac = d.clog_rule ? std::min(1.0, f.since_last_exit / d.clog_timeout) : clogged ? 1.0 : 0.0;
     ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
                           clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));

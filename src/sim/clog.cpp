@@ -1,31 +1,106 @@
 #include "sim/clog.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace sim {
 
-void ClogTracker::close(double t, core::ClogEnd how) {
-  if (how == core::ClogEnd::Rule || t - last_ >= min_gap_) clogs_.push_back({last_, t, how, arrested_});
+namespace {
+bool same_grains(std::vector<int> a, std::vector<int> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return a == b;
+}
+}  // namespace
+
+void ClogTracker::open(core::StepEvents& out) {
+  state_.open = true;
+  state_.number = static_cast<int>(clogs_.size()) + 1;
+  state_.start = last_;
+  state_.arrested = arrested_;
+  state_.arch = gap_arch_;
+  state_.arch_changes = 0;
+  candidate_.clear();
+  out.clogs_opened.push_back(state_.number);
+  if (!state_.arch.empty()) ++out.arch_found;
+}
+
+void ClogTracker::close(double t, core::ClogEnd how, core::StepEvents& out) {
+  if (how == core::ClogEnd::Rule || t - last_ >= min_gap_) {
+    // A gap that qualifies as a clog always opened one first (in this very step if need be), so that every
+    // row of clogs.csv has its opening in the events.
+    if (!state_.open) open(out);
+    clogs_.push_back({last_, t, how, arrested_});
+    out.clogs_closed.push_back(clogs_.back());
+  }
   last_ = t;
   arrested_ = false;
+  state_.open = false;
+  state_.arrested = false;
+  state_.arch.clear();
+  gap_arch_.clear();
+  candidate_.clear();
 }
 
-void ClogTracker::on_exit(double t) {
+void ClogTracker::on_exit(double t, core::StepEvents& out) {
   // An arrested outlet does not restart on its own while a drive acts: the drive broke it. Otherwise the jam
   // was transient (or, without any drive, the arch collapsed by itself).
-  close(t, arrested_ && driven_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous);
+  close(t, arrested_ && driven_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous, out);
 }
 
-void ClogTracker::on_rest_check(double t, bool outlet_at_rest) {
+void ClogTracker::hold_arch(const std::vector<int>& arch, core::StepEvents& out) {
+  if (arch.empty()) return;  // no arch found now: the one held stays (contacts flicker)
+  if (state_.arch.empty()) {
+    state_.arch = arch;
+    ++out.arch_found;
+    return;
+  }
+  if (same_grains(arch, state_.arch)) {
+    state_.arch = arch;  // the same grains (their left-to-right order as it is now)
+    candidate_.clear();
+    return;
+  }
+  // A different set of grains: replace the held arch when it is seen twice in a row.
+  if (!candidate_.empty() && same_grains(arch, candidate_)) {
+    state_.arch = arch;
+    ++state_.arch_changes;
+    ++out.arch_found;
+    candidate_.clear();
+  } else {
+    candidate_ = arch;
+  }
+}
+
+void ClogTracker::on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch,
+                                core::StepEvents& out) {
   // Only a gap that has lasted long enough to be a clog can be arrested; during flow the outlet is never at
   // rest.
   if (outlet_at_rest && t - last_ > 0) arrested_ = true;
+  if (!state_.open) {
+    if (!arch.empty()) gap_arch_ = arch;
+    return;
+  }
+  state_.arrested = arrested_;
+  hold_arch(arch, out);
 }
 
-void ClogTracker::on_rule(double t) {
-  close(t, core::ClogEnd::Rule);
+double ClogTracker::rule_due_in(double t) const {
+  if (timeout_ <= 0) return INFINITY;
+  return std::max(0.0, timeout_ - (t - last_));
 }
 
-void ClogTracker::finish(double t) {
-  if (t - last_ >= min_gap_) clogs_.push_back({last_, t, core::ClogEnd::RunEnd, arrested_});
+void ClogTracker::on_rule(double t, const core::ArchEvent& removed, core::StepEvents& out) {
+  out.rule_removed.push_back(removed);
+  close(t, core::ClogEnd::Rule, out);
+}
+
+void ClogTracker::finish(double t, core::StepEvents& out) {
+  if (t - last_ >= min_gap_) {
+    if (!state_.open) open(out);
+    clogs_.push_back({last_, t, core::ClogEnd::RunEnd, arrested_});
+    out.clogs_closed.push_back(clogs_.back());
+  }
+  state_.open = false;
 }
 
 }  // namespace sim

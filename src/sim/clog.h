@@ -1,9 +1,12 @@
-// Clog bookkeeping, independent of the physics: exit gaps, clogs and how each ended, and when the
-// clog_timeout rule is due. Times in seconds since the aperture opened.
+// Clog bookkeeping, independent of the physics: exit gaps, the clog open now and its arch, how each clog
+// ended, and when the clog_timeout rule is due. Times in seconds since the aperture opened. This is the one
+// place that decides these things: the simulation's step reports them (core/events.h) and everything else
+// reads the report.
 #pragma once
 
 #include <vector>
 
+#include "core/events.h"
 #include "core/frame.h"
 
 namespace sim {
@@ -15,33 +18,51 @@ class ClogTracker {
   ClogTracker(double min_gap, double timeout, bool driven = true)
       : min_gap_(min_gap), timeout_(timeout), driven_(driven) {}
 
+  // Each call that changes something adds it to `out` (the step's report).
   // A particle left through the aperture at time t.
-  void on_exit(double t);
+  void on_exit(double t, core::StepEvents& out);
   // Called just before each kick: whether the outlet is arrested (a blocking arch stands and every disk near
   // the outlet moved less than arrest_shift radii over the arrest_hold seconds before the kick). Judging the
   // arrest by displacement over a window that ends before the kick, not by speed, keeps it independent of the
   // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
-  // kick strength.
-  void on_rest_check(double t, bool outlet_at_rest);
+  // kick strength. `arch`: the blocking arch found at this check (core::blocks_outlet), or empty.
+  void on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch, core::StepEvents& out);
+  // After the step's exits and rule at time t: opens a clog when the gap has reached clog_min_gap, with the
+  // arch `find_arch()` finds then (a blocking arch or empty: the last check's arch of this gap is kept).
+  template <class FindArch>
+  void on_step_end(double t, FindArch find_arch, core::StepEvents& out) {
+    if (state_.open || t - last_ < min_gap_) return;
+    std::vector<int> now = find_arch();
+    if (!now.empty()) gap_arch_ = std::move(now);
+    open(out);
+  }
   // The rule is due when nothing has exited (and the rule has not fired) for `timeout`; never when the rule
   // is off (timeout 0: clogs end only by the drive or the end of the run).
   bool rule_due(double t) const { return timeout_ > 0 && t - last_ >= timeout_ - 1e-9; }
-  // The rule fired at t: the current clog ends, a new gap starts.
-  void on_rule(double t);
+  // Seconds until rule_due (0 when due; infinity with the rule off).
+  double rule_due_in(double t) const;
+  // The rule fired at t, removing `removed`: the current clog ends, a new gap starts.
+  void on_rule(double t, const core::ArchEvent& removed, core::StepEvents& out);
   // The run ended at t: an open clog is recorded as censored.
-  void finish(double t);
+  void finish(double t, core::StepEvents& out);
 
   double since_last(double t) const { return t - last_; }
   void set_driven(bool driven) { driven_ = driven; }
   bool arrested() const { return arrested_; }
+  const core::ClogState& state() const { return state_; }
   const std::vector<core::ClogEvent>& clogs() const { return clogs_; }
 
  private:
-  void close(double t, core::ClogEnd how);
+  void close(double t, core::ClogEnd how, core::StepEvents& out);
+  void open(core::StepEvents& out);
+  void hold_arch(const std::vector<int>& arch, core::StepEvents& out);
   double min_gap_, timeout_;
   bool driven_;
   double last_ = 0;        // last exit, rule firing, or the opening
   bool arrested_ = false;  // the outlet came to rest since last_
+  core::ClogState state_;
+  std::vector<int> gap_arch_;   // the last arch a check found during this gap (before the clog opened)
+  std::vector<int> candidate_;  // a different arch found once during the open clog (replaces at the 2nd)
   std::vector<core::ClogEvent> clogs_;
 };
 

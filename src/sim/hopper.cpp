@@ -201,7 +201,31 @@ void Hopper::drive_container() {
                                    static_cast<float>((target.y * L_ - at.y) / scene_.dt)));
 }
 
-void Hopper::step() {
+const core::StepEvents& Hopper::step() {
+  last_.clear();
+  integrate_step();
+  last_.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
+  if (!last_.empty() || !pending_.empty())
+    pending_.append(last_);
+  else
+    pending_.rule_due_in = last_.rule_due_in;
+  return last_;
+}
+
+core::StepEvents Hopper::take_events() {
+  core::StepEvents out = std::move(pending_);
+  pending_.clear();
+  pending_.rule_due_in = out.rule_due_in;
+  return out;
+}
+
+std::vector<int> Hopper::blocking_arch() const {
+  std::vector<int> arch = current_arch();
+  if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
+  return arch;
+}
+
+void Hopper::integrate_step() {
   Clock::time_point t0;
   if (profiling_) t0 = Clock::now();
   const std::int64_t every = static_cast<std::int64_t>(kick_every_);
@@ -212,8 +236,11 @@ void Hopper::step() {
   if (open_ && phase == every - static_cast<std::int64_t>(hold_steps_)) hold_pos_ = positions();
   if (kick_due) {
     if (open_) {
-      const bool arrested = outlet_arrested();
-      clogs_.on_rest_check(t_, arrested);
+      // One arch detection per check: whether the outlet is arrested, and the open clog's arch.
+      std::vector<int> arch = current_arch();
+      const bool arrested = outlet_arrested(arch);
+      if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
+      clogs_.on_rest_check(t_, arrested, arch, last_);
       check_overlaps();
       sample_airborne();
       if (scene_.arrest_skip > 0) {
@@ -247,8 +274,12 @@ void Hopper::step() {
   }
 
   handle_exits();
-  if (open_) apply_clog_rule();
-  if (clogs_.clogs().size() != events_.clogs.size()) events_.clogs = clogs_.clogs();
+  if (open_) {
+    apply_clog_rule();
+    clogs_.on_step_end(
+        t_, [this] { return blocking_arch(); }, last_);
+  }
+  record_closed_clogs();
   if (profiling_) times_.bookkeeping += seconds_since(t3), ++times_.steps;
 }
 
@@ -288,9 +319,14 @@ void Hopper::skipped_step(bool kick_due) {
   // The packing stood still: no exits; the rule fires as in an integrated run.
   skip_until_ = 0;
   apply_clog_rule();
-  if (clogs_.clogs().size() != events_.clogs.size()) events_.clogs = clogs_.clogs();
+  record_closed_clogs();
   hold_pos_ = positions();
   kick_pos_.clear();
+}
+
+void Hopper::record_closed_clogs() {
+  // The run's clog list grows by what the tracker reported in this step.
+  events_.clogs.insert(events_.clogs.end(), last_.clogs_closed.begin(), last_.clogs_closed.end());
 }
 
 void Hopper::advance_to(double t) {
@@ -305,7 +341,8 @@ void Hopper::handle_exits() {
     if (open_ && p.y < -extent_[i]) {
       events_.exits.push_back({t_, i, species_[i]});
       ++(species_[i] == core::Species::Original ? exits_original_ : exits_added_);  // first species or others
-      clogs_.on_exit(t_);
+      last_.exits.push_back(events_.exits.back());
+      clogs_.on_exit(t_, last_);
       reinject(i);
     }
   }
@@ -341,7 +378,7 @@ void Hopper::apply_clog_rule() {
   ev.geometry = core::arch_geometry(ev.ids, p, radius_);
   for (int id : ev.ids) reinject(id);
   events_.arches.push_back(std::move(ev));
-  clogs_.on_rule(t_);
+  clogs_.on_rule(t_, events_.arches.back(), last_);
 }
 
 void Hopper::reinject(int id) {
@@ -407,7 +444,7 @@ std::vector<int> Hopper::current_arch() const {
                          geo_.kind == core::ContainerKind::Hopper);
 }
 
-core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
+core::Frame Hopper::frame(bool with_forces) const {
   core::Frame f;
   f.t = t_;
   f.step = step_;
@@ -440,19 +477,28 @@ core::Frame Hopper::frame(bool with_arch, bool with_forces) const {
     if (b >= 0) f.particles[b].force += force;
     if (a >= 0 && b >= 0) f.contacts.push_back({a, b, force});
   }
-  if (with_arch && open_) {
-    f.arch = current_arch();
-    if (!core::blocks_outlet(f.arch, positions(), radius_, geo_.half_aperture)) f.arch.clear();
+  // The open clog as the step reported it: a frame shows an arch only while a clog is open.
+  const core::ClogState& clog = clogs_.state();
+  if (open_ && clog.open) {
+    f.arch = clog.arch;
+    f.clog_open = true;
+    f.clog_arrested = clog.arrested;
   }
+  f.clog_number = clog.number;
+  f.clog_start = clog.start;
+  f.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
   f.since_last_exit = open_ ? clogs_.since_last(t_) : 0;
   f.exits_original = exits_original_;
   f.exits_added = exits_added_;
   return f;
 }
 
-void Hopper::finish() {
-  clogs_.finish(t_);
-  events_.clogs = clogs_.clogs();
+const core::StepEvents& Hopper::finish() {
+  last_.clear();
+  clogs_.finish(t_, last_);
+  record_closed_clogs();
+  pending_.append(last_);
+  return last_;
 }
 
 long Hopper::contacts(bool touching_only) const {

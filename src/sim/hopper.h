@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/arch.h"
+#include "core/events.h"
 #include "core/frame.h"
 #include "core/geometry.h"
 #include "core/rng.h"
@@ -48,22 +49,30 @@ class Hopper {
   Hopper(const Hopper&) = delete;
   Hopper& operator=(const Hopper&) = delete;
 
-  void step();
+  // One time step; returns what it did (exits, a clog opened or closed, the rule's removal, the time until
+  // the rule is due). The report is also kept until take_events() collects it.
+  const core::StepEvents& step();
+  // Everything reported since the last call (merged), and the state after the last step.
+  core::StepEvents take_events();
+  // The open clog (none while settling): its row of clogs.csv, start, arrest and arch.
+  const core::ClogState& clog() const { return clogs_.state(); }
   // Step until time() >= t (to within a hundredth of a step).
   void advance_to(double t);
   double time() const { return t_; }
   std::uint64_t steps() const { return step_; }
 
-  // The snapshot the renderer and trajectory see. Work nobody will look at is skipped: with_arch runs arch
-  // detection, with_forces sums contact impulses into per-disk forces (needed only to colour by force).
-  core::Frame frame(bool with_arch = true, bool with_forces = true) const;
-  // The current blocking arch from Box2D's contacts, left to right (empty when none).
+  // The snapshot the renderer and trajectory see, with the open clog and its arch as the steps reported them
+  // (no detection here). Work nobody will look at is skipped: with_forces sums contact impulses into
+  // per-disk forces and lists the contacts (needed to colour by force or draw chains).
+  core::Frame frame(bool with_forces = true) const;
+  // The arch Box2D's contacts hold now, left to right (empty when none): what the rule removes. Pictures
+  // show the open clog's arch instead (clog().arch).
   std::vector<int> current_arch() const;
   core::ContactGraph contact_graph() const;
 
-  // Events so far; finish() closes an open clog as censored (call once at the end of a run).
+  // Events so far; finish() closes an open clog as censored (call once at the end of a run) and reports it.
   const core::Events& events() const { return events_; }
-  void finish();
+  const core::StepEvents& finish();
 
   const core::Scene& scene() const { return scene_; }
   const core::Setup& setup() const { return setup_; }
@@ -150,11 +159,15 @@ class Hopper {
   void drive_container();
   void add_grain(int id, core::Vec2 p, double angle);
   double draw_radius(const core::SpeciesDef& d);
+  void integrate_step();
   void handle_exits();
   void apply_clog_rule();
+  void record_closed_clogs();
+  // The arch Box2D's contacts hold now if it blocks the outlet (core::blocks_outlet), else empty.
+  std::vector<int> blocking_arch() const;
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
   void check_overlaps();
-  bool outlet_arrested() const;
+  bool outlet_arrested(const std::vector<int>& arch) const;
   bool still_since_last_kick();
   void start_skip();
   void skipped_step(bool kick_due);
@@ -192,6 +205,8 @@ class Hopper {
   bool open_ = false;
   ClogTracker clogs_;
   core::Events events_;
+  core::StepEvents last_;     // what the current (or last) step did
+  core::StepEvents pending_;  // what the steps did since take_events()
   long arch_fallbacks_ = 0;
   core::ArchMethod arch_method_ = core::ArchMethod::ContactPath;  // scene_.arch_method, parsed once
   std::int64_t exits_original_ = 0, exits_added_ = 0;

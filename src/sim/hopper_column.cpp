@@ -8,12 +8,11 @@
 
 namespace sim {
 
-bool Hopper::outlet_arrested() const {
+bool Hopper::outlet_arrested(const std::vector<int>& arch) const {
   if (hold_pos_.size() != bodies_.size()) return false;
   // Held up by an arch, and the arch and everything beneath it (the disks no farther from the outlet centre
   // than its farthest member) held still: disks higher in the column may rattle under strong kicks without
   // that changing whether the outlet is blocked.
-  const std::vector<int> arch = current_arch();
   if (arch.empty()) return false;
   double reach = 0;
   for (int id : arch) reach = std::max(reach, core::length(pos(id)) + extent_[id]);

@@ -19,26 +19,14 @@ Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const Im
     : traj_(traj), files_(files), scene_(scene), geo_(core::make_geometry(scene)) {
   if (traj_.size() == 0) throw core::InputError("the trajectory holds no complete frame");
   overlay_data = render::overlay_data_for(scene_);
-  // Clogs: maximal stretches of frames whose clog timer is at least clog_min_gap.
-  const double gap = traj_.clog_min_gap();
-  for (long k = 0; k < traj_.size(); ++k) {
-    const double timer = traj_.since_last_exit(k);
-    if (timer < gap) continue;
+  // Clogs: the run's own (the trajectory's events, the rows of clogs.csv), placed on the frames.
+  const long n = traj_.size();
+  long k = 0;
+  for (const core::ClogEvent& c : traj_.clogs()) {
+    while (k + 1 < n && traj_.time(k) < c.start - 1e-9) ++k;
     long last = k;
-    double longest = timer;
-    while (last + 1 < traj_.size()) {
-      const double next = traj_.since_last_exit(last + 1);
-      if (next < gap || next < traj_.since_last_exit(last)) break;  // the timer restarted
-      ++last;
-      longest = next;
-    }
-    const bool removed = last + 1 < traj_.size() && traj_.long_arches(last + 1) > traj_.long_arches(last);
-    // The clog began at its last exit, clog_min_gap before the timer said so: the bar starts there.
-    const double start = traj_.time(k) - timer;
-    long first = k;
-    while (first > 0 && traj_.time(first - 1) >= start - 1e-9) --first;
-    clogs_.push_back({first, last, longest, removed});
-    k = last;
+    while (last + 1 < n && traj_.time(last + 1) < c.end - 1e-9) ++last;
+    clogs_.push_back({k, last, c.end - c.start, c.ended_by == core::ClogEnd::Rule, c});
   }
 }
 
@@ -249,12 +237,33 @@ void Inspector::track_arch_of(bool clog, long k) {
 std::string Inspector::print_frame() {
   const core::Frame f = current();
   std::ostringstream o;
-  o << "frame " << frame_ << " t = " << f.t << " s, clog timer " << f.since_last_exit << " s, arch [";
+  o << "frame " << frame_ << " t = " << f.t << " s, clog timer " << f.since_last_exit << " s, ";
+  if (f.clog_open)
+    o << "clog " << f.clog_number << " open" << (f.clog_arrested ? " (arrested)" : "");
+  else
+    o << "flowing";
+  o << ", arch [";
   for (size_t k = 0; k < f.arch.size(); ++k) o << (k ? " " : "") << f.arch[k];
   o << "]";
   last_output = o.str();
   std::printf("%s\n", last_output.c_str());
   return last_output;
+}
+
+std::string Inspector::print_clogs() {
+  std::string all;
+  for (size_t k = 0; k < clogs_.size(); ++k) {
+    const ClogSpan& c = clogs_[k];
+    char line[160];
+    std::snprintf(line, sizeof line, "clog %zu %.6f %.6f %s %s frames %ld-%ld\n", k + 1, c.event.start,
+                  c.event.end, core::clog_end_name(c.event.ended_by), c.event.arrested ? "arrested" : "not-arrested",
+                  c.first, c.last);
+    all += line;
+  }
+  std::printf("%s", all.c_str());
+  last_output = all;
+  log("clogs");
+  return all;
 }
 
 std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
@@ -315,12 +324,16 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
     frame_ = k;
     const core::Image img = render_current(*painter, width, height);
     movie->add(img);
-    // A freeze: the clog timer crossing clog_min_gap here, or the rule firing before the next frame.
-    const bool event = freeze.at == At::Clog
-                           ? k > 0 && core::clog_formed(traj_.since_last_exit(k - 1),
-                                                        traj_.since_last_exit(k), traj_.clog_min_gap())
-                           : freeze.at == At::Rule && k + 1 < traj_.size() &&
-                                 traj_.long_arches(k + 1) > traj_.long_arches(k);
+    // A freeze: the first frame at which a clog is open (as the recording's steps reported it), or the last
+    // frame before the rule fires.
+    bool event = false;
+    if (freeze.at == At::Clog) {
+      const core::Frame now = traj_.frame(k);
+      event = now.clog_open &&
+              (k == 0 || !traj_.frame(k - 1).clog_open || traj_.frame(k - 1).clog_number != now.clog_number);
+    } else if (freeze.at == At::Rule) {
+      event = k + 1 < traj_.size() && traj_.long_arches(k + 1) > traj_.long_arches(k);
+    }
     for (long c = 0; event && c < copies; ++c) movie->add(img);
   }
   frame_ = keep;

@@ -28,12 +28,13 @@
 
 namespace ui {
 
-// A clog: the frames from its start (its last exit, as clogs.csv's start_s) to its end, during which nothing
-// left for at least clog_min_gap.
+// A clog of the run (a row of clogs.csv, as the trajectory's events give it) and the frames it covers: from
+// the first frame at or after its start (its last exit) to the last frame before its end.
 struct ClogSpan {
-  long first, last;  // frames
-  double duration;   // s, the clog timer at its last frame
-  bool removed;      // ended by the clog_timeout rule (a long-lasting arch)
+  long first, last;       // frames
+  double duration;        // s, end - start
+  bool removed;           // ended by the clog_timeout rule (a long-lasting arch)
+  core::ClogEvent event;  // start, end, how it ended, whether it was arrested
 };
 
 using render::Painter;  // Frame -> Image, shared with record (render/painter.h)
@@ -70,6 +71,9 @@ class Inspector {
   void track_region(double x0, double y0, double x1, double y1);
   void track_arch_of(bool clog, long k);
   std::string print_frame();
+  // Every clog of the run as the inspector holds it (the recording's own events: the rows of clogs.csv), one
+  // line each: "clog K START END ENDED_BY arrested|not-arrested frames FIRST-LAST".
+  std::string print_clogs();
   // Files are never written over; patterns may hold {frame} and {t}. Return the path written.
   std::string snapshot(const std::string& pattern, int w, int h, Painter* painter);
   std::string export_frames(const std::string& pattern, long from, long to, int w, int h, int fps,

@@ -28,7 +28,7 @@ double to_double(const std::string& s, const char* what) {
 }
 const char* kCommands =
     "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
-    "freeze, snapshot, export, print";
+    "freeze, snapshot, export, print, clogs";
 
 // A script line's words, a comment cut off.
 std::vector<std::string> words_of(const std::string& line) {
@@ -159,6 +159,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       return;
     }
     if (cmd == "print") return (void)print_frame();
+    if (cmd == "clogs") return (void)print_clogs();
     if (cmd == "snapshot") {
       if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png|.svg|.pdf [WxH]");
       int w = 1920, h = 1080;

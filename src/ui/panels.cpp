@@ -141,7 +141,7 @@ void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
     const bool shorthand = names.size() == 2 && names[0] == "original";
     int added = 0;
     for (int id : f.arch) added += f.particles[id].species != core::Species::Original;
-    const char* clogging = f.since_last_exit >= insp.overlay_data.clog_min_gap ? ", clogging" : ", forming";
+    const char* clogging = f.clog_arrested ? ", arrested" : ", clogging";
     if (shorthand)
       ImGui::Text("arch: %zu disks, %d added%s", f.arch.size(), added, clogging);
     else

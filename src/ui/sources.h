@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/frame.h"
 #include "core/image.h"
@@ -16,9 +17,11 @@ class FrameSource {
   virtual ~FrameSource() = default;
   virtual long size() const = 0;
   virtual core::Frame frame(long k) const = 0;
-  virtual double time(long k) const = 0;               // s
-  virtual double since_last_exit(long k) const = 0;    // s: the clog timer at frame k
-  virtual int long_arches(long k) const = 0;           // arches the clog rule removed up to frame k
+  virtual double time(long k) const = 0;             // s
+  virtual double since_last_exit(long k) const = 0;  // s: the clog timer at frame k
+  virtual int long_arches(long k) const = 0;         // arches the clog rule removed up to frame k
+  // The run's clogs as the simulation reported them (the rows of clogs.csv), in order.
+  virtual const std::vector<core::ClogEvent>& clogs() const = 0;
   virtual double frame_interval() const = 0;           // s between frames
   virtual double clog_min_gap() const = 0;             // s: a gap at least this long is a clog
   virtual bool has_contacts() const { return false; }  // frames carry their contacts (force chains)

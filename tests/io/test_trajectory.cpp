@@ -22,6 +22,16 @@ const std::string kShort = " --duration 1 --set settle_time=2 --quiet";
 fs::path temp_dir(const std::string& name) {
   return test::temp_dir("io_" + name);
 }
+// Where the frames start (the header's u32 at byte 12; docs/trajectory.md).
+size_t header_bytes(const std::vector<unsigned char>& data) {
+  std::uint32_t h = 0;
+  std::memcpy(&h, &data[12], 4);
+  return h;
+}
+std::vector<unsigned char> bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 }  // namespace
 
 TEST_CASE(
@@ -36,12 +46,25 @@ TEST_CASE(
   CHECK(t.frame(3).arch == std::vector<int>{0, 1});
   CHECK(t.frame(1).particles[1].species == core::Species::Added);
   CHECK(t.long_arches(4) == 1);
-  // Cut it in the middle of frame 3.
-  const auto size = fs::file_size(p);
-  fs::resize_file(p, size - io::TrajectoryWriter::frame_bytes(2) - 100);
+  // The events block: the clog and the rule's removal, as reported.
+  REQUIRE(t.events_complete());
+  REQUIRE(t.events().clogs.size() == 1);
+  CHECK(t.events().clogs[0].ended_by == core::ClogEnd::Rule);
+  REQUIRE(t.events().arches.size() == 1);
+  CHECK(t.events().arches[0].ids == std::vector<int>{0, 1});
+  CHECK(t.frame(3).clog_open);
+  CHECK(t.frame(3).clog_number == 1);
+  CHECK_FALSE(t.frame(4).clog_open);
+  // Cut it in the middle of frame 3: the frames before it read, and the clog is rebuilt from them (still open
+  // at the last whole frame: censored there).
+  const size_t header = header_bytes(bytes_of(p)), fb = io::TrajectoryWriter::frame_bytes(2);
+  fs::resize_file(p, header + 3 * fb + fb / 2);
   io::Trajectory cut(p);
   CHECK(cut.size() == 3);
   CHECK(cut.truncated());
+  CHECK_FALSE(cut.events_complete());
+  REQUIRE(cut.events().clogs.size() == 1);
+  CHECK(cut.events().clogs[0].ended_by == core::ClogEnd::RunEnd);
   std::ofstream(d / "foreign.sstraj") << "this is not a trajectory at all, just text";
   CHECK_THROWS_WITH(io::Trajectory(d / "foreign.sstraj"), Contains("not a siloscope trajectory"));
   CHECK_THROWS_WITH(io::Trajectory(d / "missing.sstraj"), Contains("cannot open"));
@@ -68,8 +91,8 @@ TEST_CASE("a trajectory frame holding NaN or inf is reported with its frame numb
   // The y coordinate of particle 3 in frame 4 (frames follow the header; see docs/trajectory.md).
   const size_t n = good.info().n_particles,
                fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
-  const size_t header = data.size() - fb * static_cast<size_t>(good.size());
-  const size_t at = header + 4 * fb + 40 + 4 * io::kTrajectoryMaxArch + 4 * (n + 3);
+  const size_t header = header_bytes(data);
+  const size_t at = header + 4 * fb + (fb - 24 * n) + 4 * (n + 3);
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     std::vector<unsigned char> broken = data;
     std::memcpy(&broken[at], &bad, 4);
@@ -94,7 +117,7 @@ TEST_CASE(
   REQUIRE(good.size() >= 5);
   const size_t n = good.info().n_particles,
                fb = io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(n));
-  const size_t frame4 = data.size() - fb * static_cast<size_t>(good.size()) + 4 * fb;
+  const size_t frame4 = header_bytes(data) + 4 * fb;
   auto refused = [&](size_t offset, const void* bytes, size_t size, const std::string& what) {
     std::vector<unsigned char> broken = data;
     std::memcpy(&broken[frame4 + offset], bytes, size);
@@ -110,7 +133,7 @@ TEST_CASE(
   const std::int64_t negative = -3;
   refused(16, &negative, 8, "exit counts (-3");
   const float far = 1e30f;
-  refused(40 + 4 * io::kTrajectoryMaxArch + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
+  refused(fb - 24 * n + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
 }
 
 TEST_CASE("contacts files: each frame's contacts read back, a cut file read to its last whole frame",
@@ -147,4 +170,50 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
     w.close();
   }
   CHECK_THROWS_WITH(io::Contacts(d / "bad.sscon", 4), Catch::Contains("names grain 9; ids run from 0 to 3"));
+}
+
+TEST_CASE("a version-1 trajectory still opens: its clogs rebuilt from the timers, no arch in a flowing frame",
+          "[io]") {
+  // The synthetic file rewritten as version 1: frames without the clog state, no events block.
+  const fs::path d = temp_dir("traj_v1");
+  const std::vector<unsigned char> v2 = bytes_of(test::synthetic_trajectory(d));
+  const size_t header = header_bytes(v2), fb2 = io::TrajectoryWriter::frame_bytes(2),
+               fb1 = io::TrajectoryWriter::frame_bytes(2, 1);
+  REQUIRE(fb2 == fb1 + 24);
+  std::vector<unsigned char> v1(v2.begin(), v2.begin() + static_cast<long>(header));
+  const std::uint32_t one = 1, fb1_u32 = static_cast<std::uint32_t>(fb1);
+  std::memcpy(&v1[8], &one, 4);
+  std::memcpy(&v1[24], &fb1_u32, 4);
+  for (size_t k = 0; k < 5; ++k) {
+    const auto* f = &v2[header + k * fb2];
+    v1.insert(v1.end(), f, f + 168);        // up to the arch
+    v1.insert(v1.end(), f + 192, f + fb2);  // the particle arrays
+  }
+  // Frame 1 of version 1 stored an "arch" while flowing (timer 0): it is not shown.
+  const std::int32_t count = 2, a = 0, b = 1;
+  std::memcpy(&v1[header + fb1 + 36], &count, 4);
+  std::memcpy(&v1[header + fb1 + 40], &a, 4);
+  std::memcpy(&v1[header + fb1 + 44], &b, 4);
+  io::Trajectory t(v1, "old.sstraj");
+  CHECK(t.version() == 1);
+  REQUIRE(t.size() == 5);
+  CHECK_FALSE(t.events_complete());
+  CHECK(t.frame(1).arch.empty());
+  CHECK(t.frame(3).arch == std::vector<int>{0, 1});
+  CHECK(t.frame(3).clog_open);
+  REQUIRE(t.events().clogs.size() == 1);
+  CHECK(t.events().clogs[0].ended_by == core::ClogEnd::Rule);
+  CHECK(t.frame(3).particles[0].x == Approx(0.1f));
+}
+
+TEST_CASE("a recording made with the clog rule off opens (clog_timeout 0 in the header)", "[io]") {
+  const fs::path d = temp_dir("traj_rule_off");
+  REQUIRE(
+      cli("run " + kScene + kShort + " --set clog_timeout=0 --trajectory-fps 10 --out " + (d / "r").string())
+          .code == 0);
+  io::Trajectory t(d / "r" / "trajectory.sstraj");
+  CHECK(t.info().clog_timeout == 0);
+  CHECK(t.events_complete());
+  CHECK(std::isinf(t.frame(t.size() - 1).rule_due_in));
+  REQUIRE(cli("export " + (d / "r").string() + " --format xyz").code == 0);
 }

@@ -49,15 +49,15 @@ TEST_CASE("arches shown agree with the clog rule's, and a flowing outlet shows n
   std::vector<int> before_rule;
   while (h.time() < 40.0) {
     // The frame a picture would show just before the rule fires: the arch arches.csv records.
-    const bool rule_next = s.clog_timeout - h.frame(false, false).since_last_exit < 1.5 * s.dt;
-    if (rule_next) before_rule = h.frame(true, false).arch;
+    const bool rule_next = s.clog_timeout - h.frame(false).since_last_exit < 1.5 * s.dt;
+    if (rule_next) before_rule = h.frame(false).arch;
     h.step();
     if (h.events().arches.size() > rules) {
       rules = h.events().arches.size();
       agreed += before_rule == h.events().arches.back().ids;
     }
     if (h.steps() % 50 != 0) continue;
-    const core::Frame f = h.frame(true, false);
+    const core::Frame f = h.frame(false);
     ++frames;
     if (f.arch.empty()) continue;
     ++shown;

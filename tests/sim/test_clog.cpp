@@ -32,18 +32,70 @@ TEST_CASE(
     "the clock: a gap that an arrested outlet ends is vibration, one that never arrested is spontaneous",
     "[clog]") {
   sim::ClogTracker t(0.5, 5.0);
-  t.on_rest_check(0.6, false);
-  t.on_exit(1.0);  // flowing jam: never arrested
-  t.on_rest_check(1.7, true);
-  t.on_exit(2.0);  // arrested, then flow: a kick broke it
-  t.on_rest_check(2.4, true);
-  t.on_rule(7.0);
-  t.finish(7.2);  // shorter than clog_min_gap: not a clog
+  core::StepEvents e;
+  t.on_rest_check(0.6, false, {}, e);
+  t.on_exit(1.0, e);  // flowing jam: never arrested
+  t.on_rest_check(1.7, true, {}, e);
+  t.on_exit(2.0, e);  // arrested, then flow: a kick broke it
+  t.on_rest_check(2.4, true, {}, e);
+  core::ArchEvent removed;
+  removed.t = 7.0;
+  t.on_rule(7.0, removed, e);
+  t.finish(7.2, e);  // shorter than clog_min_gap: not a clog
   REQUIRE(t.clogs().size() == 3);
   CHECK(t.clogs()[0].ended_by == core::ClogEnd::Spontaneous);
   CHECK(t.clogs()[1].ended_by == core::ClogEnd::Vibration);
   CHECK(t.clogs()[2].ended_by == core::ClogEnd::Rule);
   CHECK(t.clogs()[2].arrested);
+  // Every closed clog was reported, and each opened before (here, in the step that closed it).
+  CHECK(e.clogs_closed.size() == 3);
+  CHECK(e.clogs_opened == std::vector<int>{1, 2, 3});
+  CHECK(e.rule_removed.size() == 1);
+}
+
+TEST_CASE(
+    "the open clog: opens at clog_min_gap with the gap's arch, holds it through flicker, closes at "
+    "the exit",
+    "[clog]") {
+  sim::ClogTracker t(0.5, 5.0);
+  core::StepEvents e;
+  const std::vector<int> a{3, 4, 5}, b{3, 7, 5};
+  auto none = [] { return std::vector<int>{}; };
+  t.on_exit(1.0, e);  // the gap from the opening was clog 1
+  e.clear();
+  t.on_rest_check(1.1, false, {}, e);
+  t.on_rest_check(1.2, false, a, e);  // an arch stands before the gap is a clog
+  t.on_step_end(1.3, none, e);
+  CHECK_FALSE(t.state().open);
+  CHECK(e.clogs_opened.empty());
+  t.on_step_end(1.5, none, e);  // the gap reaches clog_min_gap: a clog opens with the gap's arch
+  REQUIRE(t.state().open);
+  CHECK(t.state().number == 2);
+  CHECK(t.state().start == 1.0);
+  CHECK(t.state().arch == a);
+  CHECK(e.clogs_opened == std::vector<int>{2});
+  t.on_rest_check(1.6, false, {}, e);  // contacts flicker: the arch stays
+  CHECK(t.state().arch == a);
+  t.on_rest_check(1.7, false, b, e);  // a different arch once: not yet
+  CHECK(t.state().arch == a);
+  t.on_rest_check(1.8, true, a, e);  // back to the first: the candidate is forgotten
+  t.on_rest_check(1.9, true, b, e);
+  CHECK(t.state().arch == a);
+  t.on_rest_check(2.0, true, b, e);  // twice in a row: the arch really changed
+  CHECK(t.state().arch == b);
+  CHECK(t.state().arch_changes == 1);
+  CHECK(t.state().arrested);
+  CHECK(t.rule_due_in(2.0) == Approx(4.0));
+  t.on_exit(2.5, e);
+  CHECK_FALSE(t.state().open);
+  CHECK(t.state().arch.empty());
+  REQUIRE(e.clogs_closed.size() == 1);
+  CHECK(e.clogs_closed[0].start == 1.0);
+  CHECK(e.clogs_closed[0].end == 2.5);
+  // With the rule off it is never due.
+  sim::ClogTracker off(0.5, 0.0);
+  CHECK(std::isinf(off.rule_due_in(100.0)));
+  CHECK_FALSE(off.rule_due(100.0));
 }
 
 TEST_CASE("a staged clog without kicks is arrested and ends by the rule", "[clog][sim]") {

@@ -52,7 +52,7 @@ TEST_CASE("a flat silo discharges through its floor, its arches from floor to fl
 TEST_CASE("polygons: Box2D polygons of equal area, at random orientations, drawn by their sides",
           "[sim][scenes]") {
   sim::Hopper h(flat_silo({"species.g.sides=5", "seed=3"}));
-  const core::Frame f = h.frame(false, false);
+  const core::Frame f = h.frame(false);
   std::vector<double> angles;
   for (const auto& p : f.particles) {
     CHECK(p.sides == 5);
@@ -90,7 +90,7 @@ TEST_CASE("a vibrating container follows A sin(omega t) and lifts the grains at 
     h.step();
     worst = std::max(worst, std::abs(h.container_offset().y - core::container_offset(st, h.time()).y));
     if (k % 10 == 0) {
-      const auto f = h.frame(false, false);
+      const auto f = h.frame(false);
       CHECK(f.container_y == h.container_offset().y);
     }
   }

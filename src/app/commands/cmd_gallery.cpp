@@ -90,8 +90,10 @@ int gallery(const GalleryOptions& o) {
   tiles.forces = style.chains;
   tiles.on_frame = [&](const FrameTick& tick) {
     const core::ArchEvent& a = recorded.arches[k];
+    // The frame just before the rule fires: its clog is open, and its arch is the one the rule removes.
     core::Frame f = tick.frames[0];
     f.arch = a.ids;
+    f.clog_open = f.clog_arrested = true;
     f.since_last_exit = a.clog_duration;
     render::ArchStyle arch;
     arch.halo_m = arch.bond_m = 0.012 * geo.grain_diameter / 0.13;

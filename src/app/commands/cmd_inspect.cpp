@@ -93,7 +93,7 @@ class LiveHopper final : public ui::LiveSource {
   void advance(double seconds) override {
     session_->run(session_->world(0).time() + seconds, FrameClock::none(), {});
   }
-  core::Frame frame(bool forces) const override { return session_->world(0).frame(true, forces); }
+  core::Frame frame(bool forces) const override { return session_->world(0).frame(forces); }
   const core::Geometry& geometry() const override { return session_->world(0).geometry(); }
   render::OverlayData overlay_data() const override { return render::overlay_data_for(scene_); }
   const core::Scene& scene() const override { return scene_; }

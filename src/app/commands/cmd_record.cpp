@@ -267,7 +267,7 @@ class MovieSink : public Sink {
     pf.frames = tick.frames;
     bool freeze = false;
     for (size_t i = 0; i < panels_.size(); ++i) {
-      render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.frames[i].t);
+      render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.events[i], tick.frames[i].t);
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
       if (!plan_.path.empty()) {
@@ -275,7 +275,7 @@ class MovieSink : public Sink {
         v.rect.x += static_cast<int>(i) * panel_w_;
         pf.views.push_back({v});
       }
-      freeze = freeze || freezes(i, tick.frames[i]);
+      freeze = freeze || freezes(tick.frames[i], tick.events[i]);
     }
     last_t = tick.frames[0].t;
     slow_frames += tick.slow;
@@ -291,7 +291,6 @@ class MovieSink : public Sink {
     if (open_) open_ = pipeline_.push(std::move(pf));
     t0_ = Clock::now();
   }
-  bool wants_arch() const override { return true; }
   bool wants_forces() const override {
     return true;
   }  // the trajectory keeps them, force colouring shows them
@@ -300,17 +299,12 @@ class MovieSink : public Sink {
   long slow_frames = 0, frozen_frames = 0;
 
  private:
-  // Whether panel i's frame is a freeze's event: the clog timer crossing clog_min_gap (a clog has formed), or
-  // the last frame before the clog rule fires (the timer within one frame of clog_timeout).
-  bool freezes(size_t i, const core::Frame& f) {
+  // Whether a panel's frame is a freeze's event, as its steps reported it: a clog opened since the previous
+  // frame, or the rule falls due before the next frame (the last frame before it fires) with an arch shown.
+  bool freezes(const core::Frame& f, const core::StepEvents& e) const {
     if (!plan_.freeze) return false;
-    while (last_timer_.size() <= i) last_timer_.push_back(0);
-    const double before = last_timer_[i], now = f.since_last_exit;
-    last_timer_[i] = now;
-    const core::Scene& sc = panels_[i].scene;
-    if (plan_.freeze.at == render::Freeze::At::Clog) return core::clog_formed(before, now, sc.clog_min_gap);
-    const double step = clock_.frame_interval;
-    return now < sc.clog_timeout && now + step >= sc.clog_timeout && !f.arch.empty();
+    if (plan_.freeze.at == render::Freeze::At::Clog) return !e.clogs_opened.empty();
+    return f.clog_open && e.rule_due_in > 0 && e.rule_due_in <= clock_.frame_interval && !f.arch.empty();
   }
   FramePipeline& pipeline_;
   std::vector<Panel>& panels_;
@@ -318,7 +312,6 @@ class MovieSink : public Sink {
   const Plan& plan_;
   double speed_;
   int panel_w_, height_;
-  std::vector<double> last_timer_;
   Clock::time_point t0_;
   bool open_ = true;
 };
@@ -505,14 +498,17 @@ int record_movie(const RecordOptions& o) {
   st.png = pipeline.png_seconds();
   const double wall = since(wall0);
 
-  // --- finish: movie into place first, then the directory that describes it ---
+  // --- finish: the run's end closes open clogs (the trajectories keep them), the movie goes into place
+  // first, then the directory that describes it ---
+  std::vector<Sink*> closing;
+  for (auto& t : trajectories) closing.push_back(t.get());
+  session->finish(closing);
   for (auto& t : trajectories) t->close();
   if (mp4) {
     mp4->finish();
     st.convert = mp4->convert_seconds();
     st.encode = mp4->encode_seconds();
   }
-  session->finish();
   const std::vector<analysis::Measurements> ms = write_recording_outputs(
       o, plan, panels, *session, dir, info, st, encoded, movie->slow_frames, movie->frozen_frames,
       was_interrupted, pipeline.gl_renderer(), wall, movie_path);

@@ -86,7 +86,7 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
     std::fprintf(stderr, "siloscope: interrupted at t = %.1f s; nothing written\n", hopper.time());
     return 130;
   }
-  session.finish();
+  session.finish(sinks);  // the trajectory keeps the clog the run's end closed
   if (trajectory) trajectory->close();
   progress.finish();
   auto wall2 = std::chrono::steady_clock::now();

@@ -99,7 +99,7 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   h.place(0, {-ra - 0.25 * ra, y});
   h.place(1, {ra + 0.25 * ra, y});
   auto energy = [&] {
-    core::Frame f = h.frame(false, false);
+    core::Frame f = h.frame(false);
     const double m = core::mass_of(ra, s.density);
     double e = 0;
     for (const auto& p : f.particles) e += 0.5 * m * (p.vx * p.vx + p.vy * p.vy);
@@ -111,7 +111,7 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   // Stop before either disk comes within two radii of a side wall: wall contacts are inelastic by design.
   const double limit = h.geometry().half_width - 3 * ra;
   FunctionSink probe;
-  probe.on_step = [&](const sim::Hopper& w, size_t) {
+  probe.on_step = [&](const sim::Hopper& w, const core::StepEvents&, size_t) {
     const auto p = w.positions();
     return std::abs(p[0].x) <= limit && std::abs(p[1].x) <= limit;
   };

@@ -23,6 +23,7 @@ class TrajectoryFrames : public ui::FrameSource {
   double time(long k) const override { return t_.time(k); }
   double since_last_exit(long k) const override { return t_.since_last_exit(k); }
   int long_arches(long k) const override { return t_.long_arches(k); }
+  const std::vector<core::ClogEvent>& clogs() const override { return t_.events().clogs; }
   double frame_interval() const override { return t_.info().frame_interval; }
   double clog_min_gap() const override { return t_.info().clog_min_gap; }
 

@@ -11,12 +11,10 @@
 
 namespace app {
 
-render::Annotations EventMarks::update(const sim::Hopper& h, double t) {
+render::Annotations EventMarks::update(const sim::Hopper& h, const core::StepEvents& events, double t) {
   render::Annotations notes;
-  const auto& arches = h.events().arches;
-  const auto& clogs = h.events().clogs;
-  if (arches.size() > arches_seen_) {
-    const core::ArchEvent& a = arches.back();
+  if (!events.rule_removed.empty()) {
+    const core::ArchEvent& a = events.rule_removed.back();
     rings_.clear();
     // Where they stood, in the container's frame; drawn where the container is now.
     const core::Vec2 off = h.container_offset();
@@ -27,16 +25,12 @@ render::Annotations EventMarks::update(const sim::Hopper& h, double t) {
     std::snprintf(text, sizeof text, "arch removed (%g s rule): %zu %s", h.scene().clog_timeout, a.ids.size(),
                   h.setup().any_polygon() ? "grains" : "disks");
     start(text, a.t, true);
-    arches_seen_ = arches.size();
   }
-  if (clogs.size() > clogs_seen_) {
-    const core::ClogEvent& c = clogs.back();
-    if (c.ended_by == core::ClogEnd::Vibration) {
-      char text[96];
-      std::snprintf(text, sizeof text, "clog broken by vibration after %.1f s", c.end - c.start);
-      start(text, c.end, false);
-    }
-    clogs_seen_ = clogs.size();
+  for (const core::ClogEvent& c : events.clogs_closed) {
+    if (c.ended_by != core::ClogEnd::Vibration) continue;
+    char text[96];
+    std::snprintf(text, sizeof text, "clog broken by vibration after %.1f s", c.end - c.start);
+    start(text, c.end, false);
   }
   if (frames_left_ > 0 || t - since_ < kMinSeconds) {
     notes.caption = caption_;
@@ -79,7 +73,7 @@ std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, d
   Session session({scene});
   std::vector<int> ids;
   auto take = [&](const sim::Hopper& h) {
-    const core::Frame f = h.frame(false, false);
+    const core::Frame f = h.frame(false);
     for (size_t i = 0; i < f.particles.size(); ++i) {
       const auto& p = f.particles[i];
       if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) ids.push_back(static_cast<int>(i));
@@ -90,7 +84,7 @@ std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, d
     return ids;
   }
   FunctionSink probe;
-  probe.on_step = [&](const sim::Hopper& h, size_t) {
+  probe.on_step = [&](const sim::Hopper& h, const core::StepEvents&, size_t) {
     if (h.time() < t - 0.5 * scene.dt) return true;
     take(h);
     return false;
@@ -103,16 +97,15 @@ std::vector<int> long_arch_members(const core::Scene& scene, int k) {
   Session session({scene});
   FunctionSink probe;
   std::vector<int> ids;
-  probe.on_step = [&](const sim::Hopper& h, size_t) {
-    const auto& arches = h.events().arches;
-    if (static_cast<int>(arches.size()) < k) return true;
-    ids = arches[static_cast<size_t>(k - 1)].ids;
-    return false;
+  int removed = 0;
+  probe.on_step = [&](const sim::Hopper&, const core::StepEvents& e, size_t) {
+    for (const core::ArchEvent& a : e.rule_removed)
+      if (++removed == k) ids = a.ids;
+    return removed < k;
   };
   session.run(scene.duration, FrameClock::none(), {&probe});
-  if (ids.empty())
-    throw core::InputError("--track-arch " + std::to_string(k) + ": the run has " +
-                           std::to_string(session.world(0).events().arches.size()) +
+  if (removed < k)
+    throw core::InputError("--track-arch " + std::to_string(k) + ": the run has " + std::to_string(removed) +
                            " long-lasting arches in its " + core::format_g(scene.duration, 6) + " s");
   return ids;
 }
@@ -121,21 +114,18 @@ std::vector<int> clog_arch_members(const core::Scene& scene, int k) {
   Session session({scene});
   FunctionSink probe;
   std::vector<int> ids;
-  int formed = 0;
-  double before = 0;
-  probe.on_step = [&](const sim::Hopper& h, size_t) {
-    // A clog is counted when the outlet has been still for clog_min_gap (as clogs.csv and the inspector's
-    // `goto clog K` count them); its arch is the one standing then.
-    const core::Frame f = h.frame(true, false);
-    const bool crossed = core::clog_formed(before, f.since_last_exit, scene.clog_min_gap);
-    before = f.since_last_exit;
-    if (!crossed || ++formed < k) return true;
-    ids = f.arch;
+  int opened = 0;
+  probe.on_step = [&](const sim::Hopper& h, const core::StepEvents& e, size_t) {
+    // The k-th clog (row k of clogs.csv) as the step reports its opening; its arch is the one the step
+    // found then.
+    opened += static_cast<int>(e.clogs_opened.size());
+    if (opened < k) return true;
+    if (h.clog().open && h.clog().number == k) ids = h.clog().arch;
     return false;
   };
   session.run(scene.duration, FrameClock::none(), {&probe});
-  if (formed < k)
-    throw core::InputError("--track-clog " + std::to_string(k) + ": the run has " + std::to_string(formed) +
+  if (opened < k)
+    throw core::InputError("--track-clog " + std::to_string(k) + ": the run has " + std::to_string(opened) +
                            " clogs in its " + core::format_g(scene.duration, 6) + " s");
   if (ids.empty())
     throw core::InputError(

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/events.h"
 #include "core/frame.h"
 #include "core/scene.h"
 #include "render/overlay.h"
@@ -26,7 +27,7 @@ double color_scale_from_data(const core::Scene& scene, bool forces, double secon
 std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, double x1, double y1,
                                double t);
 std::vector<int> long_arch_members(const core::Scene& scene, int k);
-// The members of the arch standing when the k-th clog forms (k >= 1; the outlet still for clog_min_gap).
+// The members of the arch of the k-th clog as it opens (k >= 1; row k of clogs.csv).
 std::vector<int> clog_arch_members(const core::Scene& scene, int k);
 
 // The annotations record puts on a panel's frames: the members of the last rule removal, ringed where they
@@ -36,11 +37,11 @@ class EventMarks {
  public:
   static constexpr int kMinFrames = 10;
   static constexpr double kMinSeconds = 0.7;
-  render::Annotations update(const sim::Hopper& h, double t);
+  // `events`: what world h's steps reported since the previous frame.
+  render::Annotations update(const sim::Hopper& h, const core::StepEvents& events, double t);
 
  private:
   void start(const std::string& caption, double t, bool keep_rings);
-  size_t arches_seen_ = 0, clogs_seen_ = 0;
   std::vector<render::Annotations::Ring> rings_;
   std::string caption_;
   double since_ = -1e9;

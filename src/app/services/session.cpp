@@ -71,6 +71,7 @@ FrameClock FrameClock::at_steps(std::vector<long> steps) {
 Session::Session(const std::vector<core::Scene>& scenes) {
   if (scenes.empty()) throw core::InputError("a session needs a scene");
   worlds_.resize(scenes.size());
+  last_removal_.assign(scenes.size(), -INFINITY);
   // Each world deposits and settles on its own thread (a comparison's panels cost one settling's time).
   std::vector<std::future<void>> others;
   for (size_t k = 1; k < scenes.size(); ++k)
@@ -135,10 +136,9 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
                   const std::function<bool()>& stop, const std::function<void(double)>& progress) {
   const double dt = worlds_[0]->scene().dt;
   const long last = end_step(end);
-  bool arch = false, forces = false, per_step = false, want_frames = false;
+  bool forces = false, per_step = false, want_frames = false;
   for (const Sink* s : sinks) {
     want_frames = want_frames || s->wants_frames();
-    arch = arch || s->wants_arch();
     forces = forces || s->wants_forces();
     per_step = per_step || s->wants_steps();
   }
@@ -163,17 +163,17 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
       tick.index = frames_taken_;
       tick.step = s;
       for (const auto& w : worlds_) {
-        if (want_frames || clock.slow_steps != clock.steps) tick.frames.push_back(w->frame(arch, forces));
+        if (want_frames) tick.frames.push_back(w->frame(forces));
+        tick.events.push_back(w->take_events());
         tick.worlds.push_back(w.get());
       }
-      // Slow motion (record --slowmo): from 0.5 s before a clog rule fires to 1 s after a removal, any world.
+      // Slow motion (record --slowmo): from 0.5 s before a clog rule is due to 1 s after a removal, any world
+      // (both as the steps reported them).
       if (clock.steps > 0 && clock.slow_steps != clock.steps)
         for (size_t k = 0; k < worlds_.size(); ++k) {
-          const auto& w = *worlds_[k];
-          const auto& arches = w.events().arches;
-          const double timeout = w.scene().clog_timeout;
-          tick.slow = tick.slow || (timeout > 0 && tick.frames[k].since_last_exit >= timeout - 0.5) ||
-                      (!arches.empty() && tick.frames[k].t - arches.back().t < 1.0);
+          const core::StepEvents& e = tick.events[k];
+          if (!e.rule_removed.empty()) last_removal_[k] = e.rule_removed.back().t;
+          tick.slow = tick.slow || e.rule_due_in <= 0.5 || worlds_[k]->time() - last_removal_[k] < 1.0;
         }
       for (Sink* sink : sinks) sink->frame(tick);
       ++frames_taken_;
@@ -193,9 +193,9 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
     if (per_step) {
       for (; s < target; ++s)
         for (size_t k = 0; k < worlds_.size(); ++k) {
-          worlds_[k]->step();
+          const core::StepEvents& e = worlds_[k]->step();
           for (Sink* sink : sinks)
-            if (sink->wants_steps()) sink->step(*worlds_[k], k);
+            if (sink->wants_steps()) sink->step(*worlds_[k], e, k);
         }
       for (const Sink* sink : sinks)
         if (sink->done()) return false;
@@ -205,6 +205,10 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
     }
     if (s - polled >= poll_every) {
       polled = s;
+      // Without frames no sink collects the worlds' reports (per-step sinks had them): drop them here so a
+      // long run does not keep a second copy of its events.
+      if (!frames)
+        for (auto& w : worlds_) w->take_events();
       if (progress) progress(worlds_[0]->time());
       if (stop && stop()) return false;
     }
@@ -212,8 +216,13 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
   return true;
 }
 
-void Session::finish() {
-  for (auto& w : worlds_) w->finish();
+void Session::finish(const std::vector<Sink*>& sinks) {
+  std::vector<core::StepEvents> closed;
+  for (auto& w : worlds_) {
+    w->finish();
+    closed.push_back(w->take_events());
+  }
+  for (Sink* sink : sinks) sink->finished(closed);
 }
 
 }  // namespace app

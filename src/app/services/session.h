@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/events.h"
 #include "core/frame.h"
 #include "core/scene.h"
 
@@ -44,12 +45,15 @@ struct FrameClock {
   static FrameClock at_steps(std::vector<long> steps);
 };
 
-// What a frame tick hands to the sinks: each world's frame (if any sink asked for frames) and the worlds.
+// What a frame tick hands to the sinks: each world's frame (if any sink asked for frames), what each world's
+// steps reported since the previous tick (core/events.h: the only account of exits, clogs, arches and the
+// rule), and the worlds.
 struct FrameTick {
-  long index = 0;                          // 0, 1, 2, ...
-  long step = 0;                           // time steps since the opening
-  bool slow = false;                       // taken at slow-motion spacing
-  std::vector<core::Frame> frames;         // one per world, in world order
+  long index = 0;                        // 0, 1, 2, ...
+  long step = 0;                         // time steps since the opening
+  bool slow = false;                     // taken at slow-motion spacing
+  std::vector<core::Frame> frames;       // one per world, in world order
+  std::vector<core::StepEvents> events;  // one per world: since the previous tick (the first: since opening)
   std::vector<const sim::Hopper*> worlds;  // the same order
 };
 
@@ -59,14 +63,15 @@ class Sink {
   virtual ~Sink() = default;
   // A frame is due (only when the clock takes frames).
   virtual void frame(const FrameTick&) {}
-  // What the sink needs in FrameTick::frames: the frames at all, arch detection, contact forces (each costs
-  // time).
+  // What the sink needs in FrameTick::frames: the frames at all, contact forces (each costs time).
   virtual bool wants_frames() const { return true; }
-  virtual bool wants_arch() const { return false; }
   virtual bool wants_forces() const { return false; }
-  // Called after every time step of world k when wants_steps() (probes that watch every step).
+  // Called after every time step of world k, with what that step reported, when wants_steps() (probes that
+  // watch every step).
   virtual bool wants_steps() const { return false; }
-  virtual void step(const sim::Hopper&, size_t /*world*/) {}
+  virtual void step(const sim::Hopper&, const core::StepEvents&, size_t /*world*/) {}
+  // The run's end closed the worlds' open clogs (Session::finish): their censored rows, per world.
+  virtual void finished(const std::vector<core::StepEvents>&) {}
   // True to stop the run early (a closed pipeline, a probe that has seen enough).
   virtual bool done() const { return false; }
 };
@@ -91,14 +96,15 @@ class Session {
            const std::function<bool()>& stop = {}, const std::function<void(double)>& progress = {});
   // The step index of time `end`: where t >= end - dt/2.
   long end_step(double end) const;
-  // Close the worlds' open clogs (censored at the run's end); once, after the last run().
-  void finish();
+  // Close the worlds' open clogs (censored at the run's end); once, after the last run(). Sinks hear of it.
+  void finish(const std::vector<Sink*>& sinks = {});
   // The steps since the opening of world 0.
   long step() const;
 
  private:
   void step_all(long n);
   std::vector<std::unique_ptr<sim::Hopper>> worlds_;
+  std::vector<double> last_removal_;  // s, each world's last rule removal (slow motion)
   long next_frame_step_ = 0, frames_taken_ = 0;
 };
 
@@ -106,16 +112,18 @@ class Session {
 class FunctionSink : public Sink {
  public:
   std::function<void(const FrameTick&)> on_frame;
-  std::function<bool(const sim::Hopper&, size_t)> on_step;  // returns false to stop the run
-  bool frames = true, arch = false, forces = false;
+  // Returns false to stop the run.
+  std::function<bool(const sim::Hopper&, const core::StepEvents&, size_t)> on_step;
+  bool frames = true, forces = false;
   void frame(const FrameTick& t) override {
     if (on_frame) on_frame(t);
   }
   bool wants_frames() const override { return frames && static_cast<bool>(on_frame); }
-  bool wants_arch() const override { return arch; }
   bool wants_forces() const override { return forces; }
   bool wants_steps() const override { return static_cast<bool>(on_step); }
-  void step(const sim::Hopper& h, size_t k) override { stopped_ = stopped_ || (on_step && !on_step(h, k)); }
+  void step(const sim::Hopper& h, const core::StepEvents& e, size_t k) override {
+    stopped_ = stopped_ || (on_step && !on_step(h, e, k));
+  }
   bool done() const override { return stopped_; }
 
  private:

@@ -19,10 +19,13 @@ class TrajectorySink : public Sink {
         contacts_(path.parent_path() / "contacts.sscon", info.n_particles),
         world_(world) {}
   void frame(const FrameTick& t) override {
-    writer_.add(t.frames[world_], static_cast<int>(t.worlds[world_]->events().arches.size()));
+    const core::StepEvents& e = t.events[world_];
+    removals_ += static_cast<int>(e.rule_removed.size());
+    writer_.add(t.frames[world_], removals_, e);
     contacts_.add(t.frames[world_].contacts);
   }
-  bool wants_arch() const override { return true; }
+  // The clogs the run's end closed (censored) go into the trajectory's events too.
+  void finished(const std::vector<core::StepEvents>& closed) override { writer_.add_events(closed[world_]); }
   bool wants_forces() const override { return true; }
   void close() {
     writer_.close();
@@ -34,6 +37,7 @@ class TrajectorySink : public Sink {
   io::TrajectoryWriter writer_;
   io::ContactsWriter contacts_;
   size_t world_;
+  int removals_ = 0;  // rule removals so far
 };
 
 }  // namespace app

@@ -13,10 +13,67 @@ HEADER = np.dtype([("magic", "S8"), ("version", "<u4"), ("header_bytes", "<u4"),
                    ("clog_timeout_s", "<f8"), ("clog_min_gap_s", "<f8"), ("radius_original_m", "<f8")])
 
 
-def frame_dtype(n, max_arch):
-    return np.dtype([("t", "<f8"), ("since_last_exit", "<f8"), ("exits_original", "<i8"), ("exits_added", "<i8"),
-                     ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", max_arch), ("x", "<f4", n),
-                     ("y", "<f4", n), ("angle", "<f4", n), ("vx", "<f4", n), ("vy", "<f4", n), ("force", "<f4", n)])
+ENDED_BY = ("spontaneous", "vibration", "rule", "run_end")
+
+
+def frame_dtype(n, max_arch, version=2):
+    """One frame record; version 2 adds the open clog's state after the arch."""
+    fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("exits_original", "<i8"), ("exits_added", "<i8"),
+              ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", max_arch)]
+    if version >= 2:
+        fields += [("clog_start", "<f8"), ("rule_due_in", "<f8"), ("clog_number", "<i4"), ("clog_flags", "<u4")]
+    fields += [("x", "<f4", n), ("y", "<f4", n), ("angle", "<f4", n), ("vx", "<f4", n), ("vy", "<f4", n),
+               ("force", "<f4", n)]
+    return np.dtype(fields)
+
+
+def _read_events(raw, at, end, n, path):
+    """The events block of a version 2 file (docs/trajectory.md): exits, clogs and the rule's removals."""
+    import pandas as pd
+
+    def bad(what):
+        return SiloscopeError(f"{path}: corrupted events block ({what})")
+
+    if raw[at:at + 8] != b"SILOEVTS":
+        raise bad("no SILOEVTS at its offset")
+    n_exits, n_clogs, n_arches = (int(v) for v in np.frombuffer(raw, "<u4", 3, at + 8))
+    at += 24
+    if n_exits * 16 + n_clogs * 24 + n_arches * 48 > end - at:
+        raise bad(f"{n_exits} exits, {n_clogs} clogs and {n_arches} arches do not fit")
+    ex = np.frombuffer(raw, [("t_s", "<f8"), ("id", "<i4"), ("species", "<u4")], n_exits, at)
+    at += 16 * n_exits
+    cl = np.frombuffer(raw, [("start_s", "<f8"), ("end_s", "<f8"), ("ended_by", "<u4"), ("arrested", "<u4")],
+                       n_clogs, at)
+    at += 24 * n_clogs
+    if not (np.all(np.isfinite(ex["t_s"])) and np.all((ex["id"] >= 0) & (ex["id"] < n))):
+        raise bad("an exit's time or id is out of range")
+    if not (np.all(np.isfinite(cl["start_s"])) and np.all(cl["end_s"] >= cl["start_s"])
+            and np.all(cl["ended_by"] <= 3) and np.all(cl["arrested"] <= 1)):
+        raise bad("a clog's times or ending are out of range")
+    arches = []
+    for k in range(n_arches):
+        if at + 48 > end:
+            raise bad(f"arch {k + 1} is cut off")
+        t, duration, span, height, angle = np.frombuffer(raw, "<f8", 5, at)
+        count, method = (int(v) for v in np.frombuffer(raw, "<u4", 2, at + 40))
+        at += 48
+        if count > n or 16 * count > end - at or method > 1:
+            raise bad(f"arch {k + 1} has values out of range")
+        members = np.frombuffer(raw, [("id", "<i4"), ("species", "<u4"), ("x", "<f4"), ("y", "<f4")], count, at)
+        at += 16 * count
+        arches.append({"t_s": float(t), "clog_s": float(duration), "span_m": float(span), "height_m": float(height),
+                       "max_angle_deg": float(angle), "method": ("contact_path", "visible")[method],
+                       "ids": members["id"].astype(np.int64), "x": members["x"].astype(float),
+                       "y": members["y"].astype(float)})
+    if at != end:
+        raise bad(f"{end - at} bytes left over")
+    exits = pd.DataFrame({"t_s": ex["t_s"].astype(float), "id": ex["id"].astype(np.int64),
+                          "species": ex["species"].astype(np.int64)})
+    clogs = pd.DataFrame({"start_s": cl["start_s"].astype(float), "end_s": cl["end_s"].astype(float),
+                          "duration_s": (cl["end_s"] - cl["start_s"]).astype(float),
+                          "ended_by": [ENDED_BY[int(v)] for v in cl["ended_by"]],
+                          "arrested": cl["arrested"].astype(np.int64)})
+    return exits, clogs, arches
 
 
 class Trajectory:
@@ -25,7 +82,9 @@ class Trajectory:
     >>> tr = siloscope.read_trajectory("recordings/demo/trajectory.sstraj")
     >>> len(tr), tr.n                  # frames, grains
     >>> tr.t[:3], tr.x[100, 7]         # times (s); grain 7's x at frame 100 (m)
-    >>> tr.arch(100)                   # the blocking arch's grain ids at frame 100, left to right
+    >>> tr.arch(100)                   # the open clog's arch at frame 100, grain ids left to right
+    >>> tr.clogs, tr.arch_events       # the run's clogs (clogs.csv's columns) and the rule's removals
+                                       # (None for a version 1 or cut-off file)
     >>> tr.species_names, tr.species[:5], tr.sides[:5], tr.radius[:5]
     """
 
@@ -38,15 +97,16 @@ class Trajectory:
         head = np.fromfile(real, dtype=HEADER, count=1)[0]
         if head["magic"] != b"SILOTRAJ":
             raise SiloscopeError(f"{path}: not a siloscope trajectory (no SILOTRAJ header)")
-        if head["version"] != 1:
-            raise SiloscopeError(f"{path}: trajectory version {head['version']}; this reader reads version 1")
+        self.version = int(head["version"])
+        if self.version not in (1, 2):
+            raise SiloscopeError(f"{path}: trajectory version {self.version}; this reader reads versions 1 and 2")
         self.n = int(head["n"])
         self.max_arch = int(head["max_arch"])
         self.header_bytes = int(head["header_bytes"])
         self.frame_interval = float(head["frame_interval_s"])
         self.clog_timeout = float(head["clog_timeout_s"])
         self.clog_min_gap = float(head["clog_min_gap_s"])
-        dtype = frame_dtype(self.n, self.max_arch)
+        dtype = frame_dtype(self.n, self.max_arch, self.version)
         if int(head["frame_bytes"]) != dtype.itemsize or self.header_bytes > size:
             raise SiloscopeError(f"{path}: corrupted trajectory header (frame size or header size)")
         self.radius = np.fromfile(real, dtype="<f4", count=self.n, offset=HEADER.itemsize)
@@ -67,8 +127,25 @@ class Trajectory:
             raise SiloscopeError(f"{path}: a grain has species {int(self.species.max())}; the scene has "
                                  f"{len(self.species_names)}")
         self.sides = np.asarray(species_sides, dtype=np.int32)[self.species] if self.n else np.zeros(0, np.int32)
-        count = (size - self.header_bytes) // dtype.itemsize  # whole frames only: a cut file reads to its last one
-        self.truncated = (size - self.header_bytes) % dtype.itemsize != 0
+        # Version 2 ends with the run's events and a footer pointing at them; without the footer (a cut file, or
+        # version 1) the frames run to the end and the events are not there.
+        frames_end = size
+        self.exit_events = self.clogs = self.arch_events = None
+        if self.version >= 2 and size >= self.header_bytes + 16:
+            with open(real, "rb") as f:
+                f.seek(size - 16)
+                tail = f.read(16)
+            if tail[8:] == b"SILOEND\0":
+                offset = int(np.frombuffer(tail, "<u8", 1)[0])
+                if not (self.header_bytes <= offset <= size - 40) or (offset - self.header_bytes) % dtype.itemsize:
+                    raise SiloscopeError(f"{path}: corrupted events block (its offset {offset} points at no events)")
+                with open(real, "rb") as f:
+                    f.seek(offset)
+                    raw = f.read(size - 16 - offset)
+                self.exit_events, self.clogs, self.arch_events = _read_events(raw, 0, len(raw), self.n, path)
+                frames_end = offset
+        count = (frames_end - self.header_bytes) // dtype.itemsize  # whole frames: a cut file reads to its last
+        self.truncated = (frames_end - self.header_bytes) % dtype.itemsize != 0
         self.frames = np.memmap(real, dtype=dtype, mode="r", offset=self.header_bytes, shape=(count,)) if count else \
             np.zeros(0, dtype=dtype)
 
@@ -76,16 +153,26 @@ class Trajectory:
         return len(self.frames)
 
     def __getattr__(self, name):
-        # t, since_last_exit, exits_original, exits_added, long_arches, arch_count, x, y, angle, vx, vy, force
+        # t, since_last_exit, exits_original, exits_added, long_arches, arch_count, x, y, angle, vx, vy, force, and
+        # from version 2 clog_start, rule_due_in, clog_number, clog_flags
         if name in ("t", "since_last_exit", "exits_original", "exits_added", "long_arches", "arch_count", "x", "y",
-                    "angle", "vx", "vy", "force"):
+                    "angle", "vx", "vy", "force") or (name in ("clog_start", "rule_due_in", "clog_number",
+                                                               "clog_flags") and self.version >= 2):
             return self.frames[name]
         raise AttributeError(name)
 
-    def arch(self, k):
-        """The grain ids of the blocking arch at frame k, left to right (empty: none)."""
+    def clog_open(self, k):
+        """Whether a clog is open at frame k (version 1: the clog timer has reached clog_min_gap)."""
         f = self.frames[k]
-        return np.asarray(f["arch"][: max(0, min(int(f["arch_count"]), self.max_arch))], dtype=np.int64)
+        if self.version >= 2:
+            return bool(int(f["clog_flags"]) & 1)
+        return bool(f["since_last_exit"] >= self.clog_min_gap and f["t"] > 0)
+
+    def arch(self, k):
+        """The open clog's arch at frame k, grain ids left to right (empty: no clog open, or none found)."""
+        f = self.frames[k]
+        ids = np.asarray(f["arch"][: max(0, min(int(f["arch_count"]), self.max_arch))], dtype=np.int64)
+        return ids if len(ids) >= 2 and self.clog_open(k) else np.zeros(0, dtype=np.int64)
 
 
 def read_trajectory(path):
