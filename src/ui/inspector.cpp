@@ -256,8 +256,8 @@ std::string Inspector::print_clogs() {
     const ClogSpan& c = clogs_[k];
     char line[160];
     std::snprintf(line, sizeof line, "clog %zu %.6f %.6f %s %s frames %ld-%ld\n", k + 1, c.event.start,
-                  c.event.end, core::clog_end_name(c.event.ended_by), c.event.arrested ? "arrested" : "not-arrested",
-                  c.first, c.last);
+                  c.event.end, core::clog_end_name(c.event.ended_by),
+                  c.event.arrested ? "arrested" : "not-arrested", c.first, c.last);
     all += line;
   }
   std::printf("%s", all.c_str());
