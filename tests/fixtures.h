@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/geometry.h"
+#include "core/model.h"
 #include "core/scene.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
@@ -23,7 +24,7 @@ struct StagedArch {
   explicit StagedArch(std::uint64_t seed = 1) {
     core::apply_overrides(scene, {"n_total=5", "chi=0", "settle_time=0", "kick_impulse_max=0"});
     scene.seed = seed;
-    hopper = std::make_unique<sim::Hopper>(scene);
+    hopper = std::make_unique<sim::Hopper>(core::compile(scene));
     const auto& g = hopper->geometry();
     const double r = scene.radius_original, ya = 0.12;
     const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());
@@ -53,7 +54,7 @@ inline std::filesystem::path synthetic_trajectory(const std::filesystem::path& d
   info.frame_interval = 1.0 / 30;
   info.radius = {0.065f, 0.026f};
   info.species = {core::Species::Original, core::Species::Added};
-  info.metadata = io::metadata_toml(s, {"test", {}, {}});
+  info.metadata = io::metadata_toml(core::compile(s), {"test", {}, {}});
   const std::filesystem::path p = dir / "trajectory.sstraj";
   io::TrajectoryWriter w(p, info);
   for (int k = 0; k < 5; ++k) {

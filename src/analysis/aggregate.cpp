@@ -68,7 +68,7 @@ void estimate_point(Point& p, const Estimate& qp) {
   p.airborne_fraction = estimate_of(p.runs, &Measurements::airborne_fraction);
   p.avalanche_mean = estimate_of(p.runs, &Measurements::avalanche_mean);
   // Each species' flow, and the survival of clogs (durations; the rule and the run's end censor them).
-  const core::Setup st = core::resolve(p.scene);
+  const core::Setup& st = p.setup;
   for (size_t k = 0; k < st.species.size(); ++k) {
     SpeciesEstimate e;
     e.name = st.species[k].name;
@@ -157,6 +157,7 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
     if (!by_label.count(label)) {
       order.push_back(label);
       by_label[label].scene = r.scene;
+      by_label[label].setup = r.setup;
       const auto values = core::scene_values(r.scene);
       for (const auto& k : by) by_label[label].extra.push_back({k, values.at(k)});
     }

@@ -11,12 +11,14 @@
 #include "analysis/stats.h"
 #include "core/frame.h"
 #include "core/scene.h"
+#include "core/setup.h"
 
 namespace analysis {
 
 struct Run {
   std::string source;  // where it came from (a directory), for error messages
   core::Scene scene;
+  core::Setup setup;  // the scene compiled where the run was read (core/model.h)
   core::Events events;
   Measurements m;
 };
@@ -36,6 +38,7 @@ struct SpeciesEstimate {
 
 struct Point {
   core::Scene scene;  // seed of the first run
+  core::Setup setup;  // its compiled setup (the species)
   // Keys the analysis was told to tell points apart by beyond the paper's (analyze --by), with their values.
   std::vector<std::pair<std::string, std::string>> extra;
   std::vector<SpeciesEstimate> species;

@@ -101,7 +101,7 @@ Claim c1(const Data& d) {
                                        d.est(d.at(sizes.front(), 0), "q_tilde_per_s"),
                                        d.est(d.at(0.4, 0), "q_tilde_per_s"), -1));
   c.parts.push_back(back);
-  resolve(c);
+  conclude(c);
   for (int i : {0, 1})
     c.parts[i].verdict = c.parts[i].comparisons.empty() ? c.parts[i].verdict : by_pool(c.parts[i]);
   c.parts[4].verdict = c.parts[4].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[4]);
@@ -125,7 +125,7 @@ Claim c2(const Data& d) {
   if (d.at(0.6, 0) && d.at(0.6, fr) && fr > 0)
     near.comparisons.push_back(with_mu(d, 0.6, fr, "q_tilde_per_s", "Q~", 0));
   c.parts.push_back(near);
-  resolve(c);
+  conclude(c);
   for (int i : {0, 1})
     if (c.parts[i].verdict != Verdict::NotTested) c.parts[i].verdict = by_pool(c.parts[i]);
   if (fr == 0) {
@@ -160,7 +160,7 @@ Claim c3(const Data& d) {
     }
   }
   c.parts = {at1, window, only};
-  resolve(c);
+  conclude(c);
   c.parts[0].verdict = c.parts[0].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[0]);
   c.parts[1].verdict = c.parts[1].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[1]);
   // "only": each other r must have one of its two resolved against (below Q_p, or lowered by mu); an r with
@@ -208,7 +208,7 @@ Claim c4(const Data& d) {
       "a campaign records exits, not where each species sits in the column; `siloscope run "
       "--trajectory-fps` gives the positions to measure it";
   c.parts.push_back(floats);
-  resolve(c);
+  conclude(c);
   if (c.parts[0].verdict != Verdict::NotTested) c.parts[0].verdict = by_pool(c.parts[0]);
   return c;
 }
@@ -259,7 +259,7 @@ Claim c5(const Data& d) {
   }
   part.why += "; following needs the difference's 95% interval within +-10% of the non-magnetic Q~";
   c.parts.push_back(part);
-  resolve(c);
+  conclude(c);
   if (c.parts[0].comparisons.empty()) {
     c.parts[0].verdict = Verdict::NotTested;
     c.parts[0].why =
@@ -336,7 +336,7 @@ Claim c6(const Data& d) {
     p.comparisons.erase(std::remove_if(p.comparisons.begin(), p.comparisons.end(),
                                        [](const Comparison& x) { return !x.a.finite() || !x.b.finite(); }),
                         p.comparisons.end());
-  resolve(c);
+  conclude(c);
   const Broken b = broken_by_vibration(d, {plain, strong});
   for (auto& p : c.parts) {
     if (p.comparisons.empty()) {
@@ -384,7 +384,7 @@ Claim c7(const Data& d) {
   }
   const bool pinned0 = pin_long_arches(d, nonmag, c.parts[0]);
   const bool pinned1 = c.parts[1].verdict != Verdict::NotTested && pin_long_arches(d, every, c.parts[1]);
-  resolve(c);
+  conclude(c);
   if (!pinned0)
     c.parts[0].verdict = c.parts[0].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[0]);
   if (!pinned1 && c.parts[1].verdict != Verdict::NotTested) c.parts[1].verdict = by_pool(c.parts[1]);

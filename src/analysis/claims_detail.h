@@ -105,7 +105,7 @@ Comparison compare(const std::string& label, Est a, Est b, int expected);
 Comparison pooled(const std::string& label, const std::vector<Comparison>& per_r, int expected);
 // Holm over the claim's p-valued comparisons (parts pinned or not tested left out; an own_family part apart);
 // equality comparisons by their Bonferroni-widened interval.
-void resolve(Claim& claim);
+void conclude(Claim& claim);
 // The verdict rules of claims.h: a range by its pool, every value each, equality within kEquivalence, a
 // located quantity by its interval; the claim from its parts.
 Verdict by_pool(const Part& part);

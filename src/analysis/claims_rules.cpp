@@ -135,7 +135,7 @@ void holm_signs(const std::vector<Comparison*>& fam) {
   }
 }
 // Parts already pinned or not tested are left out: their measure says nothing about the claim.
-void resolve(Claim& claim) {
+void conclude(Claim& claim) {
   std::vector<Comparison*> fam;
   for (auto& part : claim.parts) {
     if (part.verdict == Verdict::Pinned || part.verdict == Verdict::NotTested) continue;

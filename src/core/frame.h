@@ -73,12 +73,6 @@ enum class ClogEnd : std::uint8_t {
 };
 const char* clog_end_name(ClogEnd e);
 
-// A clog has formed between two moments whose clog timers (time since the last exit) were `before` and `now`:
-// the timer reached clog_min_gap (the rule clogs.csv, the inspector's clog numbering and freezes count by).
-inline bool clog_formed(double before, double now, double min_gap) {
-  return before < min_gap && now >= min_gap;
-}
-
 struct ClogEvent {
   double start;  // s, the last exit before the gap
   double end;    // s, the next exit, the rule, or the end of the run

@@ -2,6 +2,7 @@
 // (scene_fields.cpp), and writing a scene back as TOML. Over 400 lines because reading, validating and
 // writing one format belong together: a field's text form is parsed and printed by the same templates here.
 #include "core/scene.h"
+#include "core/model.h"
 
 #include <toml++/toml.h>
 
@@ -214,8 +215,8 @@ void set_field(Scene& s, const std::string& key, const std::string& value, const
   s.origin[key] = origin;
 }
 
-void validate(const Scene& s) {
-  // Each field against its own range or choices, naming where it was set.
+// Each field against its own range or choices, naming where it was set.
+static void check_fields(const Scene& s) {
   for (const auto& f : scene_fields()) {
     std::visit(
         [&](auto ptr) {
@@ -273,8 +274,16 @@ void validate(const Scene& s) {
           f.ptr);
     }
   }
-  // The relations between fields: resolving the scene checks them all.
-  (void)resolve(s);
+}
+
+void validate(const Scene& s) {
+  // The relations between fields: compiling the scene (resolving it) checks them all.
+  (void)compile(s);
+}
+
+Model compile(const Scene& s) {
+  check_fields(s);
+  return {s, resolve(s)};
 }
 
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {

@@ -41,9 +41,10 @@ std::string version_string() {
   return std::string(SILOSCOPE_VERSION) + " (git " + SILOSCOPE_GIT + ", " + SILOSCOPE_BUILD_TYPE + ")";
 }
 
-Facts derived_facts(const core::Scene& s) {
+Facts derived_facts(const core::Model& model) {
   using core::kPi;
-  const core::Setup st = core::resolve(s);
+  const core::Scene& s = model.scene;
+  const core::Setup& st = model.setup;
   const core::Geometry& g = st.geo;
   Facts f;
   if (st.shorthand) {
@@ -88,7 +89,8 @@ Facts derived_facts(const core::Scene& s) {
   return f;
 }
 
-std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
+std::string metadata_toml(const core::Model& model, const RunInfo& info) {
+  const core::Scene& scene = model.scene;
   std::string s = "# siloscope run metadata: `siloscope run THIS_FILE` repeats the run.\n[siloscope]\n";
   s += "version = " + quoted(SILOSCOPE_VERSION) + "\n";
   s += "git = " + quoted(SILOSCOPE_GIT) + "\n";
@@ -99,7 +101,7 @@ std::string metadata_toml(const core::Scene& scene, const RunInfo& info) {
   std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   s += "written_utc = " + quoted(when) + "\n\n[scene]\n" + core::scene_toml(scene, "scene") + "\n[derived]\n";
-  for (const auto& f : derived_facts(scene)) s += f.key() + " = " + f.toml() + "\n";
+  for (const auto& f : derived_facts(model)) s += f.key() + " = " + f.toml() + "\n";
   if (!info.facts.empty()) {
     s += "\n[run]\n";
     for (const auto& f : info.facts) s += f.key() + " = " + f.toml() + "\n";

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/model.h"
 #include "core/scene.h"
 
 namespace io {
@@ -49,9 +50,9 @@ struct RunRecord {
 RunRecord read_run_record(const std::string& metadata_path);
 
 std::string version_string();  // "0.1.0 (git abc1234, Release)"
-std::string metadata_toml(const core::Scene& scene, const RunInfo& info);
+std::string metadata_toml(const core::Model& model, const RunInfo& info);
 
 // Facts derived from the scene (counts, angles, the dipole's safe time step, ...), as [derived].
-Facts derived_facts(const core::Scene& scene);
+Facts derived_facts(const core::Model& model);
 
 }  // namespace io

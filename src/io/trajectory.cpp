@@ -240,11 +240,11 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   // metadata holds no valid scene (written by hand, or foreign) shows disks in a still container.
   try {
     core::Scene scene = core::parse_scene(info_.metadata, p + " (its metadata)");
-    core::validate(scene);
-    setup_ = std::make_unique<core::Setup>(core::resolve(scene));
+    model_ = std::make_unique<core::Model>(core::compile(scene));
   } catch (const core::InputError&) {
-    setup_.reset();
+    model_.reset();
   }
+  const core::Setup* setup_ = model_ ? &model_->setup : nullptr;
   sides_.assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
     const int sp = core::species_index(info_.species[i]);
@@ -294,7 +294,7 @@ size_t Trajectory::read_events(const std::string& p) {
                            std::to_string(end - at) + " bytes)");
   const size_t n = info_.n_particles;
   auto time_ok = [](double t) { return std::isfinite(t) && t >= 0 && t < 1e9; };
-  auto species_ok = [&](std::uint32_t s) { return s < 16 && (!setup_ || s < setup_->species.size()); };
+  auto species_ok = [&](std::uint32_t s) { return s < 16 && (!model_ || s < model_->setup.species.size()); };
   for (std::uint64_t k = 0; k < n_exits; ++k, at += 16) {
     core::ExitEvent e{get<double>(b, at), get<std::int32_t>(b, at + 8),
                       static_cast<core::Species>(get<std::uint32_t>(b, at + 12))};
@@ -353,8 +353,10 @@ void Trajectory::check_frames(const std::string& p) const {
   // zero or go down, and a grain cannot be farther from the container than the container's own size (1 km
   // when the metadata holds no scene).
   double reach = 1e3;
-  if (setup_)
-    reach = 10.0 * std::max(setup_->geo.total_height, setup_->geo.x_right - setup_->geo.x_left) + 1.0;
+  if (model_) {
+    const core::Geometry& g = model_->setup.geo;
+    reach = 10.0 * std::max(g.total_height, g.x_right - g.x_left) + 1.0;
+  }
   double last_t = -INFINITY;
   std::int64_t last_orig = 0, last_added = 0;
   for (long k = 0; k < count_; ++k) {
@@ -405,7 +407,7 @@ void Trajectory::rebuild_clogs() {
   // version 1: the timer at least clog_min_gap). Its start is the frame's clog start (or t - timer); its end
   // the last exit or rule firing before the next frame that shows none open (t - timer there).
   events_.clogs.clear();
-  const bool driven = setup_ && (setup_->drive.kick_impulse_max > 0 || setup_->drive.vibrating());
+  const bool driven = model_ && (model_->setup.drive.kick_impulse_max > 0 || model_->setup.drive.vibrating());
   bool open = false;
   core::ClogEvent c{};
   int number = 0;
@@ -488,8 +490,8 @@ core::Frame Trajectory::frame(long k) const {
     q.species = info_.species[i];
     q.sides = sides_[i];
   }
-  if (setup_) {
-    const core::Vec2 off = core::container_offset(*setup_, f.t);
+  if (model_) {
+    const core::Vec2 off = core::container_offset(model_->setup, f.t);
     f.container_x = off.x;
     f.container_y = off.y;
   }

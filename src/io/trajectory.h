@@ -34,7 +34,7 @@
 
 #include "core/events.h"
 #include "core/frame.h"
-#include "core/setup.h"
+#include "core/model.h"
 
 namespace io {
 
@@ -94,6 +94,8 @@ class Trajectory {
   // when events_complete(); otherwise (a cut-off file, or version 1) the clogs are rebuilt from the frames
   // and the last may lack its end (its end is then the last frame's time, ended_by RunEnd).
   const core::Events& events() const { return events_; }
+  // The run's scene as its metadata holds it, compiled once (null when the metadata holds no valid scene).
+  const core::Model* model() const { return model_.get(); }
   bool events_complete() const { return events_complete_; }
 
  private:
@@ -109,7 +111,7 @@ class Trajectory {
   std::uint32_t version_ = kTrajectoryVersion;
   core::Events events_;
   bool events_complete_ = false;
-  std::unique_ptr<core::Setup> setup_;  // from the metadata's scene, when it holds a valid one
+  std::unique_ptr<core::Model> model_;  // the metadata's scene compiled, when it holds a valid one
   std::vector<std::uint8_t> sides_;     // each grain's shape (0: disk)
   void parse(std::vector<unsigned char> data, const std::string& p);
   size_t read_events(const std::string& p);  // returns where the frames end

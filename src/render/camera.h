@@ -78,8 +78,8 @@ struct CameraPath {
 // Throws core::InputError naming the key and what is allowed.
 CameraPath parse_camera_path(const std::string& spec);
 
-// A freeze: a movie or clip holds its picture for `seconds` of video at each event, a clog forming
-// (core::clog_formed: the arch is up) or the last frame before the clog rule fires.
+// A freeze: a movie or clip holds its picture for `seconds` of video at each event, a clog opening (as the
+// simulation's step reports it, core/events.h) or the last frame before the clog rule fires.
 struct Freeze {
   enum class At { None, Clog, Rule } at = At::None;
   double seconds = 0;
@@ -87,10 +87,6 @@ struct Freeze {
   explicit operator bool() const { return at != At::None; }
   // Copies to add after the event's own frame at `fps` video frames per second.
   long copies(double fps) const;
-  // A clog formed between two frames whose clog timers were `before` and `now`.
-  static bool clog_formed(double before, double now, double min_gap) {
-    return before < min_gap && now >= min_gap;
-  }
   const char* caption() const { return at == At::Clog ? "clog formed" : "the clog rule fires next"; }
 };
 // EVENT and SECONDS (clog or rule; 0 < SECONDS <= 60); throws core::InputError naming `what` was given and

@@ -70,9 +70,10 @@ OverlayOptions parse_overlay(const std::string& spec) {
   return o;
 }
 
-OverlayData overlay_data_for(const core::Scene& scene) {
+OverlayData overlay_data_for(const core::Model& model) {
   OverlayData d;
-  const core::Setup st = core::resolve(scene);
+  const core::Scene& scene = model.scene;
+  const core::Setup& st = model.setup;
   d.clog_timeout = scene.clog_timeout;
   d.clog_min_gap = scene.clog_min_gap;
   d.clog_rule = st.clog_rule;

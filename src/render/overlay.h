@@ -9,6 +9,7 @@
 
 #include "core/frame.h"
 #include "core/geometry.h"
+#include "core/model.h"
 #include "core/scene.h"
 #include "render/camera.h"
 #include "render/palette.h"
@@ -77,7 +78,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
 
 // The overlay's data for a scene: its clog settings, the original diameter, and a title naming r, chi, mu,
 // seed.
-OverlayData overlay_data_for(const core::Scene& scene);
+OverlayData overlay_data_for(const core::Model& model);
 
 class Overlay {
  public:

@@ -35,17 +35,16 @@ double seconds_since(Clock::time_point t0) {
 }
 }  // namespace
 
-Hopper::Hopper(const core::Scene& scene)
-    : scene_(scene),
-      setup_((core::validate(scene), core::resolve(scene))),
+Hopper::Hopper(const core::Model& model)
+    : model_(model),
       geo_(setup_.geo),
-      L_(scene.length_scale),
-      rng_deposit_(scene.seed, 1),
-      rng_kick_(scene.seed, 2),
-      rng_reinject_(scene.seed, 3),
-      rng_shape_(scene.seed, 4),
-      rng_orient_(scene.seed, 5),
-      clogs_(scene.clog_min_gap, scene.clog_timeout,
+      L_(scene_.length_scale),
+      rng_deposit_(scene_.seed, 1),
+      rng_kick_(scene_.seed, 2),
+      rng_reinject_(scene_.seed, 3),
+      rng_shape_(scene_.seed, 4),
+      rng_orient_(scene_.seed, 5),
+      clogs_(scene_.clog_min_gap, scene_.clog_timeout,
              setup_.drive.kick_impulse_max > 0 || setup_.drive.vibrating()) {
   arch_method_ = setup_.arch_method;
   // Time steps the integration cannot survive are refused before any work: the explicit dipole repulsion,
@@ -172,7 +171,8 @@ void Hopper::set_velocity(int id, core::Vec2 v) {
 }
 
 void Hopper::apply_kicks() {
-  draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
+  draw_kicks(rng_kick_, setup_.drive.kick_impulse_max, setup_.drive.global_kick, particle_count(),
+             scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
     const core::Vec2& j = scratch_kick_[i];
     bodies_[i]->ApplyLinearImpulseToCenter(b2Vec2(static_cast<float>(j.x * L_), static_cast<float>(j.y * L_)),
@@ -249,7 +249,7 @@ void Hopper::integrate_step() {
       }
     }
     if (skip_until_ > step_) return skipped_step(kick_due);
-    if (scene_.kick_impulse_max > 0 && (open_ || scene_.settle_kicks)) apply_kicks();
+    if (setup_.drive.kick_impulse_max > 0 && (open_ || setup_.drive.settle_kicks)) apply_kicks();
   }
   Clock::time_point t1;
   if (profiling_) t1 = Clock::now(), times_.kicks += std::chrono::duration<double>(t1 - t0).count();
@@ -310,8 +310,9 @@ void Hopper::start_skip() {
 }
 
 void Hopper::skipped_step(bool kick_due) {
-  if (kick_due && scene_.kick_impulse_max > 0)
-    draw_kicks(rng_kick_, scene_.kick_impulse_max, scene_.global_kick, particle_count(), scratch_kick_);
+  if (kick_due && setup_.drive.kick_impulse_max > 0)
+    draw_kicks(rng_kick_, setup_.drive.kick_impulse_max, setup_.drive.global_kick, particle_count(),
+               scratch_kick_);
   ++step_;
   t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
   skipped_s_ += scene_.dt;

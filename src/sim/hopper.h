@@ -21,6 +21,7 @@
 #include "core/events.h"
 #include "core/frame.h"
 #include "core/geometry.h"
+#include "core/model.h"
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/setup.h"
@@ -44,7 +45,8 @@ struct StageTimes {
 
 class Hopper {
  public:
-  explicit Hopper(const core::Scene& scene);
+  // The scene compiled once (core/model.h); the simulation keeps its own copy.
+  explicit Hopper(const core::Model& model);
   ~Hopper();
   Hopper(const Hopper&) = delete;
   Hopper& operator=(const Hopper&) = delete;
@@ -74,8 +76,9 @@ class Hopper {
   const core::Events& events() const { return events_; }
   const core::StepEvents& finish();
 
-  const core::Scene& scene() const { return scene_; }
-  const core::Setup& setup() const { return setup_; }
+  const core::Scene& scene() const { return model_.scene; }
+  const core::Setup& setup() const { return model_.setup; }
+  const core::Model& model() const { return model_; }
   const core::Geometry& geometry() const { return geo_; }
   int particle_count() const { return static_cast<int>(bodies_.size()); }
   // Centres in the container's frame, m.
@@ -138,10 +141,10 @@ class Hopper {
   void place(int id, core::Vec2 p);
   void set_velocity(int id, core::Vec2 v);  // m/s
   // Change the kick strength from now on (N*s); tests stage a clog without kicks, then kick it.
+  // The simulation reads the kicks from the setup's drive only (scene() keeps the scene as written).
   void set_kick_impulse_max(double j) {
-    scene_.kick_impulse_max = j;
-    setup_.drive.kick_impulse_max = j;
-    clogs_.set_driven(j > 0 || setup_.drive.vibrating());
+    model_.setup.drive.kick_impulse_max = j;
+    clogs_.set_driven(j > 0 || model_.setup.drive.vibrating());
   }
   // Run every health check now (they also run on their own: per disk every step, overlaps at every kick).
   void check_health();
@@ -176,8 +179,9 @@ class Hopper {
   core::Vec2 pos(int id) const;
   core::Vec2 vel(int id) const;
 
-  core::Scene scene_;
-  core::Setup setup_;
+  core::Model model_;  // the one copy: the scene as written and what it resolved to
+  const core::Scene& scene_ = model_.scene;
+  const core::Setup& setup_ = model_.setup;
   core::Geometry geo_;
   double L_;                   // Box2D length units per metre
   double deposit_height_ = 0;  // m, top of the deposition column

@@ -211,7 +211,7 @@ void Hopper::open_aperture() {
           "scene: after settle_time = " + core::format_g(scene_.settle_time, 4) + " s grain " +
           std::to_string(i) + " (" + setup_.species[static_cast<size_t>(species_[i])].name +
           ") is still above the top of the container at y = " + core::format_g(pos(i).y, 4) + " m; " +
-          (scene_.settle_kicks && scene_.kick_impulse_max > 0
+          (setup_.drive.settle_kicks && setup_.drive.kick_impulse_max > 0
                ? std::string("the kicks during settling throw grains out: set settle_kicks = false")
                : std::string("raise settle_time or silo_height")) +
           (setup_.any_dipole() ? ", or lower the dipoles (repelling grains float on the column)" : ""));

@@ -15,10 +15,10 @@
 
 namespace ui {
 
-Inspector::Inspector(const FrameSource& traj, const core::Scene& scene, const ImageFiles* files)
-    : traj_(traj), files_(files), scene_(scene), geo_(core::make_geometry(scene)) {
+Inspector::Inspector(const FrameSource& traj, const core::Model& model, const ImageFiles* files)
+    : traj_(traj), files_(files), model_(model), geo_(model.setup.geo) {
   if (traj_.size() == 0) throw core::InputError("the trajectory holds no complete frame");
-  overlay_data = render::overlay_data_for(scene_);
+  overlay_data = render::overlay_data_for(model_);
   // Clogs: the run's own (the trajectory's events, the rows of clogs.csv), placed on the frames.
   const long n = traj_.size();
   long k = 0;

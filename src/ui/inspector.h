@@ -42,7 +42,7 @@ using render::Painter;  // Frame -> Image, shared with record (render/painter.h)
 class Inspector {
  public:
   // `files` (may be null: snapshot and export then refuse) is where snapshots and clips go.
-  Inspector(const FrameSource& frames, const core::Scene& scene, const ImageFiles* files = nullptr);
+  Inspector(const FrameSource& frames, const core::Model& model, const ImageFiles* files = nullptr);
 
   // Run one command line of the script language: parsed here, then the typed action below; throws
   // core::InputError naming the line and the problem (unknown command, frame out of range...). `painter` is
@@ -90,7 +90,7 @@ class Inspector {
   const FrameSource& trajectory() const { return traj_; }
   const ImageFiles* files() const { return files_; }
   const core::Geometry& geometry() const { return geo_; }
-  const core::Scene& scene() const { return scene_; }
+  const core::Scene& scene() const { return model_.scene; }
 
   // The views for an image of w x h: the camera preset, then zoom and pan.
   std::vector<render::View> views(int w, int h) const;
@@ -121,7 +121,7 @@ class Inspector {
   std::vector<std::string> history_;
   const FrameSource& traj_;
   const ImageFiles* files_;
-  core::Scene scene_;
+  core::Model model_;
   core::Geometry geo_;
   long frame_ = 0;
   std::vector<ClogSpan> clogs_;

@@ -114,7 +114,7 @@ TEST_CASE("a run's metadata file loads back as the same scene", "[sim][scene]") 
   core::Scene s;
   core::apply_overrides(s, {"mu=0.7", "size_ratio=0.25", "seed=99", "dt=0.0005", "arch_method=visible"});
   io::RunInfo info{"siloscope run test", {{"steps", 10}}, {}};
-  auto p = write_temp("metadata.toml", io::metadata_toml(s, info));
+  auto p = write_temp("metadata.toml", io::metadata_toml(core::compile(s), info));
   core::Scene back = core::load_scene(p);
   for (const auto& f : core::scene_fields()) CHECK(core::field_text(back, f) == core::field_text(s, f));
 }
@@ -132,7 +132,7 @@ TEST_CASE(
                     {"labels", std::vector<std::string>{"a", "b\"c"}},
                     {"never", std::numeric_limits<double>::infinity()}},
                    {{"ballistic", true}}};
-  const toml::table t = toml::parse(io::metadata_toml(s, info));
+  const toml::table t = toml::parse(io::metadata_toml(core::compile(s), info));
   CHECK(t["run"]["steps"].is_integer());
   CHECK(t["run"]["steps"].value<std::int64_t>() == 150000);
   CHECK(t["run"]["speed"].is_floating_point());  // 1.0, never the integer 1

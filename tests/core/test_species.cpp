@@ -80,7 +80,8 @@ TEST_CASE("species tables parse, resolve and round-trip through a run's metadata
   CHECK(st.reference_radius == Approx(0.05));
   // Through a metadata file and back: every key, species included, the same.
   io::RunInfo info{"test", {}, {}};
-  const core::Scene back = core::load_scene(write_temp("meta.toml", io::metadata_toml(s, info)));
+  const core::Scene back =
+      core::load_scene(write_temp("meta.toml", io::metadata_toml(core::compile(s), info)));
   CHECK(core::scene_values(back) == core::scene_values(s));
   // --set reaches a species' key.
   core::Scene t = s;

@@ -133,7 +133,7 @@ TEST_CASE(
     core::Scene s;
     s.duration = 25;
     s.kick_impulse_max = impulse;
-    sim::Hopper h(s);
+    sim::Hopper h(core::compile(s));
     h.advance_to(s.duration);
     h.finish();
     return analysis::measure(h.events(), s.duration, s.clog_min_gap);

@@ -76,7 +76,7 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
-  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   REQUIRE(insp.clogs().size() == 1);
   // Its timer at frame 2 says the clog began before the first frame: the bar starts at frame 0.
   CHECK(insp.clogs()[0].first == 0);
@@ -112,7 +112,7 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
-  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   ui::Painter painter;
   std::ofstream(d / "bad.txt") << "goto frame 1\nzom outlet\n";
   CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "bad.txt").string()),
@@ -168,7 +168,7 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
-  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   ui::Painter painter;
   const std::string pattern = (d / "shot-{frame}-{t}.png").string();
   insp.execute("goto frame 3");
@@ -201,7 +201,7 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   const app::RecordFiles files;
-  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   ImGuiContext* ctx = ImGui::CreateContext();
   ImGui::SetCurrentContext(ctx);
   ImGuiIO& io = ImGui::GetIO();
@@ -348,7 +348,7 @@ TEST_CASE("the inspector's clog bars start at each clog's start_s in clogs.csv, 
   gl();
   io::Trajectory t(d / "r" / "trajectory.sstraj");
   const app::TrajectoryFrames frames(t);
-  ui::Inspector insp(frames, core::Scene{}, nullptr);
+  ui::Inspector insp(frames, core::compile(core::Scene{}), nullptr);
   std::vector<double> starts;
   std::ifstream in(d / "r" / "clogs.csv");
   std::string line;
@@ -542,7 +542,7 @@ TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, an
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
   CountingFiles files;
-  ui::Inspector insp(frames, two_disk_scene(), &files);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   ui::Painter painter;
   // The synthetic clog: the timer passes clog_min_gap at frame 2; the rule fires between frames 3 and 4.
   insp.execute("freeze clog 1", &painter);

@@ -75,9 +75,13 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     const std::string meta = (d / "metadata.toml").string();
     for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
       io::verify_listed(d / f, "analyze: run");
-    r.scene = core::load_scene(meta);
-    core::validate(r.scene);
-    const core::Setup setup = core::resolve(r.scene);
+    // Each run's scene compiled once, here where it is read.
+    {
+      core::Model m = core::compile(core::load_scene(meta));
+      r.scene = std::move(m.scene);
+      r.setup = std::move(m.setup);
+    }
+    const core::Setup& setup = r.setup;
     const io::RunRecord rec = io::read_run_record(meta);
     r.events = io::read_events(d, setup.species_names());
     // A run counts for the discharge time it covered, not the time it planned.
@@ -135,7 +139,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                     {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
                                                      [](const analysis::Run& r) { return r.m.ballistic; })}},
                    {}};
-  io::write_file_atomic(out.file("metadata.toml"), io::metadata_toml(runs.front().scene, info));
+  io::write_file_atomic(out.file("metadata.toml"),
+                        io::metadata_toml({runs.front().scene, runs.front().setup}, info));
   out.commit();
   if (quiet) return 0;
   std::printf(

@@ -25,7 +25,8 @@ struct ArchBenchOptions {
 };
 
 int bench_arch(const ArchBenchOptions& o) {
-  core::Scene scene = o.scene.load();
+  const core::Model model = o.scene.compile();
+  const core::Scene& scene = model.scene;
   if (o.repeats < 1 || !(o.seconds > 0) || !(o.fps > 0))
     throw core::InputError("--repeats, --seconds and --fps must be > 0");
   if (!o.csv.empty())
@@ -39,7 +40,7 @@ int bench_arch(const ArchBenchOptions& o) {
     // The same run twice, with and without detection; alternate which goes first.
     for (int pass = 0; pass < 2; ++pass) {
       bool detect = (pass + r) % 2 == 0;
-      Session session({scene});
+      Session session({model});
       double in_detection = 0;
       FunctionSink probe;
       probe.frames = false;  // the detection is what is timed; no frames are built

@@ -46,8 +46,8 @@ double us(double seconds, int steps) {
 
 // Time `steps` steps of the scene `repeats` times: siloscope's step, a bare Box2D step on a copy of the same
 // world, and a profiled copy for the stages.
-StepCost time_steps(const core::Scene& scene, int steps, int repeats) {
-  sim::Hopper ours(scene), bare(scene), profiled(scene);
+StepCost time_steps(const core::Model& model, int steps, int repeats) {
+  sim::Hopper ours(model), bare(model), profiled(model);
   profiled.set_profiling(true);
   std::vector<double> o, b, k, d, x, c, s, t, bk;
   for (int r = 0; r < repeats; ++r) {
@@ -115,7 +115,7 @@ int bench_scaling(const BenchOptions& o, std::uint64_t seed) {
     double base = 0;
     for (int n : {250, 1000, 5000}) {
       std::fprintf(stderr, "settling %d grains%s...\n", n, dip ? " with dipoles" : "");
-      const StepCost c = time_steps(scaling_scene(n, dip, seed), steps, repeats);
+      const StepCost c = time_steps(core::compile(scaling_scene(n, dip, seed)), steps, repeats);
       const double per = c.ours / n;
       if (n == 250) base = per;
       std::printf("%-7d %-8s %12.1f %14.4f %10.2f %12.1f %12.1f %12.1f\n", n, dip ? "yes" : "no", c.ours, per,
@@ -137,13 +137,14 @@ int bench_scaling(const BenchOptions& o, std::uint64_t seed) {
 }
 
 int bench_sim(const BenchOptions& o) {
-  core::Scene scene = o.scene.load();
+  const core::Model model = o.scene.compile();
+  const core::Scene& scene = model.scene;
   if (o.repeats < 1 || o.steps < 1) throw core::InputError("--repeats and --steps must be >= 1");
   if (!o.csv.empty())
     io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv,
                           o.scaling ? kScalingHeader : "metric,value,unit");
   if (o.scaling) return bench_scaling(o, scene.seed);
-  const core::Setup setup = core::resolve(scene);
+  const core::Setup& setup = model.setup;
   std::printf(
       "siloscope %s, bench sim: %d grains in %zu species, dt = %g s, iterations (%lld, %lld), "
       "length_scale %g%s\n",
@@ -154,7 +155,7 @@ int bench_sim(const BenchOptions& o) {
               static_cast<unsigned long long>(scene.seed));
   StepCost c;
   try {
-    c = time_steps(scene, o.steps, o.repeats);
+    c = time_steps(model, o.steps, o.repeats);
   } catch (const core::RuntimeFault&) {
     return 130;
   }

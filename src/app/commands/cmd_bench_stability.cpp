@@ -58,11 +58,12 @@ int bench_stability(const StabilityOptions& o) {
       s.duration = o.seconds;
       s.unsafe = true;  // run it anyway: we want to know whether it really breaks
       c.mu = s.mu;
-      const core::Setup st = core::resolve(s);
+      const core::Model model = core::compile(s);
+      const core::Setup& st = model.setup;
       c.safe_dt = std::min(core::dipole_safe_dt(st), core::kinematic_safe_dt(st, s.gravity));
       c.refused = s.dt > c.safe_dt;
       try {
-        Session session({s});
+        Session session({model});
         session.run(s.duration, FrameClock::none(), {});
         c.warnings =
             session.world(0).health_warnings() - (c.refused ? 1 : 0);  // the static refusal: one warning

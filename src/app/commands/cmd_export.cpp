@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/services/common.h"
+#include "app/services/inspect_files.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/geometry.h"
@@ -65,7 +66,8 @@ std::string num(double v) {
 // (walls.vtu, or walls_NNNNNN.vtu when it vibrates), trajectory.pvd tying them into a time series, and the
 // run's metadata.
 int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajectory& t, long first, long last,
-               const core::Scene& scene, const core::Setup& setup) {
+               const core::Model& model) {
+  const core::Setup& setup = model.setup;
   const fs::path out = o.out.empty() ? traj.parent_path() / "vtu" : fs::path(o.out);
   io::OutputDir dir(out.string(), o.force, io::DirKind::Export);
   std::vector<io::PvdEntry> entries;
@@ -92,7 +94,7 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
                     {"last_frame", last},
                     {"open_in_paraview", "trajectory.pvd"}},
                    {}};
-  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(scene, info));
+  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(model, info));
   dir.commit();
   std::printf(
       "%ld frames of %d grains -> %s/trajectory.pvd (ParaView: Glyph filter, Sphere or 2D Glyph, scale by "
@@ -112,14 +114,15 @@ int export_run(const ExportOptions& o) {
   if (t.size() == 0) throw core::InputError(traj.string() + ": the trajectory holds no frames");
   long first = 0, last = 0;
   frame_range(o.frames, t.size(), first, last);
-  const core::Scene scene = core::parse_scene(t.info().metadata, traj.string() + " (its metadata)");
-  const core::Setup setup = core::resolve(scene);
+  const core::Model& model = run_model(t, traj.string());
+  const core::Scene& scene = model.scene;
+  const core::Setup& setup = model.setup;
   const core::Geometry& geo = setup.geo;
   const std::vector<std::string> names = setup.species_names();
   std::string names_text;
   for (const auto& nm : names) names_text += (names_text.empty() ? "" : " ") + nm;
 
-  if (o.format == "vtu") return export_vtu(o, traj, t, first, last, scene, setup);
+  if (o.format == "vtu") return export_vtu(o, traj, t, first, last, model);
   fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "export file",

@@ -46,8 +46,10 @@ int gallery(const GalleryOptions& o) {
   if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
     throw core::InputError("--tile " + std::to_string(o.tile) +
                            ": allowed are even sizes from 120 to 2000 pixels");
-  const core::Scene scene = core::load_scene((run / "metadata.toml").string());
-  const core::Setup setup = core::resolve(scene);
+  // The run's scene compiled once: the re-simulation, the pictures and the species' names share it.
+  const core::Model model = core::compile(core::load_scene((run / "metadata.toml").string()));
+  const core::Scene& scene = model.scene;
+  const core::Setup& setup = model.setup;
   const std::vector<std::string> names = setup.species_names();
   const core::Events recorded = io::read_events(run, names);
   if (recorded.arches.empty())
@@ -71,17 +73,17 @@ int gallery(const GalleryOptions& o) {
   render::Style style;
   style.palette = render::parse_palette(o.palette);
   if (!o.chains.empty()) render::set_chains(style, o.chains, "--force-chains");  // as record's
-  const core::Geometry geo = core::make_geometry(scene);
+  const core::Geometry& geo = setup.geo;
   // The outlet camera of a square tile: the window each tile shows.
   const render::View view = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile).front();
-  const render::OverlayData data = render::overlay_data_for(scene);  // the species' colours
+  const render::OverlayData data = render::overlay_data_for(model);  // the species' colours
   style.species_colors = data.species_colors;
   // Re-simulate the run, one frame one step before each recorded rule firing: the clog as it stood. Each tile
   // is the draw list of that frame as a table (vector shapes: the sheet draws them as circles, polygons and
   // paths in PDF and SVG alike), with the arch's descriptors (core::arch_descriptors) in the index.
   std::vector<long> at;
   for (size_t k = 0; k < n; ++k) at.push_back(std::lround(recorded.arches[k].t / scene.dt) - 1);
-  Session session({scene});
+  Session session({model});
   std::string index =
       "tile,t_s,clog_s,members,added,species,method,span_m,rise_m,aspect,theta_max_deg,defects,angle_sd_deg,"
       "window_m\n";

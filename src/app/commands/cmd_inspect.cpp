@@ -48,7 +48,8 @@ fs::path trajectory_path(const std::string& p) {
 int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   io::Trajectory traj(trajectory_path(o.path));
-  const core::Scene scene = core::parse_scene(traj.info().metadata, o.path + " (trajectory metadata)");
+  // The scene the run was made with, compiled once from the trajectory's own metadata.
+  const core::Model& model = run_model(traj, o.path);
   // The contacts beside the trajectory, when the run kept them (recordings do): force chains in the
   // inspector.
   std::unique_ptr<io::Contacts> contacts;
@@ -61,7 +62,7 @@ int inspect(const InspectOptions& o) {
   }
   const TrajectoryFrames frames(traj, contacts.get());
   const RecordFiles files;
-  ui::Inspector insp(frames, scene, &files);
+  ui::Inspector insp(frames, model, &files);
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet)
     std::fprintf(stderr, "trajectory: %ld frames%s, %zu clogs, opened in %.0f ms\n", traj.size(),
@@ -88,15 +89,15 @@ int inspect(const InspectOptions& o) {
 // The live window's simulation: a Hopper the window never sees (ui knows no simulation).
 class LiveHopper final : public ui::LiveSource {
  public:
-  explicit LiveHopper(const core::Scene& scene)
-      : scene_(scene), session_(std::make_unique<Session>(std::vector{scene})) {}
+  explicit LiveHopper(const core::Model& model)
+      : model_(model), session_(std::make_unique<Session>(std::vector{model})) {}
   void advance(double seconds) override {
     session_->run(session_->world(0).time() + seconds, FrameClock::none(), {});
   }
   core::Frame frame(bool forces) const override { return session_->world(0).frame(forces); }
   const core::Geometry& geometry() const override { return session_->world(0).geometry(); }
-  render::OverlayData overlay_data() const override { return render::overlay_data_for(scene_); }
-  const core::Scene& scene() const override { return scene_; }
+  render::OverlayData overlay_data() const override { return render::overlay_data_for(model_); }
+  const core::Scene& scene() const override { return model_.scene; }
   // The keys worth changing live: the paper's shorthand (r, chi, mu, the kick), or a scene's drive, outlet,
   // obstacle, tilt and each species' dipole.
   std::vector<std::string> live_keys() const override {
@@ -110,25 +111,26 @@ class LiveHopper final : public ui::LiveSource {
     return keys;
   }
   void restart(const core::Scene& s) override {
-    core::validate(s);
-    session_ = std::make_unique<Session>(std::vector{s});
-    scene_ = s;
+    core::Model m = core::compile(s);
+    session_ = std::make_unique<Session>(std::vector{m});
+    model_ = std::move(m);
   }
 
  private:
-  core::Scene scene_;
+  core::Model model_;
+  const core::Scene& scene_ = model_.scene;
   std::unique_ptr<Session> session_;
 };
 
 int live(const LiveOptions& o) {
-  core::Scene scene = o.scene.load();
+  const core::Model model = o.scene.compile();
   ui::WindowOptions w;
   render::parse_size(o.size, "--size", w.width, w.height, 320, 240);
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
   const RecordFiles files;
   w.files = &files;
-  LiveHopper source(scene);
+  LiveHopper source(model);
   ui::run_live_window(source, w);
   return 0;
 }

@@ -67,7 +67,7 @@ double since(Clock::time_point t0) {
 
 // One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
 struct Panel {
-  core::Scene scene;
+  core::Model model;  // the panel's scene, compiled once
   std::string label;  // what differs, e.g. "mu=2.2" (empty for a single movie)
   core::Geometry geo;
   std::vector<render::View> views;
@@ -80,19 +80,22 @@ struct Panel {
 // is the first panel so that the comparison has two sides).
 std::vector<Panel> make_panels(const RecordOptions& o) {
   std::vector<Panel> panels;
-  const core::Scene base = o.scene.load();
-  auto add = [&](core::Scene s, const std::string& label) {
+  // Each panel's scene compiled once, here: everything below reads its Model.
+  const core::Model base_model = o.scene.compile();
+  const core::Scene& base = base_model.scene;
+  auto add_model = [&](core::Model m, const std::string& label) {
     Panel p;
-    p.scene = std::move(s);
+    p.model = std::move(m);
     p.label = label;
     panels.push_back(std::move(p));
   };
+  auto add = [&](const core::Scene& s, const std::string& label) { add_model(core::compile(s), label); };
   const size_t n_compare = o.compare.size() + o.compare_scene.size();
   if (n_compare == 0) {
-    add(base, "");
+    add_model(base_model, "");
     return panels;
   }
-  if (n_compare == 1) add(base, "base: " + fs::path(o.scene.path).stem().string());
+  if (n_compare == 1) add_model(base_model, "base: " + fs::path(o.scene.path).stem().string());
   for (const auto& c : o.compare) {
     core::Scene s = base;
     std::vector<std::string> sets;
@@ -103,7 +106,6 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
     core::apply_overrides(s, sets);
     if (o.scene.seed) s.seed = *o.scene.seed;
     if (o.scene.duration) s.duration = *o.scene.duration;
-    core::validate(s);
     add(s, c);
   }
   for (const auto& f : o.compare_scene) {
@@ -111,14 +113,13 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
     core::apply_overrides(s, o.scene.overrides);
     if (o.scene.seed) s.seed = *o.scene.seed;
     s.duration = base.duration;
-    core::validate(s);
     add(s, fs::path(f).stem().string());
   }
   if (panels.size() > 4)
     throw core::InputError("--compare: " + std::to_string(panels.size()) +
                            " panels; a comparison has 2 to 4");
   for (const auto& p : panels)
-    if (p.scene.dt != base.dt || p.scene.duration != base.duration)
+    if (p.model.scene.dt != base.dt || p.model.scene.duration != base.duration)
       throw core::InputError("--compare " + p.label +
                              ": dt and duration must equal the base scene's (dt = " + num6(base.dt) +
                              " s, duration = " + num6(base.duration) + " s): the panels run on one clock");
@@ -161,7 +162,7 @@ struct Plan {
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   Plan plan;
-  const core::Scene& scene = panels.front().scene;
+  const core::Scene& scene = panels.front().model.scene;
   record::VideoSettings& video = plan.video;
   render::parse_size(o.size, "--size", video.width, video.height);
   video.fps = o.fps;
@@ -185,7 +186,8 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   plan.style.color = render::parse_color_mode(o.color);
   plan.style.transparent = o.transparent;
   plan.overlay = render::parse_overlay(o.overlay);
-  o.looks.apply(core::resolve(scene).n_total, o.transparent, plan.style, plan.overlay);
+  const core::Setup& setup = panels.front().model.setup;
+  o.looks.apply(setup.n_total, o.transparent, plan.style, plan.overlay);
   // The information box goes to the corner of each panel that covers the least of the container and its
   // grains (below the outlet in the default split view), as in the windows; it stays there unless another
   // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
@@ -198,7 +200,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
                                        colon == std::string::npos ? "" : o.freeze.substr(colon + 1),
                                        "--freeze " + o.freeze, "clog:SECONDS or rule:SECONDS");
-    if (plan.freeze.at == render::Freeze::At::Rule && !core::resolve(scene).clog_rule)
+    if (plan.freeze.at == render::Freeze::At::Rule && !setup.clog_rule)
       throw core::InputError(
           "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
   }
@@ -224,10 +226,10 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   const int panel_w = video.width / static_cast<int>(n_panels);
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
-    p.geo = core::make_geometry(p.scene);
+    p.geo = p.model.setup.geo;
     p.views = render::layout_views(camera, p.geo, panel_w, video.height);
     for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
-    p.odata = render::overlay_data_for(p.scene);
+    p.odata = render::overlay_data_for(p.model);
     if (n_panels > 1) {
       p.odata.title = p.label + "  |  " + p.odata.title;
       p.odata.panel_x = static_cast<int>(k) * panel_w;
@@ -238,14 +240,14 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.
     for (const auto& p : panels)
-      top = std::max(top, color_scale_from_data(p.scene, plan.style.color == render::ColorMode::Force, 2.0));
+      top = std::max(top, color_scale_from_data(p.model, plan.style.color == render::ColorMode::Force, 2.0));
     if (!o.quiet)
       std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
                    num6(top).c_str(), plan.style.color == render::ColorMode::Force ? "N" : "m/s");
   }
   if (top > 0)
     (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
-  o.looks.resolve_tags(scene, plan.style, o.quiet);
+  o.looks.resolve_tags(panels.front().model, plan.style, o.quiet);
   return plan;
 }
 
@@ -378,15 +380,15 @@ std::vector<analysis::Measurements> write_recording_outputs(
     long frozen_frames, bool was_interrupted, const std::string& gl_renderer, double wall,
     const fs::path& movie_path) {
   const size_t n_panels = panels.size();
-  const core::Scene& scene = panels.front().scene;
+  const core::Scene& scene = panels.front().model.scene;
   std::vector<analysis::Measurements> ms;
   for (size_t k = 0; k < n_panels; ++k) {
     const sim::Hopper& h = session.world(k);
-    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].scene.duration;
+    const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].model.scene.duration;
     io::RunInfo pinfo = info;
     pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, frozen_frames, n_panels,
                                   was_interrupted, gl_renderer, wall, movie_path);
-    ms.push_back(write_run_outputs(dir.file(panels[k].subdir), panels[k].scene, h, analysed, pinfo));
+    ms.push_back(write_run_outputs(dir.file(panels[k].subdir), h, analysed, pinfo));
   }
   if (n_panels > 1) {
     // The comparison as a whole: the base scene, and which panel is which (each panelK/ repeats its own run).
@@ -400,9 +402,9 @@ std::vector<analysis::Measurements> write_recording_outputs(
                    {"interrupted", was_interrupted},
                    {"simulated_s", session.world(0).time(), 6},
                    {"wall_s", wall, 6}};
-    io::write_file_atomic(
-        dir.file("metadata.toml"),
-        "# a comparison movie: each panelK/ holds one panel's run\n" + io::metadata_toml(scene, cinfo));
+    io::write_file_atomic(dir.file("metadata.toml"),
+                          "# a comparison movie: each panelK/ holds one panel's run\n" +
+                              io::metadata_toml(panels.front().model, cinfo));
   }
   return ms;
 }
@@ -410,7 +412,7 @@ std::vector<analysis::Measurements> write_recording_outputs(
 int record_movie(const RecordOptions& o) {
   std::vector<Panel> panels = make_panels(o);
   const Plan plan = plan_recording(o, panels);
-  const core::Scene& scene = panels.front().scene;
+  const core::Scene& scene = panels.front().model.scene;
   const size_t n_panels = panels.size();
 
   fs::path base = o.out;
@@ -438,7 +440,7 @@ int record_movie(const RecordOptions& o) {
   record::VideoSettings video = plan.video;
   std::unique_ptr<record::Mp4Writer> mp4;
   if (!o.no_movie) {
-    video.comment = io::metadata_toml(scene, info);
+    video.comment = io::metadata_toml(panels.front().model, info);
     mp4 = std::make_unique<record::Mp4Writer>(movie_path, video);
   }
   std::vector<PanelLayout> layouts;
@@ -459,13 +461,13 @@ int record_movie(const RecordOptions& o) {
   std::vector<std::unique_ptr<TrajectorySink>> trajectories;
   std::unique_ptr<MovieSink> movie;
   try {
-    std::vector<core::Scene> scenes;
-    for (const auto& p : panels) scenes.push_back(p.scene);
+    std::vector<core::Model> scenes;
+    for (const auto& p : panels) scenes.push_back(p.model);
     session = std::make_unique<Session>(scenes);
     std::vector<Sink*> sinks;
     for (size_t k = 0; k < n_panels; ++k) {
       const std::string meta =
-          n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(panels[k].scene, info);
+          n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(panels[k].model, info);
       trajectories.push_back(std::make_unique<TrajectorySink>(
           dir.file(panels[k].subdir + "trajectory.sstraj"),
           trajectory_info(session->world(k), plan.clock.frame_interval, meta), k));

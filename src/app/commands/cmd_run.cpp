@@ -27,15 +27,16 @@ struct RunOptions {
   bool record_refusal = false;
 };
 
-int simulate(const RunOptions& o, const core::Scene& scene);
+int simulate(const RunOptions& o, const core::Model& model);
 
 // A run the health monitor stops is refused for good (the same scene, seed and numerics stop again). With
 // --record-refusal (campaign jobs) that outcome is written as OUT.refused.toml: the scene with its seed and
 // the reason, which `sweep` reads to leave the realization settled and `analyze` counts as n_refused.
 int run(const RunOptions& o) {
-  const core::Scene scene = o.scene.load();
+  const core::Model model = o.scene.compile();
+  const core::Scene& scene = model.scene;
   try {
-    return simulate(o, scene);
+    return simulate(o, model);
   } catch (const core::Unstable& e) {
     if (o.record_refusal)
       io::write_file_atomic(
@@ -50,7 +51,8 @@ int run(const RunOptions& o) {
   }
 }
 
-int simulate(const RunOptions& o, const core::Scene& scene) {
+int simulate(const RunOptions& o, const core::Model& model) {
+  const core::Scene& scene = model.scene;
   if (o.trajectory_fps < 0)
     throw core::InputError("--trajectory-fps " + core::format_g(o.trajectory_fps) + ": must be > 0");
   // Frames every whole number of steps (the one rule of every command, app/session.h).
@@ -62,7 +64,7 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
 
   Progress progress("run", scene.duration, !o.quiet);
   auto wall0 = std::chrono::steady_clock::now();
-  Session session({scene});  // deposits, settles, opens: t = 0
+  Session session({model});  // deposits, settles, opens: t = 0
   sim::Hopper& hopper = session.world(0);
   auto wall1 = std::chrono::steady_clock::now();
   std::unique_ptr<TrajectorySink> trajectory;
@@ -71,7 +73,7 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
     io::RunInfo tinfo{command_line(), {}, {}};
     trajectory = std::make_unique<TrajectorySink>(
         dir.file("trajectory.sstraj"),
-        trajectory_info(hopper, clock.frame_interval, io::metadata_toml(scene, tinfo)));
+        trajectory_info(hopper, clock.frame_interval, io::metadata_toml(model, tinfo)));
     sinks.push_back(trajectory.get());
   }
   auto report = [&](double t) {
@@ -102,7 +104,7 @@ int simulate(const RunOptions& o, const core::Scene& scene) {
                 {"wall_time_discharge_s", run_wall},
                 {"speed_vs_real_time", scene.duration / std::max(run_wall, 1e-9)}};
   if (clock.steps > 0) info.facts.push_back({"trajectory_steps_per_frame", clock.steps});
-  const analysis::Measurements m = write_run_outputs(dir.file(""), scene, hopper, scene.duration, info);
+  const analysis::Measurements m = write_run_outputs(dir.file(""), hopper, scene.duration, info);
   dir.commit();
 
   if (!o.quiet) {

@@ -90,12 +90,13 @@ int scene_cmd(const SceneCmdOptions& o) {
   }
   if (o.scene.path.empty())
     throw core::InputError("scene: give a scene file to check, or --keys to list every key");
-  const core::Scene s = o.scene.load();
+  const core::Model model = o.scene.compile();
+  const core::Scene& s = model.scene;
   std::printf("# %s is valid. Resolved scene (file, then --set, --seed, --duration):\n%s\n[derived]\n",
               o.scene.path.c_str(), core::scene_toml(s).c_str());
   if (!o.scene.path.empty() && s.species.empty() && s.origin.empty())
     std::printf("# (the file sets no key: every key has its default, the paper's scene)\n");
-  for (const auto& f : io::derived_facts(s)) std::printf("%s = %s\n", f.key().c_str(), f.toml().c_str());
+  for (const auto& f : io::derived_facts(model)) std::printf("%s = %s\n", f.key().c_str(), f.toml().c_str());
   return 0;
 }
 }  // namespace

@@ -45,7 +45,7 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
       s.seed = static_cast<std::uint64_t>(seed);
       try {
         auto t0 = std::chrono::steady_clock::now();
-        Session session({s});
+        Session session({core::compile(s)});
         const sim::Hopper& h = session.world(0);
         auto t1 = std::chrono::steady_clock::now();
         session.run(s.duration, FrameClock::none(), {});
@@ -92,7 +92,7 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   s.kick_impulse_max = 0;
   s.settle_time = 0;
   s.dipole_cutoff = 0;
-  Session session({s});
+  Session session({core::compile(s)});
   sim::Hopper& h = session.world(0);
   // Start one contact-gap apart in the middle of the silo, at rest: all energy is the dipole's at first.
   const double ra = s.radius_added(), y = 3.0;

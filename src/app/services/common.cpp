@@ -43,6 +43,10 @@ void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
 }
 
 core::Scene SceneOptions::load() const {
+  return compile().scene;
+}
+
+core::Model SceneOptions::compile() const {
   core::Scene s = path.empty() ? core::Scene{} : core::load_scene(path);
   if (!path.empty() && core::scene_is_empty_file(path))
     std::fprintf(stderr, "siloscope: %s sets no keys: running the built-in default scene\n", path.c_str());
@@ -55,8 +59,7 @@ core::Scene SceneOptions::load() const {
     s.origin["duration"] = "--duration";  // a range error names the option, not the file's line
   }
   if (unsafe) s.unsafe = true;
-  core::validate(s);
-  return s;
+  return core::compile(s);
 }
 
 std::string python_interpreter() {
@@ -99,8 +102,9 @@ std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& r
   return out;
 }
 
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
-                                         const sim::Hopper& h, double duration, io::RunInfo info) {
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Hopper& h,
+                                         double duration, io::RunInfo info) {
+  const core::Scene& scene = h.scene();
   const analysis::Measurements m = measure_run(h, duration);
   io::write_events(dir, h.events(), h.setup().species_names());
   // The arch literature's descriptors of each removed arch, beside arches.csv (whose bytes the paper's golden
@@ -116,7 +120,7 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
     info.facts.push_back({"arrest_skips", h.arrest_skips()});
     info.facts.push_back({"arrest_skipped_s", h.skipped_seconds()});
   }
-  io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(scene, info));
+  io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(h.model(), info));
   return m;
 }
 

@@ -13,6 +13,7 @@
 
 #include "analysis/measure.h"
 #include "core/frame.h"
+#include "core/model.h"
 #include "core/scene.h"
 #include "io/metadata.h"
 
@@ -37,8 +38,8 @@ analysis::Measurements measure_run(const sim::Hopper& h, double duration);
 // s.
 // arch_shapes.csv: per arch the clog rule removed, the descriptors of core::arch_descriptors.
 std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii);
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const core::Scene& scene,
-                                         const sim::Hopper& h, double duration, io::RunInfo info);
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Hopper& h,
+                                         double duration, io::RunInfo info);
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);
@@ -56,6 +57,8 @@ struct SceneOptions {
   void add_to(CLI::App& cmd, bool scene_required = true);
   // File, then --set, then --seed/--duration/--unsafe; validated. Throws core::InputError.
   core::Scene load() const;
+  // The scene compiled once (core/model.h): what a command hands to every layer below it.
+  core::Model compile() const;
 };
 
 // Debian's python3 (where python3-matplotlib installs), even when another python3 comes first on PATH.

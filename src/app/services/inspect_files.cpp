@@ -11,6 +11,13 @@
 
 namespace app {
 
+const core::Model& run_model(const io::Trajectory& t, const std::string& path) {
+  if (t.model()) return *t.model();
+  // Compiled again only to name what is wrong with it.
+  (void)core::compile(core::parse_scene(t.info().metadata, path + " (its metadata)"));
+  throw core::InputError(path + ": the trajectory's metadata holds no valid scene");
+}
+
 namespace {
 record::VideoSettings settings(int width, int height, int fps) {
   record::VideoSettings v;

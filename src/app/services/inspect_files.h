@@ -8,6 +8,10 @@
 
 namespace app {
 
+// The run's scene as a trajectory's metadata holds it, compiled once by the reader; throws core::InputError
+// naming the file and what is wrong with the scene when it holds no valid one.
+const core::Model& run_model(const io::Trajectory& t, const std::string& path);
+
 class TrajectoryFrames : public ui::FrameSource {
  public:
   // With the run's contacts (contacts.sscon), frames carry them: force chains and the solver's coordination.

@@ -92,7 +92,8 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   render::set_chains(style, chains, "--force-chains");
 }
 
-void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, bool quiet) const {
+void LookOptions::resolve_tags(const core::Model& model, render::Style& style, bool quiet) const {
+  const core::Scene& scene = model.scene;
   auto add = [&](const std::vector<int>& ids) {
     for (int id : ids)
       if (std::find(style.tracked.begin(), style.tracked.end(), id) == style.tracked.end())
@@ -103,7 +104,7 @@ void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, b
     if (r.t > scene.duration)
       throw core::InputError("--track-region " + track_region + ": T is after the run's end (" +
                              core::format_g(scene.duration, 6) + " s)");
-    const std::vector<int> ids = grains_in_box(scene, r.x0, r.y0, r.x1, r.y1, r.t);
+    const std::vector<int> ids = grains_in_box(model, r.x0, r.y0, r.x1, r.y1, r.t);
     if (ids.empty())
       throw core::InputError("--track-region " + track_region + ": no grain's centre is in the box at " +
                              core::format_g(r.t, 6) + " s");
@@ -113,12 +114,12 @@ void LookOptions::resolve_tags(const core::Scene& scene, render::Style& style, b
     add(ids);
   }
   if (track_clog > 0) {
-    const std::vector<int> ids = clog_arch_members(scene, track_clog);
+    const std::vector<int> ids = clog_arch_members(model, track_clog);
     if (!quiet) std::fprintf(stderr, "siloscope: --track-clog %d: %zu grains\n", track_clog, ids.size());
     add(ids);
   }
   if (track_arch > 0) {
-    const std::vector<int> ids = long_arch_members(scene, track_arch);
+    const std::vector<int> ids = long_arch_members(model, track_arch);
     if (!quiet) std::fprintf(stderr, "siloscope: --track-arch %d: %zu grains\n", track_arch, ids.size());
     add(ids);
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/model.h"
 #include "core/scene.h"
 #include "io/metadata.h"
 #include "render/overlay.h"
@@ -34,7 +35,7 @@ struct LookOptions {
   // Grains tagged by region or by role, found by simulating the scene ahead from the same seed (a run is
   // repeatable, so the recording shows these grains doing what the look-ahead saw); added to style.tracked.
   // Call after apply (which checks the options' form) and after every other check: it costs a simulation.
-  void resolve_tags(const core::Scene& scene, render::Style& style, bool quiet) const;
+  void resolve_tags(const core::Model& model, render::Style& style, bool quiet) const;
 };
 
 }  // namespace app

@@ -49,10 +49,11 @@ void EventMarks::start(const std::string& caption, double t, bool keep_rings) {
   if (!keep_rings) rings_.clear();
 }
 
-double color_scale_from_data(const core::Scene& scene, bool forces, double seconds) {
+double color_scale_from_data(const core::Model& model, bool forces, double seconds) {
   // Frames every 0.1 s from 0.1 s to `seconds` (the end half a frame later so the last one is taken).
+  const core::Scene& scene = model.scene;
   const double end = std::min(seconds, scene.duration);
-  Session session({scene});
+  Session session({model});
   std::vector<double> values;
   FunctionSink probe;
   probe.forces = forces;
@@ -68,9 +69,10 @@ double color_scale_from_data(const core::Scene& scene, bool forces, double secon
   return values[k];
 }
 
-std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, double x1, double y1,
+std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, double x1, double y1,
                                double t) {
-  Session session({scene});
+  const core::Scene& scene = model.scene;
+  Session session({model});
   std::vector<int> ids;
   auto take = [&](const sim::Hopper& h) {
     const core::Frame f = h.frame(false);
@@ -93,8 +95,9 @@ std::vector<int> grains_in_box(const core::Scene& scene, double x0, double y0, d
   return ids;
 }
 
-std::vector<int> long_arch_members(const core::Scene& scene, int k) {
-  Session session({scene});
+std::vector<int> long_arch_members(const core::Model& model, int k) {
+  const core::Scene& scene = model.scene;
+  Session session({model});
   FunctionSink probe;
   std::vector<int> ids;
   int removed = 0;
@@ -110,8 +113,9 @@ std::vector<int> long_arch_members(const core::Scene& scene, int k) {
   return ids;
 }
 
-std::vector<int> clog_arch_members(const core::Scene& scene, int k) {
-  Session session({scene});
+std::vector<int> clog_arch_members(const core::Model& model, int k) {
+  const core::Scene& scene = model.scene;
+  Session session({model});
   FunctionSink probe;
   std::vector<int> ids;
   int opened = 0;

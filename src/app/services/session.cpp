@@ -68,18 +68,18 @@ FrameClock FrameClock::at_steps(std::vector<long> steps) {
   return c;
 }
 
-Session::Session(const std::vector<core::Scene>& scenes) {
-  if (scenes.empty()) throw core::InputError("a session needs a scene");
-  worlds_.resize(scenes.size());
-  last_removal_.assign(scenes.size(), -INFINITY);
+Session::Session(const std::vector<core::Model>& models) {
+  if (models.empty()) throw core::InputError("a session needs a scene");
+  worlds_.resize(models.size());
+  last_removal_.assign(models.size(), -INFINITY);
   // Each world deposits and settles on its own thread (a comparison's panels cost one settling's time).
   std::vector<std::future<void>> others;
-  for (size_t k = 1; k < scenes.size(); ++k)
+  for (size_t k = 1; k < models.size(); ++k)
     others.push_back(
-        std::async(std::launch::async, [&, k] { worlds_[k] = std::make_unique<sim::Hopper>(scenes[k]); }));
+        std::async(std::launch::async, [&, k] { worlds_[k] = std::make_unique<sim::Hopper>(models[k]); }));
   std::exception_ptr first;
   try {
-    worlds_[0] = std::make_unique<sim::Hopper>(scenes[0]);
+    worlds_[0] = std::make_unique<sim::Hopper>(models[0]);
   } catch (...) {
     first = std::current_exception();
   }

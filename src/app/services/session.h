@@ -15,6 +15,7 @@
 
 #include "core/events.h"
 #include "core/frame.h"
+#include "core/model.h"
 #include "core/scene.h"
 
 namespace sim {
@@ -80,7 +81,7 @@ class Session {
  public:
   // One world per scene, built in parallel (deposit, settle, open). `slow_near_rule`: frames at slow spacing
   // from 0.5 s before any world's clog rule fires to 1 s after a removal (record --slowmo).
-  explicit Session(const std::vector<core::Scene>& scenes);
+  explicit Session(const std::vector<core::Model>& models);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
