@@ -51,8 +51,17 @@ struct Frame {
   bool clog_arrested = false;
   double rule_due_in = std::numeric_limits<double>::infinity();  // s
   double since_last_exit = 0;                                    // s, the clog timer
-  std::int64_t exits_original = 0;                               // exits so far of each species
-  std::int64_t exits_added = 0;
+  // Exits so far of each species, by its place in the scene's list (the paper's shorthand: original, added).
+  std::vector<std::int64_t> exits;
+  std::int64_t exits_of(int species) const {
+    return species >= 0 && static_cast<size_t>(species) < exits.size() ? exits[static_cast<size_t>(species)]
+                                                                       : 0;
+  }
+  std::int64_t exits_total() const {
+    std::int64_t n = 0;
+    for (std::int64_t e : exits) n += e;
+    return n;
+  }
   double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
   // Grain-grain contacts with their normal forces, when forces were asked for (a live simulation's frames;
   // trajectories keep only each grain's summed force).

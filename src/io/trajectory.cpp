@@ -35,18 +35,23 @@ T get(const unsigned char* b, size_t at) {
 }
 }  // namespace
 
-// The fixed part of a frame before the particle arrays: 168 bytes in version 1, 192 from version 2 (the open
-// clog's start, the time until the rule is due, its number and flags).
-static size_t frame_head(std::uint32_t version) {
-  return 8 * 4 + 4 * 2 + 4 * kTrajectoryMaxArch + (version >= 2 ? 24 : 0);
+FrameLayout frame_layout(std::uint32_t version, std::uint32_t n_species) {
+  FrameLayout l;  // version 1's
+  l.n_species = version >= 2 ? n_species : 2;
+  if (version >= 2) {
+    l.clog_start = 16, l.rule_due_in = 24, l.long_arches = 32, l.clog_number = 36, l.clog_flags = 40;
+    l.arch_count = 44, l.arch = 48, l.exits = l.arch + 4 * kTrajectoryMaxArch;
+    l.particles = l.exits + 8 * size_t(l.n_species);
+  }
+  return l;
 }
 
-size_t TrajectoryWriter::frame_bytes(std::uint32_t n, std::uint32_t version) {
-  return frame_head(version) + 24 * size_t(n);
+size_t TrajectoryWriter::frame_bytes(std::uint32_t n, std::uint32_t n_species, std::uint32_t version) {
+  return frame_layout(version, n_species).bytes(n);
 }
 
 TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const TrajectoryInfo& info)
-    : path_(path.string()), n_(info.n_particles) {
+    : path_(path.string()), n_(info.n_particles), layout_(frame_layout(kTrajectoryVersion, info.n_species)) {
   f_ = std::fopen(path_.c_str(), "wb");
   if (!f_) throw core::RuntimeFault("cannot write trajectory " + path_ + ": " + std::strerror(errno));
   const size_t after_arrays = pad8(kFixedHeader + 4 * size_t(n_) + n_);
@@ -57,7 +62,8 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Traj
   put<std::uint32_t>(h, 12, static_cast<std::uint32_t>(header));
   put<std::uint32_t>(h, 16, n_);
   put<std::uint32_t>(h, 20, kTrajectoryMaxArch);
-  put<std::uint32_t>(h, 24, static_cast<std::uint32_t>(frame_bytes(n_)));
+  put<std::uint32_t>(h, 24, static_cast<std::uint32_t>(layout_.bytes(n_)));
+  put<std::uint32_t>(h, 28, info.n_species);
   put<double>(h, 32, info.frame_interval);
   put<double>(h, 40, info.clog_timeout);
   put<double>(h, 48, info.clog_min_gap);
@@ -71,7 +77,7 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Traj
   if (std::fwrite(h.data(), 1, h.size(), f_) != h.size())
     throw core::RuntimeFault("cannot write trajectory " + path_);
   bytes_ = h.size();
-  buf_.resize(frame_bytes(n_));
+  buf_.resize(layout_.bytes(n_));
 }
 
 TrajectoryWriter::~TrajectoryWriter() {
@@ -88,21 +94,21 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches, const core::St
   if (f.particles.size() != n_) throw core::RuntimeFault("trajectory: frame with a different particle count");
   add_events(since_last);
   std::fill(buf_.begin(), buf_.end(), 0);
-  put<double>(buf_, 0, f.t);
-  put<double>(buf_, 8, f.since_last_exit);
-  put<std::int64_t>(buf_, 16, f.exits_original);
-  put<std::int64_t>(buf_, 24, f.exits_added);
-  put<std::int32_t>(buf_, 32, long_arches);
+  const FrameLayout& l = layout_;
+  put<double>(buf_, l.t, f.t);
+  put<double>(buf_, l.since_last_exit, f.since_last_exit);
+  put<double>(buf_, l.clog_start, f.clog_start);
+  put<double>(buf_, l.rule_due_in, f.rule_due_in);
+  put<std::int32_t>(buf_, l.long_arches, long_arches);
+  put<std::int32_t>(buf_, l.clog_number, f.clog_number);
+  put<std::uint32_t>(buf_, l.clog_flags, (f.clog_open ? kOpen : 0) | (f.clog_arrested ? kArrested : 0));
   const int count = static_cast<int>(std::min<size_t>(f.arch.size(), kTrajectoryMaxArch));
-  put<std::int32_t>(buf_, 36, count);
+  put<std::int32_t>(buf_, l.arch_count, count);
   for (int k = 0; k < kTrajectoryMaxArch; ++k)
-    put<std::int32_t>(buf_, 40 + 4 * k, k < count ? f.arch[k] : -1);
-  const size_t clog_at = 40 + 4 * kTrajectoryMaxArch;
-  put<double>(buf_, clog_at, f.clog_start);
-  put<double>(buf_, clog_at + 8, f.rule_due_in);
-  put<std::int32_t>(buf_, clog_at + 16, f.clog_number);
-  put<std::uint32_t>(buf_, clog_at + 20, (f.clog_open ? kOpen : 0) | (f.clog_arrested ? kArrested : 0));
-  const size_t base = frame_head(kTrajectoryVersion), n = n_;
+    put<std::int32_t>(buf_, l.arch + 4 * k, k < count ? f.arch[k] : -1);
+  for (std::uint32_t sp = 0; sp < l.n_species; ++sp)
+    put<std::int64_t>(buf_, l.exits + 8 * sp, f.exits_of(static_cast<int>(sp)));
+  const size_t base = l.particles, n = n_;
   for (size_t i = 0; i < n; ++i) {
     const auto& p = f.particles[i];
     put<float>(buf_, base + 4 * i, p.x);
@@ -209,9 +215,15 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   info_.n_particles = get<std::uint32_t>(data.data(), 16);
   const auto max_arch = get<std::uint32_t>(data.data(), 20);
   const auto fbytes = get<std::uint32_t>(data.data(), 24);
+  const auto n_species = get<std::uint32_t>(data.data(), 28);
   const size_t after_arrays = pad8(kFixedHeader + 5 * size_t(info_.n_particles));
-  if (max_arch != kTrajectoryMaxArch || fbytes != TrajectoryWriter::frame_bytes(info_.n_particles, version) ||
-      header > data.size() || header < after_arrays + 4)
+  if (version >= 2 && (n_species < 1 || n_species > 16))
+    throw core::InputError(p + ": corrupted trajectory header (" + std::to_string(n_species) +
+                           " species; allowed: 1 to 16)");
+  layout_ = frame_layout(version, n_species);
+  info_.n_species = layout_.n_species;
+  if (max_arch != kTrajectoryMaxArch || fbytes != layout_.bytes(info_.n_particles) || header > data.size() ||
+      header < after_arrays + 4)
     throw core::InputError(p + ": corrupted trajectory header");
   info_.frame_interval = get<double>(data.data(), 32);
   info_.clog_timeout = get<double>(data.data(), 40);
@@ -266,7 +278,7 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   const size_t body = frames_end - header;
   truncated_ = body % fbytes != 0;
   count_ = static_cast<long>(body / fbytes);
-  for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), 32));
+  for (long k = 0; k < count_; ++k) long_arches_.push_back(get<std::int32_t>(record(k), layout_.long_arches));
   check_frames(p);
   if (!events_complete_) rebuild_clogs();
 }
@@ -348,7 +360,8 @@ void Trajectory::check_frames(const std::string& p) const {
   const size_t n = info_.n_particles;
   // Every number a frame holds must be finite: a corrupted frame is named, never drawn as an empty silo.
   static const char* kFields[] = {"x", "y", "angle", "vx", "vy", "force"};
-  const size_t base = frame_head(version_);
+  const FrameLayout& l = layout_;
+  const size_t base = l.particles;
   // Finite but impossible values are refused as well: time must run forwards, exit counts never fall below
   // zero or go down, and a grain cannot be farther from the container than the container's own size (1 km
   // when the metadata holds no scene).
@@ -358,28 +371,30 @@ void Trajectory::check_frames(const std::string& p) const {
     reach = 10.0 * std::max(g.total_height, g.x_right - g.x_left) + 1.0;
   }
   double last_t = -INFINITY;
-  std::int64_t last_orig = 0, last_added = 0;
+  std::vector<std::int64_t> last_exits(l.n_species, 0);
   for (long k = 0; k < count_; ++k) {
     const unsigned char* b = record(k);
     const std::string frame = p + ": frame " + std::to_string(k) + " is corrupted: ";
-    const double t = get<double>(b, 0);
+    const double t = get<double>(b, l.t);
     if (std::isfinite(t) && !(t > last_t))
       throw core::InputError(frame + "its time " + core::format_shortest(t) +
                              " s does not come after the previous frame's " + core::format_shortest(last_t) +
                              " s");
     last_t = t;
-    const auto orig = get<std::int64_t>(b, 16), added = get<std::int64_t>(b, 24);
-    if (orig < last_orig || added < last_added)
-      throw core::InputError(frame + "its exit counts (" + std::to_string(orig) + ", " +
-                             std::to_string(added) + ") are negative or lower than the previous frame's (" +
-                             std::to_string(last_orig) + ", " + std::to_string(last_added) + ")");
-    last_orig = orig, last_added = added;
-    if (get<double>(b, 8) < 0) throw core::InputError(frame + "its time since the last exit is negative");
+    for (std::uint32_t sp = 0; sp < l.n_species; ++sp) {
+      const auto e = get<std::int64_t>(b, l.exits + 8 * sp);
+      if (e < last_exits[sp])
+        throw core::InputError(frame + "its exit count of species " + std::to_string(sp) + " (" +
+                               std::to_string(e) + ") is negative or lower than the previous frame's (" +
+                               std::to_string(last_exits[sp]) + ")");
+      last_exits[sp] = e;
+    }
+    if (get<double>(b, l.since_last_exit) < 0)
+      throw core::InputError(frame + "its time since the last exit is negative");
     if (version_ >= 2) {
-      const size_t c = 40 + 4 * kTrajectoryMaxArch;
-      const double start = get<double>(b, c), due = get<double>(b, c + 8);
-      if (!std::isfinite(start) || std::isnan(due) || get<std::int32_t>(b, c + 16) < 0 ||
-          get<std::uint32_t>(b, c + 20) > 3)
+      const double start = get<double>(b, l.clog_start), due = get<double>(b, l.rule_due_in);
+      if (!std::isfinite(start) || std::isnan(due) || get<std::int32_t>(b, l.clog_number) < 0 ||
+          get<std::uint32_t>(b, l.clog_flags) > 3)
         throw core::InputError(frame + "its clog state (start, rule time, number or flags) is out of range");
     }
     for (size_t a = 0; a < 2; ++a)
@@ -390,10 +405,11 @@ void Trajectory::check_frames(const std::string& p) const {
                                  core::format_g(v, 7) + " m, far outside the container (allowed: within " +
                                  core::format_shortest(reach) + " m)");
       }
-    for (size_t off : {size_t(0), size_t(8)})
+    for (size_t off : {l.t, l.since_last_exit})
       if (!std::isfinite(get<double>(b, off)))
         throw core::InputError(p + ": frame " + std::to_string(k) + " is corrupted: its " +
-                               (off == 0 ? "time" : "time since the last exit") + " is not a finite number");
+                               (off == l.t ? "time" : "time since the last exit") +
+                               " is not a finite number");
     for (size_t a = 0; a < 6; ++a)
       for (size_t i = 0; i < n; ++i)
         if (!std::isfinite(get<float>(b, base + 4 * (a * n + i))))
@@ -437,10 +453,10 @@ void Trajectory::rebuild_clogs() {
 }
 
 double Trajectory::time(long k) const {
-  return get<double>(record(k), 0);
+  return get<double>(record(k), layout_.t);
 }
 double Trajectory::since_last_exit(long k) const {
-  return get<double>(record(k), 8);
+  return get<double>(record(k), layout_.since_last_exit);
 }
 
 core::Frame Trajectory::frame(long k) const {
@@ -449,16 +465,16 @@ core::Frame Trajectory::frame(long k) const {
                            " is out of range; the trajectory has frames 0 to " + std::to_string(size() - 1));
   const unsigned char* b = record(k);
   core::Frame f;
-  f.t = get<double>(b, 0);
-  f.since_last_exit = get<double>(b, 8);
-  f.exits_original = get<std::int64_t>(b, 16);
-  f.exits_added = get<std::int64_t>(b, 24);
-  const size_t c = 40 + 4 * kTrajectoryMaxArch;
+  const FrameLayout& l = layout_;
+  f.t = get<double>(b, l.t);
+  f.since_last_exit = get<double>(b, l.since_last_exit);
+  for (std::uint32_t sp = 0; sp < l.n_species; ++sp)
+    f.exits.push_back(get<std::int64_t>(b, l.exits + 8 * sp));
   if (version_ >= 2) {
-    f.clog_start = get<double>(b, c);
-    f.rule_due_in = get<double>(b, c + 8);
-    f.clog_number = get<std::int32_t>(b, c + 16);
-    const auto flags = get<std::uint32_t>(b, c + 20);
+    f.clog_start = get<double>(b, l.clog_start);
+    f.rule_due_in = get<double>(b, l.rule_due_in);
+    f.clog_number = get<std::int32_t>(b, l.clog_number);
+    const auto flags = get<std::uint32_t>(b, l.clog_flags);
     f.clog_open = (flags & kOpen) != 0;
     f.clog_arrested = (flags & kArrested) != 0;
   } else {
@@ -467,16 +483,16 @@ core::Frame Trajectory::frame(long k) const {
     f.clog_start = f.t - f.since_last_exit;
     f.rule_due_in = info_.clog_timeout > 0 ? std::max(0.0, info_.clog_timeout - f.since_last_exit) : INFINITY;
   }
-  const int count = get<std::int32_t>(b, 36);
+  const int count = get<std::int32_t>(b, l.arch_count);
   const size_t n = info_.n_particles;
   for (int j = 0; j < std::min(count, kTrajectoryMaxArch); ++j) {
-    const int id = get<std::int32_t>(b, 40 + 4 * j);
+    const int id = get<std::int32_t>(b, l.arch + 4 * j);
     if (id >= 0 && static_cast<size_t>(id) < n) f.arch.push_back(id);
   }
   // An arch is shown only while a clog is open (version 1 files stored one in flowing frames too), and never
   // a one-grain "arch" (written before arches were checked by core::blocks_outlet).
   if (f.arch.size() < 2 || !f.clog_open) f.arch.clear();
-  const size_t base = frame_head(version_);
+  const size_t base = l.particles;
   f.particles.resize(n);
   for (size_t i = 0; i < n; ++i) {
     core::Particle& q = f.particles[i];

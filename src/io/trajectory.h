@@ -2,7 +2,7 @@
 // users' own analysis. Version 2, little-endian, documented in docs/trajectory.md (with a numpy reader):
 //
 //   header, 64 bytes:  char magic[8] = "SILOTRAJ"; u32 version = 2; u32 header_bytes; u32 n_particles;
-//                      u32 max_arch; u32 frame_bytes; u32 reserved; f64 frame_interval_s; f64 clog_timeout_s
+//                      u32 max_arch; u32 frame_bytes; u32 n_species; f64 frame_interval_s; f64 clog_timeout_s
 //                      (0: the rule is off); f64 clog_min_gap_s; f64 radius_original_m
 //   then:              f32 radius_m[n]; u8 species[n]; zero padding to 8 bytes;
 //                      u32 scene_bytes; the run's metadata (TOML text); zero padding to 8 bytes
@@ -22,7 +22,8 @@
 //
 // Frames are appended as the run goes; a reader takes every complete frame, so a file cut off by a crash
 // reads up to its last whole frame (its events then come from the frames' clog states). Version 1 files
-// (frames without the clog state, no events) still open: their clogs are rebuilt from the frames' timers.
+// (frames of t, timer, exits_original, exits_added, long_arches, the arch: no clog state, no events) still
+// open: their clogs are rebuilt from the frames' timers.
 #pragma once
 
 #include <cstdint>
@@ -41,9 +42,20 @@ namespace io {
 constexpr std::uint32_t kTrajectoryVersion = 2;
 constexpr int kTrajectoryMaxArch = 32;
 
+// Where each field sits in a frame record of a version (bytes from the frame's start; version 1 has no clog
+// state: those offsets are 0 and unused).
+struct FrameLayout {
+  size_t t = 0, since_last_exit = 8, clog_start = 0, rule_due_in = 0, long_arches = 32, clog_number = 0,
+         clog_flags = 0, arch_count = 36, arch = 40, exits = 16, particles = 168;
+  std::uint32_t n_species = 2;
+  size_t bytes(std::uint32_t n_particles) const { return particles + 24 * size_t(n_particles); }
+};
+FrameLayout frame_layout(std::uint32_t version, std::uint32_t n_species);
+
 struct TrajectoryInfo {
   std::uint32_t n_particles = 0;
-  double frame_interval = 0;  // s of simulated time between frames
+  std::uint32_t n_species = 2;  // exits are counted per species
+  double frame_interval = 0;    // s of simulated time between frames
   double clog_timeout = 5, clog_min_gap = 0.5, radius_original = 0.065;
   std::vector<float> radius;
   std::vector<core::Species> species;
@@ -62,12 +74,14 @@ class TrajectoryWriter {
   void add_events(const core::StepEvents& e);
   void close();  // the events block, flush; throws core::RuntimeFault on a write error (a full disk)
   long frames() const { return frames_; }
-  static size_t frame_bytes(std::uint32_t n, std::uint32_t version = kTrajectoryVersion);
+  static size_t frame_bytes(std::uint32_t n, std::uint32_t n_species = 2,
+                            std::uint32_t version = kTrajectoryVersion);
 
  private:
   std::FILE* f_ = nullptr;
   std::string path_;
   std::uint32_t n_;
+  FrameLayout layout_;
   long frames_ = 0;
   std::uint64_t bytes_ = 0;  // written so far
   std::vector<unsigned char> buf_;
@@ -102,6 +116,7 @@ class Trajectory {
   TrajectoryInfo info_;
   std::vector<unsigned char> data_;  // the whole file; frames are read in place
   size_t header_ = 0, frame_bytes_ = 0;
+  FrameLayout layout_;
   long count_ = 0;
   std::vector<int> long_arches_;
   const unsigned char* record(long k) const {

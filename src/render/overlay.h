@@ -119,7 +119,7 @@ class Overlay {
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
   struct Sample {
     double t;
-    long original, added;
+    std::vector<std::int64_t> exits;  // so far, per species
     bool clogged;
     double clog_start;  // s: when the clog began (its last exit), if clogged
   };

@@ -40,24 +40,29 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
     ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s", text.c_str());
   };
   if (o.counts) {
-    if (shorthand) {
-      colored(core::Species::Original, std::to_string(f.exits_original) + " original");
-      ImGui::SameLine();
-      colored(core::Species::Added, std::to_string(f.exits_added) + " added");
-      ImGui::SameLine();
-      ImGui::TextUnformatted("exits");
+    // Each species' exits in its own colour: "40 original 12 added exits", "52 exits: 30 a, 22 b".
+    const size_t n_species = std::max<size_t>(1, d.species_names.size());
+    if (n_species == 1) {
+      ImGui::Text("%lld exits", static_cast<long long>(f.exits_total()));
     } else {
-      ImGui::Text("%lld exits", static_cast<long long>(f.exits_original + f.exits_added));
-      if (d.species_names.size() > 1) {
+      if (!shorthand) {
+        ImGui::Text("%lld exits:", static_cast<long long>(f.exits_total()));
         ImGui::SameLine();
-        colored(core::Species::Original,
-                "(" + std::to_string(f.exits_original) + " " + d.species_names.front() + ")");
+      }
+      for (size_t k = 0; k < n_species; ++k) {
+        if (k > 0) ImGui::SameLine();
+        colored(static_cast<core::Species>(k),
+                std::to_string(f.exits_of(static_cast<int>(k))) + " " + d.species_names[k]);
+      }
+      if (shorthand) {
+        ImGui::SameLine();
+        ImGui::TextUnformatted("exits");
       }
     }
   }
   if (o.rate)
     ImGui::Text("%s = %.2f /s (%s, so far)", shorthand || d.species_names.size() > 1 ? "Q~" : "Q",
-                f.t > 0 ? f.exits_original / f.t : 0.0,
+                f.t > 0 ? static_cast<double>(f.exits_of(0)) / f.t : 0.0,
                 shorthand ? "originals" : d.species_names.front().c_str());
   if (o.timer) {
     const bool clogged = f.clog_open;  // as the simulation's step reported it

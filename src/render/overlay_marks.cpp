@@ -61,8 +61,7 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   // The discharge staircase: cumulative exits of each species against time, clogs shaded. Bottom-right of the
   // most zoomed view, below the outlet where there are no disks.
   if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
-  history_.push_back({f.t, static_cast<long>(f.exits_original), static_cast<long>(f.exits_added), f.clog_open,
-                      f.clog_start});
+  history_.push_back({f.t, f.exits, f.clog_open, f.clog_start});
   const float em = static_cast<float>(font_px_);
   const View& v = most_zoomed(views);
   const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;
@@ -77,8 +76,11 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   dl->AddRectFilled(ImVec2(x0 - 2.6f * em, y0 - 1.5f * em), ImVec2(x1 + 0.4f * em, y1 + 1.4f * em),
                     style.dark ? IM_COL32(30, 30, 36, 215) : IM_COL32(255, 255, 255, 215), 0.3f * em);
   const double tmax = std::max(1.0, history_.back().t);
+  // One staircase per species, on one scale.
+  const size_t n_species = std::max<size_t>(1, d.species_names.size());
   long nmax = 1;
-  for (const auto& s : history_) nmax = std::max(nmax, std::max(s.original, s.added));
+  for (const auto& s : history_)
+    for (std::int64_t e : s.exits) nmax = std::max(nmax, static_cast<long>(e));
   auto X = [&](double t) { return x0 + static_cast<float>(t / tmax) * pw; };
   auto Y = [&](double n) { return y1 - static_cast<float>(n / static_cast<double>(nmax)) * ph; };
   // Clogs: shaded from the clog's start (its last exit, as clogs.csv's start_s), not from the moment the
@@ -87,14 +89,15 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
     if (history_[k].clogged)
       dl->AddRectFilled(ImVec2(X(std::max(0.0, history_[k].clog_start)), y0),
                         ImVec2(X(history_[k].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
-  for (int sp = 0; sp < 2; ++sp) {
-    const ImU32 ink =
-        to_u32(sp == 0 ? species_color(style, core::Species::Original)
-                       : (d.species_names.size() == 2 ? species_color(style, core::Species::Added)
-                                                      : Rgba{0.35f, 0.35f, 0.35f, 1}));
+  auto exits_at = [&](size_t k, size_t sp) {
+    const auto& e = history_[k].exits;
+    return sp < e.size() ? static_cast<long>(e[sp]) : 0L;
+  };
+  for (size_t sp = 0; sp < n_species; ++sp) {
+    const ImU32 ink = to_u32(species_color(style, static_cast<core::Species>(sp)));
     for (size_t k = 1; k < history_.size(); ++k) {
-      const long a = sp == 0 ? history_[k - 1].original : history_[k - 1].added;
-      const long b = sp == 0 ? history_[k].original : history_[k].added;
+      const long a = exits_at(k - 1, sp);
+      const long b = exits_at(k, sp);
       dl->AddLine(ImVec2(X(history_[k - 1].t), Y(static_cast<double>(a))),
                   ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ink, 2.0f);
       if (b != a)

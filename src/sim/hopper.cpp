@@ -73,6 +73,7 @@ Hopper::Hopper(const core::Model& model)
       b2Vec2(static_cast<float>(setup_.gravity.x * L_), static_cast<float>(setup_.gravity.y * L_)));
   world_->SetAllowSleeping(false);  // sleeping would freeze clogged arches between kicks
   world_->SetContinuousPhysics(scene_.continuous);
+  exits_by_species_.assign(setup_.species.size(), 0);
   make_grains();
   deposit_height_ = deposit_height();
   build_walls();
@@ -341,7 +342,7 @@ void Hopper::handle_exits() {
     // A disk wholly below the aperture line has fallen clear of it: one exit, then back to the top.
     if (open_ && p.y < -extent_[i]) {
       events_.exits.push_back({t_, i, species_[i]});
-      ++(species_[i] == core::Species::Original ? exits_original_ : exits_added_);  // first species or others
+      ++exits_by_species_[static_cast<size_t>(core::species_index(species_[i]))];
       last_.exits.push_back(events_.exits.back());
       clogs_.on_exit(t_, last_);
       reinject(i);
@@ -489,8 +490,7 @@ core::Frame Hopper::frame(bool with_forces) const {
   f.clog_start = clog.start;
   f.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
   f.since_last_exit = open_ ? clogs_.since_last(t_) : 0;
-  f.exits_original = exits_original_;
-  f.exits_added = exits_added_;
+  f.exits = exits_by_species_;
   return f;
 }
 

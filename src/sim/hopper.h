@@ -213,7 +213,7 @@ class Hopper {
   core::StepEvents pending_;  // what the steps did since take_events()
   long arch_fallbacks_ = 0;
   core::ArchMethod arch_method_ = core::ArchMethod::ContactPath;  // scene_.arch_method, parsed once
-  std::int64_t exits_original_ = 0, exits_added_ = 0;
+  std::vector<std::int64_t> exits_by_species_;                    // exits so far of each species
   double settle_max_speed_ = 0;
   bool profiling_ = false;
   OverlapStats overlaps_;

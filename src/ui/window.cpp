@@ -332,7 +332,7 @@ void live_keys_pressed(Window& win, LiveState& st) {
 
 void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
                 Painter& painter) {
-  ImGui::Text("t = %.2f s, %lld exits", f.t, static_cast<long long>(f.exits_original + f.exits_added));
+  ImGui::Text("t = %.2f s, %lld exits", f.t, static_cast<long long>(f.exits_total()));
   if (ImGui::Button(st.paused ? "resume (space)" : "pause (space)")) st.paused = !st.paused;
   ImGui::SameLine();
   ImGui::BeginDisabled(!st.paused);

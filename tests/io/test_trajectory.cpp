@@ -131,7 +131,7 @@ TEST_CASE(
   const double back = good.time(2);  // frame 4 at the time of frame 2
   refused(0, &back, 8, "does not come after");
   const std::int64_t negative = -3;
-  refused(16, &negative, 8, "exit counts (-3");
+  refused(io::frame_layout(io::kTrajectoryVersion, 2).exits, &negative, 8, "species 0 (-3)");
   const float far = 1e30f;
   refused(fb - 24 * n + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
 }
@@ -174,26 +174,35 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
 
 TEST_CASE("a version-1 trajectory still opens: its clogs rebuilt from the timers, no arch in a flowing frame",
           "[io]") {
-  // The synthetic file rewritten as version 1: frames without the clog state, no events block.
+  // The synthetic file rewritten as version 1: frames of t, timer, two exit counts, rule firings and the arch
+  // (no clog state), no events block.
   const fs::path d = temp_dir("traj_v1");
   const std::vector<unsigned char> v2 = bytes_of(test::synthetic_trajectory(d));
-  const size_t header = header_bytes(v2), fb2 = io::TrajectoryWriter::frame_bytes(2),
-               fb1 = io::TrajectoryWriter::frame_bytes(2, 1);
-  REQUIRE(fb2 == fb1 + 24);
+  const size_t header = header_bytes(v2);
+  const io::FrameLayout l2 = io::frame_layout(2, 2), l1 = io::frame_layout(1, 2);
+  const size_t fb2 = l2.bytes(2), fb1 = l1.bytes(2);
   std::vector<unsigned char> v1(v2.begin(), v2.begin() + static_cast<long>(header));
   const std::uint32_t one = 1, fb1_u32 = static_cast<std::uint32_t>(fb1);
   std::memcpy(&v1[8], &one, 4);
   std::memcpy(&v1[24], &fb1_u32, 4);
   for (size_t k = 0; k < 5; ++k) {
     const auto* f = &v2[header + k * fb2];
-    v1.insert(v1.end(), f, f + 168);        // up to the arch
-    v1.insert(v1.end(), f + 192, f + fb2);  // the particle arrays
+    std::vector<unsigned char> r(fb1, 0);
+    auto copy = [&](size_t to, size_t from, size_t n) { std::memcpy(&r[to], f + from, n); };
+    copy(l1.t, l2.t, 8);
+    copy(l1.since_last_exit, l2.since_last_exit, 8);
+    copy(l1.exits, l2.exits, 16);
+    copy(l1.long_arches, l2.long_arches, 4);
+    copy(l1.arch_count, l2.arch_count, 4);
+    copy(l1.arch, l2.arch, 4 * io::kTrajectoryMaxArch);
+    copy(l1.particles, l2.particles, 24 * 2);
+    v1.insert(v1.end(), r.begin(), r.end());
   }
   // Frame 1 of version 1 stored an "arch" while flowing (timer 0): it is not shown.
   const std::int32_t count = 2, a = 0, b = 1;
-  std::memcpy(&v1[header + fb1 + 36], &count, 4);
-  std::memcpy(&v1[header + fb1 + 40], &a, 4);
-  std::memcpy(&v1[header + fb1 + 44], &b, 4);
+  std::memcpy(&v1[header + fb1 + l1.arch_count], &count, 4);
+  std::memcpy(&v1[header + fb1 + l1.arch], &a, 4);
+  std::memcpy(&v1[header + fb1 + l1.arch + 4], &b, 4);
   io::Trajectory t(v1, "old.sstraj");
   CHECK(t.version() == 1);
   REQUIRE(t.size() == 5);
@@ -204,6 +213,7 @@ TEST_CASE("a version-1 trajectory still opens: its clogs rebuilt from the timers
   REQUIRE(t.events().clogs.size() == 1);
   CHECK(t.events().clogs[0].ended_by == core::ClogEnd::Rule);
   CHECK(t.frame(3).particles[0].x == Approx(0.1f));
+  CHECK(t.frame(3).exits.size() == 2);
 }
 
 TEST_CASE("a recording made with the clog rule off opens (clog_timeout 0 in the header)", "[io]") {

@@ -242,7 +242,7 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   static render::Overlay overlay;
   core::Frame f;
   f.t = 12.5;
-  f.exits_original = 10;
+  f.exits = {10, 0};
   auto views = render::layout_views(render::parse_camera("hopper"), fx.geo, 320, 240);
   render::Style style;
   render::Target target(320, 240);
@@ -285,7 +285,7 @@ TEST_CASE("in a window the information box never covers the container: a clear c
   auto& fx = fixture();
   core::Frame f;
   f.t = 3.5;
-  f.exits_original = 4;
+  f.exits = {4, 0};
   render::Style style;
   render::OverlayOptions o = render::parse_overlay("time,counts,rate,timer,arch,legend");
   o.place_clear = o.may_leave = true;

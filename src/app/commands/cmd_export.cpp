@@ -103,6 +103,14 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   return 0;
 }
 
+// Each species' exits so far as XYZ comment keys: " exits_original=40 exits_added=12" (the scene's names).
+std::string exit_counts(const core::Frame& f, const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k)
+    out += " exits_" + names[k] + "=" + std::to_string(f.exits_of(static_cast<int>(k)));
+  return out;
+}
+
 int export_run(const ExportOptions& o) {
   if (o.format != "xyz" && o.format != "csv" && o.format != "vtu")
     throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu");
@@ -145,9 +153,8 @@ int export_run(const ExportOptions& o) {
           "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(geo.x_left) + " 0 0\" " +
           "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1:angle:R:1:sides:I:1:"
           "kind:S:1 Time=" +
-          num(f.t) + " frame=" + std::to_string(k) + " exits_original=" + std::to_string(f.exits_original) +
-          " exits_added=" + std::to_string(f.exits_added) + " species_names=\"" + names_text +
-          "\" container=\"" + num(f.container_x) + " " + num(f.container_y) +
+          num(f.t) + " frame=" + std::to_string(k) + exit_counts(f, names) + " species_names=\"" +
+          names_text + "\" container=\"" + num(f.container_x) + " " + num(f.container_y) +
           "\" units=SI pbc=\"F F F\" siloscope=\"" + io::version_string() + "\"\n";
     }
     for (size_t i = 0; i < n; ++i) {

@@ -169,6 +169,7 @@ io::Facts health_facts(const sim::Hopper& h) {
 io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata) {
   io::TrajectoryInfo t;
   t.n_particles = static_cast<std::uint32_t>(h.particle_count());
+  t.n_species = static_cast<std::uint32_t>(h.setup().species.size());
   t.frame_interval = frame_interval;
   t.clog_timeout = h.scene().clog_timeout;
   t.clog_min_gap = h.scene().clog_min_gap;

@@ -9,19 +9,22 @@ from ._metadata import check_metadata, species_of
 from ._tables import regular_file
 
 HEADER = np.dtype([("magic", "S8"), ("version", "<u4"), ("header_bytes", "<u4"), ("n", "<u4"), ("max_arch", "<u4"),
-                   ("frame_bytes", "<u4"), ("reserved", "<u4"), ("frame_interval_s", "<f8"),
+                   ("frame_bytes", "<u4"), ("n_species", "<u4"), ("frame_interval_s", "<f8"),
                    ("clog_timeout_s", "<f8"), ("clog_min_gap_s", "<f8"), ("radius_original_m", "<f8")])
 
 
 ENDED_BY = ("spontaneous", "vibration", "rule", "run_end")
 
 
-def frame_dtype(n, max_arch, version=2):
-    """One frame record; version 2 adds the open clog's state after the arch."""
-    fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("exits_original", "<i8"), ("exits_added", "<i8"),
-              ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", max_arch)]
+def frame_dtype(n, max_arch, version=2, n_species=2):
+    """One frame record (docs/trajectory.md); version 2 adds the open clog's state and counts exits per species."""
     if version >= 2:
-        fields += [("clog_start", "<f8"), ("rule_due_in", "<f8"), ("clog_number", "<i4"), ("clog_flags", "<u4")]
+        fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("clog_start", "<f8"), ("rule_due_in", "<f8"),
+                  ("long_arches", "<i4"), ("clog_number", "<i4"), ("clog_flags", "<u4"), ("arch_count", "<i4"),
+                  ("arch", "<i4", max_arch), ("exits", "<i8", n_species)]
+    else:
+        fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("exits_original", "<i8"), ("exits_added", "<i8"),
+                  ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", max_arch)]
     fields += [("x", "<f4", n), ("y", "<f4", n), ("angle", "<f4", n), ("vx", "<f4", n), ("vy", "<f4", n),
                ("force", "<f4", n)]
     return np.dtype(fields)
@@ -106,7 +109,10 @@ class Trajectory:
         self.frame_interval = float(head["frame_interval_s"])
         self.clog_timeout = float(head["clog_timeout_s"])
         self.clog_min_gap = float(head["clog_min_gap_s"])
-        dtype = frame_dtype(self.n, self.max_arch, self.version)
+        self.n_species = int(head["n_species"]) if self.version >= 2 else 2
+        if not 1 <= self.n_species <= 16:
+            raise SiloscopeError(f"{path}: corrupted trajectory header ({self.n_species} species; allowed: 1 to 16)")
+        dtype = frame_dtype(self.n, self.max_arch, self.version, self.n_species)
         if int(head["frame_bytes"]) != dtype.itemsize or self.header_bytes > size:
             raise SiloscopeError(f"{path}: corrupted trajectory header (frame size or header size)")
         self.radius = np.fromfile(real, dtype="<f4", count=self.n, offset=HEADER.itemsize)
@@ -153,12 +159,14 @@ class Trajectory:
         return len(self.frames)
 
     def __getattr__(self, name):
-        # t, since_last_exit, exits_original, exits_added, long_arches, arch_count, x, y, angle, vx, vy, force, and
-        # from version 2 clog_start, rule_due_in, clog_number, clog_flags
-        if name in ("t", "since_last_exit", "exits_original", "exits_added", "long_arches", "arch_count", "x", "y",
-                    "angle", "vx", "vy", "force") or (name in ("clog_start", "rule_due_in", "clog_number",
-                                                               "clog_flags") and self.version >= 2):
+        # t, since_last_exit, long_arches, arch_count, x, y, angle, vx, vy, force; version 2 also clog_start,
+        # rule_due_in, clog_number, clog_flags and exits (frames x species); version 1 exits_original, exits_added
+        if name.startswith("__") or "frames" not in self.__dict__:
+            raise AttributeError(name)
+        if name in self.frames.dtype.names and name != "arch":
             return self.frames[name]
+        if name == "exits" and self.version < 2:
+            return np.stack([self.frames["exits_original"], self.frames["exits_added"]], axis=1)
         raise AttributeError(name)
 
     def clog_open(self, k):
