@@ -11,7 +11,7 @@
 #include "core/scene.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace test {
 
@@ -19,12 +19,12 @@ namespace test {
 // on it (an unloaded 3-disk arch rolls off the walls; with a load it holds, as in a real column). Kicks off.
 struct StagedArch {
   core::Scene scene;
-  std::unique_ptr<sim::Hopper> hopper;
+  std::unique_ptr<sim::Silo> hopper;
   double y_top = 0;  // the keystone's height, m
   explicit StagedArch(std::uint64_t seed = 1) {
     core::apply_overrides(scene, {"n_total=5", "chi=0", "settle_time=0", "kick_impulse_max=0"});
     scene.seed = seed;
-    hopper = std::make_unique<sim::Hopper>(core::compile(scene));
+    hopper = std::make_unique<sim::Silo>(core::compile(scene));
     const auto& g = hopper->geometry();
     const double r = scene.radius_original, ya = 0.12;
     const double x0 = g.right_at(ya) - r / std::cos(g.wall_angle_from_vertical());

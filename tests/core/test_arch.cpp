@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/arch.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace {
 // A hand-built contact graph: nodes at positions, bonds, wall contacts.

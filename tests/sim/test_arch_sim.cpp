@@ -42,7 +42,7 @@ TEST_CASE("arches shown agree with the clog rule's, and a flowing outlet shows n
           "[arch][sim]") {
   core::Scene s;  // the built-in default: the paper's hopper at the literal kick
   s.seed = 3;
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   const auto& geo = h.geometry();
   int shown = 0, frames = 0, agreed = 0;
   size_t rules = 0;

@@ -9,7 +9,7 @@
 #include "core/geometry.h"
 #include "fixtures.h"
 #include "sim/clog.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace {
 // The staged arch of tests/fixtures.h, held still for a second (ten kick checks), then kicked with `impulse`
@@ -133,7 +133,7 @@ TEST_CASE(
     core::Scene s;
     s.duration = 25;
     s.kick_impulse_max = impulse;
-    sim::Hopper h(core::compile(s));
+    sim::Silo h(core::compile(s));
     h.advance_to(s.duration);
     h.finish();
     return analysis::measure(h.events(), s.duration, s.clog_min_gap);

@@ -5,7 +5,7 @@
 #include "core/physics.h"
 #include "core/setup.h"
 #include "sim/dipole.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 TEST_CASE("dipole force: magnitude 3e-7 mu^2 / r^4, repulsive, along the line of centres", "[sim][dipole]") {
   const double mu = 1.3;
@@ -42,7 +42,7 @@ TEST_CASE("in the hopper, only added disks feel the dipoles", "[sim][dipole]") {
   core::Scene s;
   core::apply_overrides(s, {"n_total=3", "chi=0.67", "mu=0.5", "gravity=0", "kick_impulse_max=0",
                             "settle_time=0", "size_ratio=0.4"});
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   REQUIRE(h.species()[0] == core::Species::Original);
   REQUIRE(h.species()[1] == core::Species::Added);
   REQUIRE(h.species()[2] == core::Species::Added);
@@ -67,7 +67,7 @@ TEST_CASE("the dipole's safe time step refuses a stiff scene and names the large
   const double safe = core::dipole_safe_dt(core::resolve(s));
   REQUIRE(safe < s.dt);
   try {
-    sim::Hopper h(core::compile(s));
+    sim::Silo h(core::compile(s));
     FAIL("no error");
   } catch (const std::exception& e) {
     std::string msg = e.what();

@@ -8,7 +8,7 @@
 #include "app/services/campaign.h"
 #include "core/error.h"
 #include "core/physics.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 using Catch::Matchers::Contains;
 
@@ -32,23 +32,23 @@ std::string fault_of(F f) {
 TEST_CASE("health: non-finite, escaped, too fast and overlapping disks stop the run with the cause",
           "[sim][health]") {
   {
-    sim::Hopper h(core::compile(small_scene()));
+    sim::Silo h(core::compile(small_scene()));
     h.place(3, {NAN, NAN});
     CHECK_THAT(fault_of([&] { h.check_health(); }), Contains("non-finite") && Contains("particle 3"));
   }
   {
-    sim::Hopper h(core::compile(small_scene()));
+    sim::Silo h(core::compile(small_scene()));
     h.place(2, {2.0, 3.0});  // beyond the right silo wall
     CHECK_THAT(fault_of([&] { h.step(); }), Contains("outside the container") && Contains("try dt <="));
   }
   {
-    sim::Hopper h(core::compile(small_scene()));
+    sim::Silo h(core::compile(small_scene()));
     h.place(1, {0.0, 3.0});
     h.set_velocity(1, {0.0, 500.0});
     CHECK_THAT(fault_of([&] { h.check_health(); }), Contains("faster than"));
   }
   {
-    sim::Hopper h(core::compile(small_scene()));
+    sim::Silo h(core::compile(small_scene()));
     h.place(0, {0.0, 3.0});
     h.place(1, {0.03, 3.0});  // two original disks (r = 6.5 cm) 3 cm apart: 77% overlap
     h.step();                 // Box2D finds the contact
@@ -61,7 +61,7 @@ TEST_CASE("health: time steps the integration cannot survive are refused with th
   core::Scene s = small_scene();
   s.dt = 0.005;  // a falling disk would move 5.6 cm per step, more than an added disk's diameter
   try {
-    sim::Hopper h(core::compile(s));
+    sim::Silo h(core::compile(s));
     FAIL("no refusal");
   } catch (const core::InputError& e) {
     CHECK_THAT(e.what(), Contains("smallest diameter") && Contains("largest safe time step is 0.00"));
@@ -70,19 +70,19 @@ TEST_CASE("health: time steps the integration cannot survive are refused with th
   s.size_ratio = 0.2;
   s.mu = core::mu_for_force_ratio(s, 1000.0);
   s.dt = 0.002;
-  CHECK_THROWS_WITH(sim::Hopper(core::compile(s)),
+  CHECK_THROWS_WITH(sim::Silo(core::compile(s)),
                     Contains("dipole repulsion") && Contains("largest safe time step"));
   // With --unsafe the run goes on, loudly, and counts what it saw.
   s.unsafe = true;
   s.duration = 0.5;
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   CHECK(h.health_warnings() >= 1);
 }
 
 TEST_CASE("health: the default scene runs 150 s without a single warning", "[sim][health][slow]") {
   core::Scene s;
   s.unsafe = true;  // count instead of stopping, so the assertion sees every problem
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   h.advance_to(s.duration);
   CHECK(h.health_warnings() == 0);
   CHECK(h.overlaps().max < 0.25);  // largest overlap seen at any kick, fraction of the smaller radius

@@ -8,7 +8,7 @@
 
 #include "core/setup.h"
 #include "sim/dipole.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace {
 // A small flat silo: `extra` keys on top (n grains of one species "g").
@@ -24,7 +24,7 @@ core::Scene flat_silo(std::vector<std::string> extra, int n = 80) {
 }  // namespace
 
 TEST_CASE("a flat silo discharges through its floor, its arches from floor to floor", "[sim][scenes]") {
-  sim::Hopper h(core::compile(flat_silo({})));
+  sim::Silo h(core::compile(flat_silo({})));
   const auto& g = h.geometry();
   // Settled above the floor, inside the walls.
   for (auto p : h.positions()) {
@@ -51,7 +51,7 @@ TEST_CASE("a flat silo discharges through its floor, its arches from floor to fl
 
 TEST_CASE("polygons: Box2D polygons of equal area, at random orientations, drawn by their sides",
           "[sim][scenes]") {
-  sim::Hopper h(core::compile(flat_silo({"species.g.sides=5", "seed=3"})));
+  sim::Silo h(core::compile(flat_silo({"species.g.sides=5", "seed=3"})));
   const core::Frame f = h.frame(false);
   std::vector<double> angles;
   for (const auto& p : f.particles) {
@@ -67,7 +67,7 @@ TEST_CASE("polygons: Box2D polygons of equal area, at random orientations, drawn
 }
 
 TEST_CASE("the obstacle stands where the scene says and no grain enters it", "[sim][scenes]") {
-  sim::Hopper h(core::compile(flat_silo({"obstacle=disk", "obstacle_size=0.2", "obstacle_height=0.45"})));
+  sim::Silo h(core::compile(flat_silo({"obstacle=disk", "obstacle_size=0.2", "obstacle_height=0.45"})));
   const auto& ob = h.geometry().obstacle;
   REQUIRE(ob.present());
   double deepest = 0;
@@ -81,7 +81,7 @@ TEST_CASE("the obstacle stands where the scene says and no grain enters it", "[s
 }
 
 TEST_CASE("a vibrating container follows A sin(omega t) and lifts the grains at Gamma > 1", "[sim][scenes]") {
-  sim::Hopper h(core::compile(flat_silo({"vibration_gamma=3", "vibration_frequency=10", "clog_timeout=0"})));
+  sim::Silo h(core::compile(flat_silo({"vibration_gamma=3", "vibration_frequency=10", "clog_timeout=0"})));
   const core::Setup& st = h.setup();
   REQUIRE(st.drive.vibrating());
   double worst = 0;
@@ -103,7 +103,7 @@ TEST_CASE("a vibrating container follows A sin(omega t) and lifts the grains at 
 TEST_CASE("a tilted container: gravity at the tilt in its frame", "[sim][scenes]") {
   core::Scene s = flat_silo({"tilt=30"}, 1);
   core::apply_overrides(s, {"settle_time=0"});
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   // One grain dropped from rest, away from the walls: after 0.1 s of free fall it has moved along gravity.
   h.place(0, {0.0, 1.2});
   const core::Vec2 p0 = h.positions()[0];
@@ -119,7 +119,7 @@ TEST_CASE("size distributions: radii within their law, reproducible by seed", "[
       "[[species]]\nname = \"l\"\ncount = 150\nsize = \"lognormal\"\nradius = 0.04\nspread = 0.2\n",
       "dist");
   core::apply_overrides(s, {"settle_time=0"});
-  sim::Hopper a(core::compile(s)), b(core::compile(s));
+  sim::Silo a(core::compile(s)), b(core::compile(s));
   const auto r = a.radii();
   CHECK(r == b.radii());
   const core::Setup& st = a.setup();
@@ -167,7 +167,7 @@ TEST_CASE("dipoles: the cell list gives the all-pairs forces, moments multiply p
 
 TEST_CASE("the clog rule off: a clog lasts until the run ends, and says so", "[sim][scenes]") {
   // A narrow outlet without a drive clogs for good.
-  sim::Hopper h(core::compile(flat_silo({"aperture=0.18", "clog_timeout=0", "clog_min_gap=0.5"})));
+  sim::Silo h(core::compile(flat_silo({"aperture=0.18", "clog_timeout=0", "clog_min_gap=0.5"})));
   h.advance_to(15.0);
   h.finish();
   REQUIRE_FALSE(h.events().clogs.empty());

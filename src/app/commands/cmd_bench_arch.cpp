@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 

@@ -15,7 +15,7 @@
 #include "core/setup.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -47,7 +47,7 @@ double us(double seconds, int steps) {
 // Time `steps` steps of the scene `repeats` times: siloscope's step, a bare Box2D step on a copy of the same
 // world, and a profiled copy for the stages.
 StepCost time_steps(const core::Model& model, int steps, int repeats) {
-  sim::Hopper ours(model), bare(model), profiled(model);
+  sim::Silo ours(model), bare(model), profiled(model);
   profiled.set_profiling(true);
   std::vector<double> o, b, k, d, x, c, s, t, bk;
   for (int r = 0; r < repeats; ++r) {

@@ -17,7 +17,7 @@
 #include "core/setup.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 

@@ -21,7 +21,7 @@
 #include "render/camera.h"
 #include "render/draw_list.h"
 #include "render/overlay.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 

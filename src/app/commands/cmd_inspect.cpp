@@ -15,7 +15,7 @@
 #include "render/camera.h"
 #include "render/context.h"
 #include "render/overlay.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 #include "ui/inspector.h"
 #include "ui/window.h"
 
@@ -86,10 +86,10 @@ int inspect(const InspectOptions& o) {
   return 0;
 }
 
-// The live window's simulation: a Hopper the window never sees (ui knows no simulation).
-class LiveHopper final : public ui::LiveSource {
+// The live window's simulation: a Silo the window never sees (ui knows no simulation).
+class LiveSilo final : public ui::LiveSource {
  public:
-  explicit LiveHopper(const core::Model& model)
+  explicit LiveSilo(const core::Model& model)
       : model_(model), session_(std::make_unique<Session>(std::vector{model})) {}
   void advance(double seconds) override {
     session_->run(session_->world(0).time() + seconds, FrameClock::none(), {});
@@ -130,7 +130,7 @@ int live(const LiveOptions& o) {
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
   const RecordFiles files;
   w.files = &files;
-  LiveHopper source(model);
+  LiveSilo source(model);
   ui::run_live_window(source, w);
   return 0;
 }

@@ -29,7 +29,7 @@
 #include "record/mp4.h"
 #include "render/camera.h"
 #include "render/overlay.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -319,7 +319,7 @@ class MovieSink : public Sink {
 };
 
 // The facts each panel's metadata carries about the recording.
-io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel& p, const sim::Hopper& h,
+io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel& p, const sim::Silo& h,
                           const Stages& st, long encoded, long slow_frames, long frozen_frames,
                           size_t n_panels, bool interrupted_run, const std::string& gl_renderer, double wall,
                           const fs::path& movie_path) {
@@ -383,7 +383,7 @@ std::vector<analysis::Measurements> write_recording_outputs(
   const core::Scene& scene = panels.front().model.scene;
   std::vector<analysis::Measurements> ms;
   for (size_t k = 0; k < n_panels; ++k) {
-    const sim::Hopper& h = session.world(k);
+    const sim::Silo& h = session.world(k);
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].model.scene.duration;
     io::RunInfo pinfo = info;
     pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, frozen_frames, n_panels,

@@ -13,7 +13,7 @@
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/trajectory.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -65,7 +65,7 @@ int simulate(const RunOptions& o, const core::Model& model) {
   Progress progress("run", scene.duration, !o.quiet);
   auto wall0 = std::chrono::steady_clock::now();
   Session session({model});  // deposits, settles, opens: t = 0
-  sim::Hopper& hopper = session.world(0);
+  sim::Silo& hopper = session.world(0);
   auto wall1 = std::chrono::steady_clock::now();
   std::unique_ptr<TrajectorySink> trajectory;
   std::vector<Sink*> sinks;

@@ -11,7 +11,7 @@
 
 #include "core/physics.h"
 #include "sim/dipole.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -46,7 +46,7 @@ SettingResult run_setting(const core::Scene& scene, const NumericSetting& settin
       try {
         auto t0 = std::chrono::steady_clock::now();
         Session session({core::compile(s)});
-        const sim::Hopper& h = session.world(0);
+        const sim::Silo& h = session.world(0);
         auto t1 = std::chrono::steady_clock::now();
         session.run(s.duration, FrameClock::none(), {});
         session.finish();
@@ -93,7 +93,7 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   s.settle_time = 0;
   s.dipole_cutoff = 0;
   Session session({core::compile(s)});
-  sim::Hopper& h = session.world(0);
+  sim::Silo& h = session.world(0);
   // Start one contact-gap apart in the middle of the silo, at rest: all energy is the dipole's at first.
   const double ra = s.radius_added(), y = 3.0;
   h.place(0, {-ra - 0.25 * ra, y});
@@ -111,7 +111,7 @@ double pair_energy_drift(const core::Scene& scene, const NumericSetting& setting
   // Stop before either disk comes within two radii of a side wall: wall contacts are inelastic by design.
   const double limit = h.geometry().half_width - 3 * ra;
   FunctionSink probe;
-  probe.on_step = [&](const sim::Hopper& w, const core::StepEvents&, size_t) {
+  probe.on_step = [&](const sim::Silo& w, const core::StepEvents&, size_t) {
     const auto p = w.positions();
     return std::abs(p[0].x) <= limit && std::abs(p[1].x) <= limit;
   };

@@ -13,7 +13,7 @@
 #include "io/events_csv.h"
 #include "io/output.h"
 #include "io/trajectory.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -70,7 +70,7 @@ std::string command_line() {
   return g_command;
 }
 
-analysis::Measurements measure_run(const sim::Hopper& h, double duration) {
+analysis::Measurements measure_run(const sim::Silo& h, double duration) {
   analysis::Measurements m = analysis::measure(h.events(), duration, h.scene().clog_min_gap,
                                                static_cast<int>(h.setup().species.size()));
   m.health_warnings = h.health_warnings();
@@ -102,7 +102,7 @@ std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& r
   return out;
 }
 
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Hopper& h,
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Silo& h,
                                          double duration, io::RunInfo info) {
   const core::Scene& scene = h.scene();
   const analysis::Measurements m = measure_run(h, duration);
@@ -155,7 +155,7 @@ CLI::Validator whole_number(long double lo, long double hi) {
       "INT", "whole_number");
 }
 
-io::Facts health_facts(const sim::Hopper& h) {
+io::Facts health_facts(const sim::Silo& h) {
   const bool ballistic = h.ballistic();
   const char* status = h.health_warnings() > 0 ? "unsafe" : ballistic ? "ballistic" : "ok";
   return {{"status", status},
@@ -163,10 +163,10 @@ io::Facts health_facts(const sim::Hopper& h) {
           {"ballistic", ballistic},
           {"airborne_fraction_mean", h.airborne().mean()},
           {"airborne_fraction_max", h.airborne().max},
-          {"ballistic_threshold", sim::Hopper::kBallisticFraction}};
+          {"ballistic_threshold", sim::Silo::kBallisticFraction}};
 }
 
-io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata) {
+io::TrajectoryInfo trajectory_info(const sim::Silo& h, double frame_interval, const std::string& metadata) {
   io::TrajectoryInfo t;
   t.n_particles = static_cast<std::uint32_t>(h.particle_count());
   t.n_species = static_cast<std::uint32_t>(h.setup().species.size());

@@ -18,7 +18,7 @@
 #include "io/metadata.h"
 
 namespace sim {
-class Hopper;
+class Silo;
 }
 namespace io {
 struct TrajectoryInfo;
@@ -27,18 +27,18 @@ struct TrajectoryInfo;
 namespace app {
 
 // The header of a trajectory of `h`: radii, species, the scene's clog settings, `metadata` (TOML text).
-io::TrajectoryInfo trajectory_info(const sim::Hopper& h, double frame_interval, const std::string& metadata);
+io::TrajectoryInfo trajectory_info(const sim::Silo& h, double frame_interval, const std::string& metadata);
 
 // The [health] table of a run's metadata: warnings under --unsafe, disks in flight, the "ballistic" warning.
-io::Facts health_facts(const sim::Hopper& h);
+io::Facts health_facts(const sim::Silo& h);
 // A finished run's measurements over `duration` s of discharge, with its health (for summary.csv).
-analysis::Measurements measure_run(const sim::Hopper& h, double duration);
+analysis::Measurements measure_run(const sim::Silo& h, double duration);
 // A run's outputs, written the same way by run and record into `dir`: exits/clogs/arches.csv, summary.csv,
 // survival.csv and metadata.toml (info, with the run's health added). Returns the measurements of `duration`
 // s.
 // arch_shapes.csv: per arch the clog rule removed, the descriptors of core::arch_descriptors.
 std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii);
-analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Hopper& h,
+analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const sim::Silo& h,
                                          double duration, io::RunInfo info);
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.

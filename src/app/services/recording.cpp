@@ -7,11 +7,11 @@
 #include "app/services/session.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
-render::Annotations EventMarks::update(const sim::Hopper& h, const core::StepEvents& events, double t) {
+render::Annotations EventMarks::update(const sim::Silo& h, const core::StepEvents& events, double t) {
   render::Annotations notes;
   if (!events.rule_removed.empty()) {
     const core::ArchEvent& a = events.rule_removed.back();
@@ -74,7 +74,7 @@ std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, d
   const core::Scene& scene = model.scene;
   Session session({model});
   std::vector<int> ids;
-  auto take = [&](const sim::Hopper& h) {
+  auto take = [&](const sim::Silo& h) {
     const core::Frame f = h.frame(false);
     for (size_t i = 0; i < f.particles.size(); ++i) {
       const auto& p = f.particles[i];
@@ -86,7 +86,7 @@ std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, d
     return ids;
   }
   FunctionSink probe;
-  probe.on_step = [&](const sim::Hopper& h, const core::StepEvents&, size_t) {
+  probe.on_step = [&](const sim::Silo& h, const core::StepEvents&, size_t) {
     if (h.time() < t - 0.5 * scene.dt) return true;
     take(h);
     return false;
@@ -101,7 +101,7 @@ std::vector<int> long_arch_members(const core::Model& model, int k) {
   FunctionSink probe;
   std::vector<int> ids;
   int removed = 0;
-  probe.on_step = [&](const sim::Hopper&, const core::StepEvents& e, size_t) {
+  probe.on_step = [&](const sim::Silo&, const core::StepEvents& e, size_t) {
     for (const core::ArchEvent& a : e.rule_removed)
       if (++removed == k) ids = a.ids;
     return removed < k;
@@ -119,7 +119,7 @@ std::vector<int> clog_arch_members(const core::Model& model, int k) {
   FunctionSink probe;
   std::vector<int> ids;
   int opened = 0;
-  probe.on_step = [&](const sim::Hopper& h, const core::StepEvents& e, size_t) {
+  probe.on_step = [&](const sim::Silo& h, const core::StepEvents& e, size_t) {
     // The k-th clog (row k of clogs.csv) as the step reports its opening; its arch is the one the step
     // found then.
     opened += static_cast<int>(e.clogs_opened.size());

@@ -11,7 +11,7 @@
 #include "render/overlay.h"
 
 namespace sim {
-class Hopper;
+class Silo;
 }
 
 namespace app {
@@ -39,7 +39,7 @@ class EventMarks {
   static constexpr int kMinFrames = 10;
   static constexpr double kMinSeconds = 0.7;
   // `events`: what world h's steps reported since the previous frame.
-  render::Annotations update(const sim::Hopper& h, const core::StepEvents& events, double t);
+  render::Annotations update(const sim::Silo& h, const core::StepEvents& events, double t);
 
  private:
   void start(const std::string& caption, double t, bool keep_rings);

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 
@@ -76,10 +76,10 @@ Session::Session(const std::vector<core::Model>& models) {
   std::vector<std::future<void>> others;
   for (size_t k = 1; k < models.size(); ++k)
     others.push_back(
-        std::async(std::launch::async, [&, k] { worlds_[k] = std::make_unique<sim::Hopper>(models[k]); }));
+        std::async(std::launch::async, [&, k] { worlds_[k] = std::make_unique<sim::Silo>(models[k]); }));
   std::exception_ptr first;
   try {
-    worlds_[0] = std::make_unique<sim::Hopper>(models[0]);
+    worlds_[0] = std::make_unique<sim::Silo>(models[0]);
   } catch (...) {
     first = std::current_exception();
   }

@@ -19,7 +19,7 @@
 #include "core/scene.h"
 
 namespace sim {
-class Hopper;
+class Silo;
 }
 
 namespace app {
@@ -55,7 +55,7 @@ struct FrameTick {
   bool slow = false;                     // taken at slow-motion spacing
   std::vector<core::Frame> frames;       // one per world, in world order
   std::vector<core::StepEvents> events;  // one per world: since the previous tick (the first: since opening)
-  std::vector<const sim::Hopper*> worlds;  // the same order
+  std::vector<const sim::Silo*> worlds;  // the same order
 };
 
 // Something that watches a session. Every hook is optional.
@@ -70,7 +70,7 @@ class Sink {
   // Called after every time step of world k, with what that step reported, when wants_steps() (probes that
   // watch every step).
   virtual bool wants_steps() const { return false; }
-  virtual void step(const sim::Hopper&, const core::StepEvents&, size_t /*world*/) {}
+  virtual void step(const sim::Silo&, const core::StepEvents&, size_t /*world*/) {}
   // The run's end closed the worlds' open clogs (Session::finish): their censored rows, per world.
   virtual void finished(const std::vector<core::StepEvents>&) {}
   // True to stop the run early (a closed pipeline, a probe that has seen enough).
@@ -87,8 +87,8 @@ class Session {
   Session& operator=(const Session&) = delete;
 
   size_t size() const { return worlds_.size(); }
-  sim::Hopper& world(size_t k) { return *worlds_[k]; }
-  const sim::Hopper& world(size_t k) const { return *worlds_[k]; }
+  sim::Silo& world(size_t k) { return *worlds_[k]; }
+  const sim::Silo& world(size_t k) const { return *worlds_[k]; }
 
   // Step every world from where it stands to `end` s, with frames by `clock` to `sinks`. `stop` is polled
   // every half simulated second (Ctrl-C); `progress(t)` too. Returns false if a sink or `stop` ended it
@@ -104,7 +104,7 @@ class Session {
 
  private:
   void step_all(long n);
-  std::vector<std::unique_ptr<sim::Hopper>> worlds_;
+  std::vector<std::unique_ptr<sim::Silo>> worlds_;
   std::vector<double> last_removal_;  // s, each world's last rule removal (slow motion)
   long next_frame_step_ = 0, frames_taken_ = 0;
 };
@@ -114,7 +114,7 @@ class FunctionSink : public Sink {
  public:
   std::function<void(const FrameTick&)> on_frame;
   // Returns false to stop the run.
-  std::function<bool(const sim::Hopper&, const core::StepEvents&, size_t)> on_step;
+  std::function<bool(const sim::Silo&, const core::StepEvents&, size_t)> on_step;
   bool frames = true, forces = false;
   void frame(const FrameTick& t) override {
     if (on_frame) on_frame(t);
@@ -122,7 +122,7 @@ class FunctionSink : public Sink {
   bool wants_frames() const override { return frames && static_cast<bool>(on_frame); }
   bool wants_forces() const override { return forces; }
   bool wants_steps() const override { return static_cast<bool>(on_step); }
-  void step(const sim::Hopper& h, const core::StepEvents& e, size_t k) override {
+  void step(const sim::Silo& h, const core::StepEvents& e, size_t k) override {
     stopped_ = stopped_ || (on_step && !on_step(h, e, k));
   }
   bool done() const override { return stopped_; }

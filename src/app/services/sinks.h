@@ -6,7 +6,7 @@
 #include "app/services/session.h"
 #include "io/contacts.h"
 #include "io/trajectory.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace app {
 

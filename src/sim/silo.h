@@ -43,13 +43,13 @@ struct StageTimes {
   long steps = 0;
 };
 
-class Hopper {
+class Silo {
  public:
   // The scene compiled once (core/model.h); the simulation keeps its own copy.
-  explicit Hopper(const core::Model& model);
-  ~Hopper();
-  Hopper(const Hopper&) = delete;
-  Hopper& operator=(const Hopper&) = delete;
+  explicit Silo(const core::Model& model);
+  ~Silo();
+  Silo(const Silo&) = delete;
+  Silo& operator=(const Silo&) = delete;
 
   // One time step; returns what it did (exits, a clog opened or closed, the rule's removal, the time until
   // the rule is due). The report is also kept until take_events() collects it.

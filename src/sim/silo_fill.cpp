@@ -11,7 +11,7 @@
 #include "core/format.h"
 #include "core/physics.h"
 #include "core/portable_math.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace sim {
 
@@ -54,7 +54,7 @@ class PlacedGrid {
 };
 }  // namespace
 
-double Hopper::draw_radius(const core::SpeciesDef& d) {
+double Silo::draw_radius(const core::SpeciesDef& d) {
   switch (d.law) {
     case core::SizeLaw::Fixed:
       return d.radius;  // nothing drawn: the shorthand's runs stay bit for bit
@@ -81,7 +81,7 @@ double Hopper::draw_radius(const core::SpeciesDef& d) {
   return d.radius;
 }
 
-double Hopper::deposit_height() const {
+double Silo::deposit_height() const {
   // Random sequential deposition jams near 55% coverage, so the grains are dropped from a column tall enough
   // for 30% coverage, which may reach above the container: the side walls reach that high, and the top wall
   // is only built when the aperture opens.
@@ -92,7 +92,7 @@ double Hopper::deposit_height() const {
                   geo_.hopper_height + (area / 0.3 - hopper_area) / (2.0 * geo_.half_width));
 }
 
-void Hopper::make_grains() {
+void Silo::make_grains() {
   const int n = setup_.n_total;
   // Each grain's species, size and shape: radii drawn in id order, then polygon orientations, both from their
   // own stream (the shorthand's fixed-size disks draw nothing from it).
@@ -112,7 +112,7 @@ void Hopper::make_grains() {
       angle_[static_cast<size_t>(id)] = rng_shape_.uniform(0.0, 2.0 * core::kPi);
 }
 
-void Hopper::deposit() {
+void Silo::deposit() {
   const int n = setup_.n_total;
   // Placement order: ids in order (species in list order: the shorthand's larger original disks first, so
   // the smaller ones fit into the gaps), or shuffled (Fisher-Yates on the deposition stream; the default
@@ -160,7 +160,7 @@ void Hopper::deposit() {
   t_ = -static_cast<double>(open_step_) * scene_.dt;
 }
 
-void Hopper::add_grain(int id, core::Vec2 p, double angle) {
+void Silo::add_grain(int id, core::Vec2 p, double angle) {
   const core::SpeciesDef& d = setup_.species[static_cast<size_t>(species_[static_cast<size_t>(id)])];
   b2BodyDef bd;
   bd.type = b2_dynamicBody;
@@ -197,14 +197,14 @@ void Hopper::add_grain(int id, core::Vec2 p, double angle) {
   bodies_[static_cast<size_t>(id)] = body;
 }
 
-void Hopper::settle() {
+void Silo::settle() {
   while (step_ < open_step_) step();
   double vmax = 0;
   for (int i = 0; i < particle_count(); ++i) vmax = std::max(vmax, core::length(vel(i)));
   settle_max_speed_ = vmax;
 }
 
-void Hopper::open_aperture() {
+void Silo::open_aperture() {
   for (int i = 0; i < particle_count(); ++i)
     if (pos(i).y + extent_[i] > geo_.total_height)
       throw core::InputError(

@@ -7,11 +7,11 @@
 #include <functional>
 #include <set>
 
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace {
 // FNV-1a over the bytes of the event stream and final positions: a fingerprint of a run.
-std::uint64_t fingerprint(const sim::Hopper& h) {
+std::uint64_t fingerprint(const sim::Silo& h) {
   std::uint64_t x = 1469598103934665603ULL;
   auto mix = [&](const void* p, size_t n) {
     for (size_t i = 0; i < n; ++i) x = (x ^ static_cast<const unsigned char*>(p)[i]) * 1099511628211ULL;
@@ -33,7 +33,7 @@ core::Scene flowing_scene(std::uint64_t seed) {
 
 TEST_CASE("every disk that falls through the aperture gives exactly one exit event", "[sim][hopper]") {
   core::Scene s = flowing_scene(5);
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   const int n = h.particle_count();
   REQUIRE(n == 250);
   REQUIRE(h.time() == Approx(0.0));
@@ -72,7 +72,7 @@ TEST_CASE("every disk that falls through the aperture gives exactly one exit eve
 
 TEST_CASE("the same seed gives an identical run, another seed differs", "[sim][hopper][determinism]") {
   auto run = [](std::uint64_t seed) {
-    sim::Hopper h(core::compile(flowing_scene(seed)));
+    sim::Silo h(core::compile(flowing_scene(seed)));
     h.advance_to(4.0);
     return std::make_pair(fingerprint(h), h.events().exits.size());
   };
@@ -91,7 +91,7 @@ TEST_CASE("golden hash: the default scene's state after 1000 steps is the commit
   // depends on libm; it still depends on Box2D's build (its sinf/cosf turn bodies) and on IEEE arithmetic
   // without contraction (-ffp-contract=off).
   core::Scene s;  // the built-in defaults (= assets/scenes/paper.toml)
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   for (int k = 0; k < 1000; ++k) h.step();
   char got[32];
   std::snprintf(got, sizeof got, "%016llx", static_cast<unsigned long long>(fingerprint(h)));
@@ -106,7 +106,7 @@ TEST_CASE("golden hash: the default scene's state after 1000 steps is the commit
 
 TEST_CASE("settling deposits every disk inside the container, at rest, without overlaps", "[sim][hopper]") {
   core::Scene s;
-  sim::Hopper h(core::compile(s));
+  sim::Silo h(core::compile(s));
   const auto p = h.positions();
   const auto r = h.radii();
   const auto& g = h.geometry();
@@ -133,7 +133,7 @@ TEST_CASE(
       core::Scene s;
       core::apply_overrides(s, {"size_ratio=1", "silo_height=12", "settle_time=0.001",
                                 "deposit_order=" + order, "seed=" + std::to_string(seed)});
-      sim::Hopper h(core::compile(s));
+      sim::Silo h(core::compile(s));
       const auto pos = h.positions();
       std::vector<int> ids(pos.size());
       for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "core/physics.h"
-#include "sim/hopper.h"
+#include "sim/silo.h"
 
 namespace sim {
 
-bool Hopper::outlet_arrested(const std::vector<int>& arch) const {
+bool Silo::outlet_arrested(const std::vector<int>& arch) const {
   if (hold_pos_.size() != bodies_.size()) return false;
   // Held up by an arch, and the arch and everything beneath it (the disks no farther from the outlet centre
   // than its farthest member) held still: disks higher in the column may rattle under strong kicks without
@@ -26,7 +26,7 @@ bool Hopper::outlet_arrested(const std::vector<int>& arch) const {
   return true;
 }
 
-double Hopper::column_top(int except) const {
+double Silo::column_top(int except) const {
   const double slab = geo_.grain_diameter;  // the largest species' mean diameter (the shorthand: 2 r_o)
   const int n_slabs = static_cast<int>(std::ceil(geo_.total_height / slab)) + 1;
   std::vector<double> covered(static_cast<size_t>(n_slabs), 0.0), top_edge(static_cast<size_t>(n_slabs), 0.0);
@@ -47,7 +47,7 @@ double Hopper::column_top(int except) const {
   return top;
 }
 
-void Hopper::sample_airborne() {
+void Silo::sample_airborne() {
   const double top = column_top() + 2.0 * geo_.grain_diameter;
   int n = 0;
   for (int i = 0; i < particle_count(); ++i)

@@ -1,7 +1,7 @@
-// sim::Hopper: the Box2D world of one scene (walls, grains, deposition, kicks, vibration, dipoles) and its
+// sim::Silo: the Box2D world of one scene (walls, grains, deposition, kicks, vibration, dipoles) and its
 // step. Over 400 lines because everything that touches the b2World lives here and nowhere else; its health
-// checks are in hopper_health.cpp, filling in hopper_fill.cpp, the dipole forces in dipole.cpp.
-#include "sim/hopper.h"
+// checks are in silo_health.cpp, filling in silo_fill.cpp, the dipole forces in dipole.cpp.
+#include "sim/silo.h"
 #include "core/format.h"
 
 #include <box2d/box2d.h>
@@ -14,8 +14,8 @@
 #include "core/error.h"
 #include "core/physics.h"
 #include "sim/dipole.h"
-#include "sim/hopper_internal.h"
 #include "sim/kicks.h"
+#include "sim/silo_internal.h"
 
 // The metadata states the contact slop as 0.005 Box2D units (io/metadata.cpp); fail the build if this Box2D
 // differs.
@@ -35,7 +35,7 @@ double seconds_since(Clock::time_point t0) {
 }
 }  // namespace
 
-Hopper::Hopper(const core::Model& model)
+Silo::Silo(const core::Model& model)
     : model_(model),
       geo_(setup_.geo),
       L_(scene_.length_scale),
@@ -82,9 +82,9 @@ Hopper::Hopper(const core::Model& model)
   open_aperture();
 }
 
-Hopper::~Hopper() = default;
+Silo::~Silo() = default;
 
-void Hopper::build_walls() {
+void Silo::build_walls() {
   b2BodyDef def;
   // A vibrating container is a kinematic body that the drive moves; otherwise a static one (a kinematic body
   // would merge every grain touching it into one island and change the solver's order).
@@ -125,7 +125,7 @@ void Hopper::build_walls() {
   ceiling_ = walls_->CreateFixture(&fd);
 }
 
-b2Fixture* Hopper::add_wall(int w) {
+b2Fixture* Silo::add_wall(int w) {
   {
     core::Segment s = geo_.walls[w];
     if (w == static_cast<int>(core::Wall::SiloLeft)) s.a.y = deposit_height_;
@@ -145,33 +145,33 @@ b2Fixture* Hopper::add_wall(int w) {
   }
 }
 
-core::Vec2 Hopper::pos(int id) const {
+core::Vec2 Silo::pos(int id) const {
   // In the container's frame (offset_ is zero unless it vibrates: x - 0 is x, bit for bit).
   const b2Vec2& p = bodies_[id]->GetPosition();
   return {p.x / L_ - offset_.x, p.y / L_ - offset_.y};
 }
-core::Vec2 Hopper::vel(int id) const {
+core::Vec2 Silo::vel(int id) const {
   const b2Vec2& v = bodies_[id]->GetLinearVelocity();
   return {v.x / L_, v.y / L_};
 }
-std::vector<core::Vec2> Hopper::positions() const {
+std::vector<core::Vec2> Silo::positions() const {
   std::vector<core::Vec2> out(bodies_.size());
   for (int i = 0; i < particle_count(); ++i) out[i] = pos(i);
   return out;
 }
 
-void Hopper::place(int id, core::Vec2 p) {
+void Silo::place(int id, core::Vec2 p) {
   p = p + offset_;
   bodies_[id]->SetTransform(b2Vec2(static_cast<float>(p.x * L_), static_cast<float>(p.y * L_)), 0.0f);
   bodies_[id]->SetLinearVelocity(b2Vec2(0, 0));
   bodies_[id]->SetAngularVelocity(0);
 }
 
-void Hopper::set_velocity(int id, core::Vec2 v) {
+void Silo::set_velocity(int id, core::Vec2 v) {
   bodies_[id]->SetLinearVelocity(b2Vec2(static_cast<float>(v.x * L_), static_cast<float>(v.y * L_)));
 }
 
-void Hopper::apply_kicks() {
+void Silo::apply_kicks() {
   draw_kicks(rng_kick_, setup_.drive.kick_impulse_max, setup_.drive.global_kick, particle_count(),
              scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
@@ -181,7 +181,7 @@ void Hopper::apply_kicks() {
   }
 }
 
-void Hopper::apply_dipoles() {
+void Silo::apply_dipoles() {
   scratch_pos_.resize(dipole_ids_.size());
   for (size_t k = 0; k < dipole_ids_.size(); ++k) scratch_pos_[k] = pos(dipole_ids_[k]);
   dipole_forces(scratch_pos_, dipole_moment_, scene_.dipole_cutoff, scratch_force_, dipole_cells_);
@@ -193,7 +193,7 @@ void Hopper::apply_dipoles() {
   }
 }
 
-void Hopper::drive_container() {
+void Silo::drive_container() {
   // The container follows A sin(omega t) exactly: each step it gets the velocity that takes it from where it
   // is to where it must be at the end of the step (so float rounding never accumulates).
   const core::Vec2 target = core::container_offset(setup_, t_ + scene_.dt);
@@ -202,7 +202,7 @@ void Hopper::drive_container() {
                                    static_cast<float>((target.y * L_ - at.y) / scene_.dt)));
 }
 
-const core::StepEvents& Hopper::step() {
+const core::StepEvents& Silo::step() {
   last_.clear();
   integrate_step();
   last_.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
@@ -213,20 +213,20 @@ const core::StepEvents& Hopper::step() {
   return last_;
 }
 
-core::StepEvents Hopper::take_events() {
+core::StepEvents Silo::take_events() {
   core::StepEvents out = std::move(pending_);
   pending_.clear();
   pending_.rule_due_in = out.rule_due_in;
   return out;
 }
 
-std::vector<int> Hopper::blocking_arch() const {
+std::vector<int> Silo::blocking_arch() const {
   std::vector<int> arch = current_arch();
   if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
   return arch;
 }
 
-void Hopper::integrate_step() {
+void Silo::integrate_step() {
   Clock::time_point t0;
   if (profiling_) t0 = Clock::now();
   const std::int64_t every = static_cast<std::int64_t>(kick_every_);
@@ -284,7 +284,7 @@ void Hopper::integrate_step() {
   if (profiling_) times_.bookkeeping += seconds_since(t3), ++times_.steps;
 }
 
-bool Hopper::still_since_last_kick() {
+bool Silo::still_since_last_kick() {
   // Every grain, not only those near the outlet: a rearrangement higher in the column can still reach the
   // arch.
   std::vector<core::Vec2> now = positions();
@@ -298,7 +298,7 @@ bool Hopper::still_since_last_kick() {
   return still;
 }
 
-void Hopper::start_skip() {
+void Silo::start_skip() {
   // Called at a kick, before it is applied: from here to the step at which the clog rule falls due, step()
   // integrates nothing (skipped_step). Each kick in between is drawn and not applied, so the generator is
   // where an integrated run would have left it, and the rule then fires at the step it would have fired at.
@@ -310,7 +310,7 @@ void Hopper::start_skip() {
   ++arrest_skips_;
 }
 
-void Hopper::skipped_step(bool kick_due) {
+void Silo::skipped_step(bool kick_due) {
   if (kick_due && setup_.drive.kick_impulse_max > 0)
     draw_kicks(rng_kick_, setup_.drive.kick_impulse_max, setup_.drive.global_kick, particle_count(),
                scratch_kick_);
@@ -326,16 +326,16 @@ void Hopper::skipped_step(bool kick_due) {
   kick_pos_.clear();
 }
 
-void Hopper::record_closed_clogs() {
+void Silo::record_closed_clogs() {
   // The run's clog list grows by what the tracker reported in this step.
   events_.clogs.insert(events_.clogs.end(), last_.clogs_closed.begin(), last_.clogs_closed.end());
 }
 
-void Hopper::advance_to(double t) {
+void Silo::advance_to(double t) {
   while (t_ < t - 0.01 * scene_.dt) step();
 }
 
-void Hopper::handle_exits() {
+void Silo::handle_exits() {
   for (int i = 0; i < particle_count(); ++i) {
     core::Vec2 p = pos(i);
     check_health_fast(i, p, vel(i));
@@ -350,7 +350,7 @@ void Hopper::handle_exits() {
   }
 }
 
-void Hopper::apply_clog_rule() {
+void Silo::apply_clog_rule() {
   if (!clogs_.rule_due(t_)) return;
   const std::vector<core::Vec2> p = positions();
   // The visible set is looked for from the disk nearest the outlet up to one aperture width farther.
@@ -383,7 +383,7 @@ void Hopper::apply_clog_rule() {
   clogs_.on_rule(t_, events_.arches.back(), last_);
 }
 
-void Hopper::reinject(int id) {
+void Silo::reinject(int id) {
   const double r = extent_[id];
   // Just above the packed column (disks in flight do not raise it; the free-space test below avoids them).
   const double top = column_top(id);
@@ -422,7 +422,7 @@ void Hopper::reinject(int id) {
                            "fewer grains leaves room");
 }
 
-core::ContactGraph Hopper::contact_graph() const {
+core::ContactGraph Silo::contact_graph() const {
   core::ContactGraph g(particle_count());
   for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
     if (!c->IsTouching()) continue;
@@ -441,12 +441,12 @@ core::ContactGraph Hopper::contact_graph() const {
   return g;
 }
 
-std::vector<int> Hopper::current_arch() const {
+std::vector<int> Silo::current_arch() const {
   return core::find_arch(contact_graph(), positions(), scene_.arch_wall_reach,
                          geo_.kind == core::ContainerKind::Hopper);
 }
 
-core::Frame Hopper::frame(bool with_forces) const {
+core::Frame Silo::frame(bool with_forces) const {
   core::Frame f;
   f.t = t_;
   f.step = step_;
@@ -494,7 +494,7 @@ core::Frame Hopper::frame(bool with_forces) const {
   return f;
 }
 
-const core::StepEvents& Hopper::finish() {
+const core::StepEvents& Silo::finish() {
   last_.clear();
   clogs_.finish(t_, last_);
   record_closed_clogs();
@@ -502,14 +502,14 @@ const core::StepEvents& Hopper::finish() {
   return last_;
 }
 
-long Hopper::contacts(bool touching_only) const {
+long Silo::contacts(bool touching_only) const {
   long n = 0;
   for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext())
     n += !touching_only || c->IsTouching();
   return n;
 }
 
-void Hopper::step_box2d_only(int n) {
+void Silo::step_box2d_only(int n) {
   for (int i = 0; i < n; ++i)
     world_->Step(static_cast<float>(scene_.dt), static_cast<int>(scene_.velocity_iterations),
                  static_cast<int>(scene_.position_iterations));

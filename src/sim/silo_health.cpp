@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "core/format.h"
-#include "sim/hopper.h"
-#include "sim/hopper_internal.h"
+#include "sim/silo.h"
+#include "sim/silo_internal.h"
 
 namespace sim {
 
@@ -19,12 +19,12 @@ using internal::decode;
 using internal::fmt4;
 using internal::kMaxOverlapFraction;
 
-void Hopper::check_health() {
+void Silo::check_health() {
   for (int i = 0; i < particle_count(); ++i) check_health_fast(i, pos(i), vel(i));
   check_overlaps();
 }
 
-void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
+void Silo::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   const char* cause = nullptr;
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) || !std::isfinite(v.y))
     cause = "a non-finite position or velocity";
@@ -47,7 +47,7 @@ void Hopper::check_health_fast(int id, core::Vec2 p, core::Vec2 v) const {
   throw core::Unstable(o.str());
 }
 
-void Hopper::check_overlaps() {
+void Silo::check_overlaps() {
   double worst = 0;
   int wa = -1, wb = -1;
   for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
@@ -89,7 +89,7 @@ void Hopper::check_overlaps() {
   throw core::Unstable(o.str());
 }
 
-void Hopper::warn_unsafe(const std::string& msg) const {
+void Silo::warn_unsafe(const std::string& msg) const {
   // Loudly, but not thousands of times: the first three, then a count at the end of the run's metadata.
   if (health_warnings_++ < 3) std::fprintf(stderr, "siloscope: WARNING (--unsafe): %s\n", msg.c_str());
 }

@@ -1,4 +1,4 @@
-// What the Hopper's own files share (hopper.cpp, hopper_fill.cpp, hopper_health.cpp): how fixtures are
+// What the Silo's own files share (silo.cpp, silo_fill.cpp, silo_health.cpp): how fixtures are
 // tagged, the overlap bound, number formatting for messages. Not for use outside sim/.
 #pragma once
 
