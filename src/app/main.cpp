@@ -2,7 +2,10 @@
 // Exit codes: 0 success, 1 a fault while running, 2 bad input (arguments, scene, files), 130 interrupted.
 #include <cstdio>
 
-#include "app/services/common.h"
+#include "app/services/cli.h"
+#include "app/services/process.h"
+#include "app/services/run_outputs.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "io/metadata.h"
 

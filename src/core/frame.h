@@ -110,8 +110,8 @@ inline bool parse_arch_method(const std::string& text, ArchMethod& out) {
 }
 
 struct ArchEvent {
-  double t;                      // s, when the rule fired
-  double clog_duration;          // s, time since the last exit
+  double t = 0;                  // s, when the rule fired
+  double clog_duration = 0;      // s, time since the last exit
   std::vector<int> ids;          // members, left to right
   std::vector<Species> species;  // of each member
   ArchGeometry geometry;

@@ -288,21 +288,9 @@ Vec2 container_offset(const Setup& setup, double t) {
   return setup.drive.axis == VibrationAxis::Vertical ? Vec2{0, u} : Vec2{u, 0};
 }
 
-Setup resolve(const Scene& s) {
-  Setup st;
-  st.shorthand = s.shorthand();
-  st.species = st.shorthand ? shorthand_species(s) : listed_species(s);
-  for (const auto& d : st.species) st.n_total += d.count;
-  if (st.n_total < 1)
-    throw InputError(s.where("n_total") + ": the scene has no grains; give a species a count > 0");
-  if (st.n_total > 20000)
-    throw InputError(s.where("n_total") + ": " + std::to_string(st.n_total) + " grains; at most 20000");
-  st.reference_radius = reference_radius(s);
-  st.deposit_order = s.deposit_order == "shuffled" ? DepositOrder::Shuffled : DepositOrder::InOrder;
-  parse_arch_method(s.arch_method, st.arch_method);
-  st.clog_rule = s.clog_timeout > 0;
-
-  // --- the container ---
+namespace {
+// The container and what must fit through and into it: the outlet wider than every grain, inside the floor.
+void resolve_container(const Scene& s, Setup& st) {
   if (s.container == "flat" && s.hopper_angle != 0)
     refuse(s, "hopper_angle", format_shortest(s.hopper_angle),
            "a flat silo has no hopper walls; hopper_angle applies to container = \"hopper\"");
@@ -331,8 +319,10 @@ Setup resolve(const Scene& s) {
   if (2.0 * st.largest_extent() >= s.silo_width)
     refuse(s, "silo_width", format_shortest(s.silo_width),
            "every grain must fit in the silo (the largest is " + num(2 * st.largest_extent()) + " m across)");
+}
 
-  // --- gravity and the drive ---
+// Gravity (tilted with the container) and the drive: kicks and a harmonic vibration.
+void resolve_drive(const Scene& s, Setup& st) {
   st.tilt = s.tilt * kPi / 180.0;
   if (s.tilt == 0) {
     st.gravity = {0, -s.gravity};
@@ -371,8 +361,10 @@ Setup resolve(const Scene& s) {
                  " m per time step, more than half the smallest grain's radius (" +
                  num(0.5 * st.smallest_radius()) + " m); lower it or dt");
   }
+}
 
-  // --- the protocol ---
+// The protocol: kicks and arrest checks on whole steps, the shortcut and the clog rule consistent.
+void check_protocol(const Scene& s, const Setup& st) {
   // Kicks and arrest checks land on steps: the period must be a whole number of steps (to 1e-6 of a step).
   double steps_per_kick = s.kick_period / s.dt;
   if (steps_per_kick < 1.0 || std::abs(steps_per_kick - std::round(steps_per_kick)) > 1e-6)
@@ -393,8 +385,11 @@ Setup resolve(const Scene& s) {
   if (st.clog_rule && s.clog_min_gap >= s.clog_timeout)
     refuse(s, "clog_min_gap", format_shortest(s.clog_min_gap),
            "it must be shorter than clog_timeout = " + format_shortest(s.clog_timeout) + " s");
+}
 
-  // --- the grains must fit: the settled column (packing fraction at most ~0.8) below the top ---
+// The grains must fit: the settled column (packing fraction at most ~0.8) below the top.
+void check_fill(const Scene& s, const Setup& st) {
+  const Geometry& g = st.geo;
   double area_grains = 0;
   for (const auto& d : st.species) area_grains += kPi * d.count * d.mean_square_radius();
   double area_box = g.area();
@@ -411,6 +406,28 @@ Setup resolve(const Scene& s) {
     throw InputError(s.where("species." + st.species.front().name + ".name") + ": " + counts + " = " +
                      std::to_string(st.n_total) + " grains: " + why);
   }
+}
+
+}  // namespace
+
+Setup resolve(const Scene& s) {
+  Setup st;
+  st.shorthand = s.shorthand();
+  st.species = st.shorthand ? shorthand_species(s) : listed_species(s);
+  for (const auto& d : st.species) st.n_total += d.count;
+  if (st.n_total < 1)
+    throw InputError(s.where("n_total") + ": the scene has no grains; give a species a count > 0");
+  if (st.n_total > 20000)
+    throw InputError(s.where("n_total") + ": " + std::to_string(st.n_total) + " grains; at most 20000");
+  st.reference_radius = reference_radius(s);
+  st.deposit_order = s.deposit_order == "shuffled" ? DepositOrder::Shuffled : DepositOrder::InOrder;
+  parse_arch_method(s.arch_method, st.arch_method);
+  st.clog_rule = s.clog_timeout > 0;
+
+  resolve_container(s, st);
+  resolve_drive(s, st);
+  check_protocol(s, st);
+  check_fill(s, st);
   check_obstacle(s, st);
   return st;
 }

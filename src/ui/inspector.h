@@ -118,6 +118,9 @@ class Inspector {
   long in_range(long k) const;
   void log(const std::string& command);
   void export_command(const std::vector<std::string>& words, Painter* painter);
+  // The script's `color` and `track` commands (execute() hands them over with the line's words).
+  void color_command(const std::vector<std::string>& a, const std::string& line);
+  void track_command(const std::vector<std::string>& a);
   std::vector<std::string> history_;
   const FrameSource& traj_;
   const ImageFiles* files_;

@@ -73,25 +73,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "pan")
       return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
-    if (cmd == "color") {
-      // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
-      // displacement; speed and force keep their defaults) and, for displacement, the reference time.
-      const char* usage =
-          "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
-      if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
-      const render::ColorMode m = render::parse_color_mode(a[1]);
-      size_t k = 2;
-      render::Style next = style;
-      next.color = m;
-      if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
-      if (k < a.size()) {
-        if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
-          throw core::InputError(std::string("usage: ") + usage + " (from T: displacement only)");
-        next.displacement_from = to_double(a[k + 1], "from");
-      }
-      style = next;
-      return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
-    }
+    if (cmd == "color") return color_command(a, line);
     if (cmd == "chains") {
       // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
       need(1, "chains MIN[:MAX]|off (newtons)");
@@ -131,33 +113,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
       return show_arch(a[1] == "on");
     }
-    if (cmd == "track") {
-      // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
-      // track region X0,Y0,X1,Y1 | track arch K | track clog K: tagged by region or role
-      // (Inspector::track_*).
-      if (a.size() == 3 && a[1] == "region") {
-        double x0, y0, x1, y1;
-        char tail = 0;
-        if (std::sscanf(a[2].c_str(), "%lf,%lf,%lf,%lf%c", &x0, &y0, &x1, &y1, &tail) != 4)
-          throw core::InputError("usage: track region X0,Y0,X1,Y1 (metres)");
-        return track_region(x0, y0, x1, y1);
-      }
-      if (a.size() == 3 && (a[1] == "arch" || a[1] == "clog"))
-        return track_arch_of(a[1] == "clog", to_long(a[2], "K"));
-      need(1, "track ID[,ID...]|off | track region X0,Y0,X1,Y1 | track arch K | track clog K");
-      style.tracked.clear();
-      if (a[1] == "off") return;
-      const long n = static_cast<long>(traj_.frame(frame_).particles.size());
-      std::stringstream ids(a[1]);
-      for (std::string id; std::getline(ids, id, ',');) {
-        const long v = to_long(id, "ID");
-        if (v < 0 || v >= n)
-          throw core::InputError("track: grain " + id + " does not exist; ids run from 0 to " +
-                                 std::to_string(n - 1));
-        style.tracked.push_back(static_cast<int>(v));
-      }
-      return;
-    }
+    if (cmd == "track") return track_command(a);
     if (cmd == "print") return (void)print_frame();
     if (cmd == "clogs") return (void)print_clogs();
     if (cmd == "snapshot") {
@@ -171,6 +127,56 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     throw core::InputError("'" + line + "': " + e.what());
   }
   throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
+}
+
+void Inspector::color_command(const std::vector<std::string>& a, const std::string& line) {
+  // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
+  // displacement; speed and force keep their defaults) and, for displacement, the reference time.
+  const char* usage = "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
+  if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
+  const render::ColorMode m = render::parse_color_mode(a[1]);
+  size_t k = 2;
+  render::Style next = style;
+  next.color = m;
+  if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
+  if (k < a.size()) {
+    if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
+      throw core::InputError(std::string("usage: ") + usage + " (from T: displacement only)");
+    next.displacement_from = to_double(a[k + 1], "from");
+  }
+  style = next;
+  return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
+}
+
+void Inspector::track_command(const std::vector<std::string>& a) {
+  auto need = [&](size_t n, const char* usage) {
+    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
+  };
+  // track IDS (comma-separated) | off: a ring and a trail of the last 2 s on each, as record --track.
+  // track region X0,Y0,X1,Y1 | track arch K | track clog K: tagged by region or role
+  // (Inspector::track_*).
+  if (a.size() == 3 && a[1] == "region") {
+    double x0, y0, x1, y1;
+    char tail = 0;
+    if (std::sscanf(a[2].c_str(), "%lf,%lf,%lf,%lf%c", &x0, &y0, &x1, &y1, &tail) != 4)
+      throw core::InputError("usage: track region X0,Y0,X1,Y1 (metres)");
+    return track_region(x0, y0, x1, y1);
+  }
+  if (a.size() == 3 && (a[1] == "arch" || a[1] == "clog"))
+    return track_arch_of(a[1] == "clog", to_long(a[2], "K"));
+  need(1, "track ID[,ID...]|off | track region X0,Y0,X1,Y1 | track arch K | track clog K");
+  style.tracked.clear();
+  if (a[1] == "off") return;
+  const long n = static_cast<long>(traj_.frame(frame_).particles.size());
+  std::stringstream ids(a[1]);
+  for (std::string id; std::getline(ids, id, ',');) {
+    const long v = to_long(id, "ID");
+    if (v < 0 || v >= n)
+      throw core::InputError("track: grain " + id + " does not exist; ids run from 0 to " +
+                             std::to_string(n - 1));
+    style.tracked.push_back(static_cast<int>(v));
+  }
+  return;
 }
 
 void Inspector::export_command(const std::vector<std::string>& a, Painter* painter) {

@@ -5,7 +5,10 @@
 #include <filesystem>
 
 #include "analysis/aggregate.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
+#include "app/services/process.h"
+#include "app/services/run_outputs.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"

@@ -9,8 +9,10 @@
 #include "analysis/stats.h"
 #include "app/services/accuracy.h"
 #include "app/services/campaign.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/process.h"
+#include "app/services/run_outputs.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/physics.h"
@@ -90,21 +92,16 @@ std::pair<double, double> share(long k, long n) {
   return {p, z * std::sqrt(p * (1 - p) / n + z * z / (4.0 * n * n)) / d};
 }
 
-int bench_accuracy(const AccuracyOptions& o) {
-  core::Scene base = o.scene.load();
-  const int realizations = o.quick ? 3 : o.realizations;
-  const double duration = o.quick ? 15 : o.scene.duration.value_or(60.0);
-  if (realizations < 2 || !(duration > 0))
-    throw core::InputError("--realizations must be >= 2 and --duration > 0");
-  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
-  base.duration = duration;
-  const std::vector<NumericSetting> grid = chosen_settings(o.settings);
-  struct SceneCase {
-    std::string name;
-    core::Scene scene;
-  };
+struct SceneCase {
+  std::string name;
+  core::Scene scene;
+};
+
+// The scene cases the bench compares settings on: the base scene (default), pure, magnetic (dipoles at 10x
+// the weight) and vibrated (the 100x kick).
+std::vector<SceneCase> scene_cases(const std::vector<std::string>& names, const core::Scene& base) {
   std::vector<SceneCase> scenes;
-  for (const auto& name : o.scenes) {
+  for (const auto& name : names) {
     core::Scene s = base;
     if (name == "pure") {
       s.chi = 0;
@@ -118,6 +115,19 @@ int bench_accuracy(const AccuracyOptions& o) {
     }
     scenes.push_back({name, s});
   }
+  return scenes;
+}
+
+int bench_accuracy(const AccuracyOptions& o) {
+  core::Scene base = o.scene.load();
+  const int realizations = o.quick ? 3 : o.realizations;
+  const double duration = o.quick ? 15 : o.scene.duration.value_or(60.0);
+  if (realizations < 2 || !(duration > 0))
+    throw core::InputError("--realizations must be >= 2 and --duration > 0");
+  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
+  base.duration = duration;
+  const std::vector<NumericSetting> grid = chosen_settings(o.settings);
+  const std::vector<SceneCase> scenes = scene_cases(o.scenes, base);
   std::printf("siloscope %s, bench accuracy: %d realizations x %g s per setting and scene, %d threads\n",
               io::version_string().c_str(), realizations, duration, o.threads);
   for (const auto& sc : scenes)

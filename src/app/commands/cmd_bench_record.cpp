@@ -15,8 +15,10 @@
 #include <toml++/toml.h>
 
 #include "analysis/stats.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/process.h"
+#include "app/services/run_outputs.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "io/metadata.h"

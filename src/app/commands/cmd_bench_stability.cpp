@@ -9,9 +9,11 @@
 #include <thread>
 
 #include "app/services/campaign.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/process.h"
+#include "app/services/run_outputs.h"
 #include "app/services/session.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "core/setup.h"

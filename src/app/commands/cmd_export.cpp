@@ -6,8 +6,11 @@
 #include <filesystem>
 #include <string>
 
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/inspect_files.h"
+#include "app/services/process.h"
+#include "app/services/run_outputs.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/geometry.h"
@@ -123,7 +126,6 @@ int export_run(const ExportOptions& o) {
   long first = 0, last = 0;
   frame_range(o.frames, t.size(), first, last);
   const core::Model& model = run_model(t, traj.string());
-  const core::Scene& scene = model.scene;
   const core::Setup& setup = model.setup;
   const core::Geometry& geo = setup.geo;
   const std::vector<std::string> names = setup.species_names();

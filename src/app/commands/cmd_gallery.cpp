@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/process.h"
+#include "app/services/run_outputs.h"
 #include "app/services/session.h"
+#include "app/services/terminal.h"
 #include "core/arch.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -34,6 +36,29 @@ struct GalleryOptions {
   int tile = 480, columns = 0, max_arches = 60;
   bool force = false;
 };
+
+// The index's row of one tile: the arch's time, members, species and the descriptors of the literature
+// (core::arch_descriptors) from the frame the tile shows.
+std::string tile_row(const std::string& name, const core::ArchEvent& a, const core::Frame& f,
+                     const std::vector<std::string>& names, double window_m) {
+  int added = 0;
+  std::string species;
+  for (auto s : a.species) {
+    added += s != core::Species::Original;
+    const size_t i = static_cast<size_t>(core::species_index(s));
+    species += std::string(species.empty() ? "" : ";") + (i < names.size() ? names[i] : "?");
+  }
+  std::vector<core::Vec2> pos;
+  std::vector<double> radius;
+  for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
+  const core::ArchDescriptors ad = core::arch_descriptors(a.ids, pos, radius);
+  return name + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) + "," +
+         std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
+         core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "," +
+         core::format_g(ad.rise, 4) + "," + core::format_g(ad.aspect, 4) + "," +
+         core::format_g(ad.theta_max_deg, 4) + "," + std::to_string(ad.defects) + "," +
+         core::format_g(ad.angle_sd_deg, 4) + "," + core::format_g(window_m, 6) + "\n";
+}
 
 int gallery(const GalleryOptions& o) {
   const fs::path run = o.run;
@@ -105,23 +130,7 @@ int gallery(const GalleryOptions& o) {
     std::snprintf(name, sizeof name, "tile_%03zu.csv", k);
     io::write_file_atomic(tmp / name,
                           render::draw_list_csv(list, view.cam.cx, view.cam.cy, view.cam.angle, half, half));
-    int added = 0;
-    std::string species;
-    for (auto s : a.species) {
-      added += s != core::Species::Original;
-      const size_t i = static_cast<size_t>(core::species_index(s));
-      species += std::string(species.empty() ? "" : ";") + (i < names.size() ? names[i] : "?");
-    }
-    std::vector<core::Vec2> pos;
-    std::vector<double> radius;
-    for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
-    const core::ArchDescriptors ad = core::arch_descriptors(a.ids, pos, radius);
-    index += std::string(name) + "," + core::format_g(a.t, 6) + "," + core::format_g(a.clog_duration, 4) +
-             "," + std::to_string(a.ids.size()) + "," + std::to_string(added) + "," + species + "," +
-             core::arch_method_name(a.method) + "," + core::format_g(a.geometry.span, 4) + "," +
-             core::format_g(ad.rise, 4) + "," + core::format_g(ad.aspect, 4) + "," +
-             core::format_g(ad.theta_max_deg, 4) + "," + std::to_string(ad.defects) + "," +
-             core::format_g(ad.angle_sd_deg, 4) + "," + core::format_g(2 * half, 6) + "\n";
+    index += tile_row(name, a, f, names, 2 * half);
     ++k;
   };
   session.run(recorded.arches[n - 1].t + 0.5 * scene.dt, FrameClock::at_steps(at), {&tiles});

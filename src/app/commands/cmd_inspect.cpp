@@ -5,9 +5,12 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/inspect_files.h"
+#include "app/services/process.h"
+#include "app/services/run_outputs.h"
 #include "app/services/session.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/physics.h"
 #include "io/metadata.h"

@@ -13,12 +13,15 @@
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
 #include "app/services/looks.h"
 #include "app/services/pipeline.h"
+#include "app/services/process.h"
 #include "app/services/recording.h"
+#include "app/services/run_outputs.h"
 #include "app/services/session.h"
 #include "app/services/sinks.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"
@@ -380,7 +383,6 @@ std::vector<analysis::Measurements> write_recording_outputs(
     long frozen_frames, bool was_interrupted, const std::string& gl_renderer, double wall,
     const fs::path& movie_path) {
   const size_t n_panels = panels.size();
-  const core::Scene& scene = panels.front().model.scene;
   std::vector<analysis::Measurements> ms;
   for (size_t k = 0; k < n_panels; ++k) {
     const sim::Silo& h = session.world(k);

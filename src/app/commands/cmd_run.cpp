@@ -3,9 +3,12 @@
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
-#include "app/services/common.h"
+#include "app/services/cli.h"
+#include "app/services/process.h"
+#include "app/services/run_outputs.h"
 #include "app/services/session.h"
 #include "app/services/sinks.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/scene.h"

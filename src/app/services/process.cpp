@@ -80,4 +80,8 @@ int run_python(const std::string& script, const std::vector<std::string>& args) 
   return run_process(argv);
 }
 
+std::string python_interpreter() {
+  return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+}
+
 }  // namespace app

@@ -34,4 +34,7 @@ int run_process(const std::vector<std::string>& argv, const std::string& cwd = "
 // inherited. Returns the exit code.
 int run_python(const std::string& script, const std::vector<std::string>& args);
 
+// Debian's python3 (where python3-matplotlib installs), even when another python3 comes first on PATH.
+std::string python_interpreter();
+
 }  // namespace app

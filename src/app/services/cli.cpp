@@ -1,0 +1,88 @@
+// The command line's shared pieces: scene options, integer checks, "did you mean", the command line itself.
+#include "app/services/cli.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace app {
+
+namespace {
+std::string g_command;
+}  // namespace
+
+void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
+  auto* opt = cmd.add_option("scene", path,
+                             "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
+  if (scene_required) opt->required();
+  cmd.add_option("--seed", seed, "random seed (overrides the scene's)")
+      ->check(whole_number(0, 9223372036854775807.0L));  // 2^63 - 1: what metadata.toml can hold
+  cmd.add_option("--duration", duration,
+                 "seconds of discharge after the aperture opens (overrides the scene's)");
+  cmd.add_option("--set", overrides, "override a scene key, e.g. --set mu=1.0 (repeatable)")->take_all();
+  cmd.add_flag("--unsafe", unsafe,
+               "let the health monitor warn instead of stopping (results may be garbage)");
+}
+
+core::Scene SceneOptions::load() const {
+  return compile().scene;
+}
+
+core::Model SceneOptions::compile() const {
+  core::Scene s = path.empty() ? core::Scene{} : core::load_scene(path);
+  if (!path.empty() && core::scene_is_empty_file(path))
+    std::fprintf(stderr, "siloscope: %s sets no keys: running the built-in default scene\n", path.c_str());
+  core::apply_overrides(s, overrides);
+  if (seed) s.seed = *seed, s.origin["seed"] = "--seed";
+  if (duration) {
+    if (!(*duration >= 0))
+      throw core::InputError("--duration " + std::to_string(*duration) + ": must be >= 0 s");
+    s.duration = *duration;
+    s.origin["duration"] = "--duration";  // a range error names the option, not the file's line
+  }
+  if (unsafe) s.unsafe = true;
+  return core::compile(s);
+}
+
+std::string command_line() {
+  return g_command;
+}
+
+void set_command_line(int argc, char** argv) {
+  g_command.clear();
+  for (int i = 0; i < argc; ++i) g_command += (i ? " " : "") + std::string(argv[i]);
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+CLI::Validator whole_number(long double lo, long double hi) {
+  char range[96];
+  std::snprintf(range, sizeof range, "a whole number from %.0Lf to %.0Lf", lo, hi);
+  const std::string allowed = range;
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& s) -> std::string {
+        size_t start = (!s.empty() && s[0] == '-' && lo < 0) ? 1 : 0;
+        bool digits = s.size() > start && s.find_first_not_of("0123456789", start) == std::string::npos;
+        if (!digits) return "'" + s + "' is not allowed; expected " + allowed;
+        long double v = std::strtold(s.c_str(), nullptr);
+        if (v < lo || v > hi) return s + " is out of range; expected " + allowed;
+        return "";
+      },
+      "INT", "whole_number");
+}
+
+}  // namespace app

@@ -1,0 +1,62 @@
+// The terminal: Ctrl-C handling and the progress line.
+#include "app/services/terminal.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+namespace app {
+
+namespace {
+std::atomic<int> g_signals{0};
+void on_signal(int sig) {
+  if (g_signals.fetch_add(1) >= 1) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
+}  // namespace
+
+void install_interrupt_handler() {
+  // No SA_RESTART: a blocking waitpid() returns EINTR so the sweep can pass the interrupt on to its workers.
+  struct sigaction sa = {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool interrupted() {
+  return g_signals.load() > 0;
+}
+
+Progress::Progress(std::string label, double total, bool enabled)
+    : label_(std::move(label)), total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {
+  start_ = last_ = std::chrono::steady_clock::now();
+}
+
+void Progress::update(double done, const std::string& extra) {
+  if (!enabled_) return;
+  auto now = std::chrono::steady_clock::now();
+  if (now - last_ < std::chrono::milliseconds(200)) return;
+  last_ = now;
+  double elapsed = std::chrono::duration<double>(now - start_).count();
+  double frac = total_ > 0 ? std::min(1.0, done / total_) : 1.0;
+  double eta = frac > 0 ? elapsed * (1 - frac) / frac : 0;
+  constexpr int kWidth = 30;
+  std::string bar(static_cast<size_t>(frac * kWidth), '#');
+  bar.resize(kWidth, '.');
+  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %s  ETA %4.0f s ", label_.c_str(), bar.c_str(), 100 * frac,
+               extra.c_str(), eta);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (enabled_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace app
