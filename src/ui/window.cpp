@@ -371,11 +371,15 @@ void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const r
       {"displacement", render::ColorMode::Displacement},
       {"coordination", render::ColorMode::Coordination},
       {"id", render::ColorMode::Id}};
+  // The colourings in an ID scope of their own: "speed" is also the simulation speed's slider in this window
+  // (one ImGui ID for both aborted the window on the first click).
+  ImGui::PushID("color");
   for (const auto& [label, mode] : colors) {
     if (mode == render::ColorMode::Displacement) ImGui::NewLine();
     if (ImGui::RadioButton(label, st.style.color == mode)) st.style.color = mode;
     ImGui::SameLine();
   }
+  ImGui::PopID();
   ImGui::NewLine();
   if (st.style.color != render::ColorMode::Species && st.style.color != render::ColorMode::Id) {
     for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
