@@ -21,12 +21,11 @@ def frame_dtype(n, max_arch, version=2, n_species=2):
     if version >= 2:
         fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("clog_start", "<f8"), ("rule_due_in", "<f8"),
                   ("long_arches", "<i4"), ("clog_number", "<i4"), ("clog_flags", "<u4"), ("arch_count", "<i4"),
-                  ("arch", "<i4", max_arch), ("exits", "<i8", n_species)]
+                  ("arch", "<i4", (max_arch,)), ("exits", "<i8", (n_species,))]
     else:
         fields = [("t", "<f8"), ("since_last_exit", "<f8"), ("exits_original", "<i8"), ("exits_added", "<i8"),
-                  ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", max_arch)]
-    fields += [("x", "<f4", n), ("y", "<f4", n), ("angle", "<f4", n), ("vx", "<f4", n), ("vy", "<f4", n),
-               ("force", "<f4", n)]
+                  ("long_arches", "<i4"), ("arch_count", "<i4"), ("arch", "<i4", (max_arch,))]
+    fields += [(name, "<f4", (n,)) for name in ("x", "y", "angle", "vx", "vy", "force")]
     return np.dtype(fields)
 
 
