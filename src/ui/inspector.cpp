@@ -113,12 +113,71 @@ void Inspector::goto_time(double t) {
   log("goto time " + std::to_string(t));
 }
 
+namespace {
+std::vector<int> sorted_ids(std::vector<int> ids) {
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+}  // namespace
+
+long Inspector::clog_at(long k) const {
+  for (size_t i = 0; i < clogs_.size(); ++i)
+    if (clogs_[i].first <= k && k <= clogs_[i].last) return static_cast<long>(i);
+  return -1;
+}
+
+long Inspector::final_arch_frame(size_t i) const {
+  const ClogSpan& c = clogs_[i];
+  const std::vector<int> final_arch = sorted_ids(traj_.frame(c.last).arch);
+  if (final_arch.empty()) return c.last;
+  long k = c.last;
+  while (k > c.first && sorted_ids(traj_.frame(k - 1).arch) == final_arch) --k;
+  return k;
+}
+
+std::string Inspector::clog_caption(size_t i) const {
+  const core::ClogEvent& e = clogs_[i].event;
+  // Each rule firing closes exactly one clog: its row of arches.csv is the count of rule-ended clogs so far.
+  long row = 0;
+  for (size_t j = 0; j <= i; ++j) row += clogs_[j].event.ended_by == core::ClogEnd::Rule;
+  char text[200];
+  const char* how = e.ended_by == core::ClogEnd::Rule          ? "ended by the rule"
+                    : e.ended_by == core::ClogEnd::Vibration   ? "broken by the drive"
+                    : e.ended_by == core::ClogEnd::Spontaneous ? "ended by itself"
+                                                               : "open when the run ended";
+  std::snprintf(text, sizeof text, "clog %zu of %zu, %.3f-%.3f s, %s%s", i + 1, clogs_.size(), e.start, e.end,
+                how, e.arrested ? " (arrested)" : "");
+  std::string out = text;
+  if (e.ended_by == core::ClogEnd::Rule) out += ", arches.csv row " + std::to_string(row);
+  return out;
+}
+
 void Inspector::goto_clog(long k) {
   if (k < 1 || k > static_cast<long>(clogs_.size()))
     throw core::InputError("clog " + std::to_string(k) + " does not exist; the trajectory has " +
                            std::to_string(clogs_.size()) + " clogs (numbered from 1)");
-  frame_ = clogs_[static_cast<size_t>(k - 1)].last;
+  frame_ = clogs_[static_cast<size_t>(k - 1)].first;
   log("goto clog " + std::to_string(k));
+}
+
+void Inspector::goto_clog_arch(long k) {
+  if (k < 1 || k > static_cast<long>(clogs_.size()))
+    throw core::InputError("clog " + std::to_string(k) + " does not exist; the trajectory has " +
+                           std::to_string(clogs_.size()) + " clogs (numbered from 1)");
+  frame_ = final_arch_frame(static_cast<size_t>(k - 1));
+  log("goto clog " + std::to_string(k) + " arch");
+}
+
+void Inspector::next_arch_change(bool later) {
+  const std::vector<int> here = sorted_ids(traj_.frame(frame_).arch);
+  long k = frame_;
+  for (k += later ? 1 : -1; k >= 0 && k < traj_.size(); k += later ? 1 : -1)
+    if (sorted_ids(traj_.frame(k).arch) != here) break;
+  if (k < 0 || k >= traj_.size())
+    throw core::InputError(std::string("the arch does not change ") + (later ? "after" : "before") +
+                           " this frame");
+  frame_ = k;
+  log(later ? "next arch" : "prev arch");
 }
 
 void Inspector::goto_arch(long k) {
@@ -148,22 +207,23 @@ void Inspector::step_frames(long n) {
 }
 
 void Inspector::next_clog(bool later) {
+  // By the clogs' starts: the first one after this frame, or the last one before it.
   const ClogSpan* hit = nullptr;
   if (later) {
     for (const auto& c : clogs_)
-      if (c.last > frame_) {
+      if (c.first > frame_) {
         hit = &c;
         break;
       }
   } else {
     for (auto it = clogs_.rbegin(); it != clogs_.rend(); ++it)
-      if (it->last < frame_) {
+      if (it->first < frame_) {
         hit = &*it;
         break;
       }
   }
   if (!hit) throw core::InputError(std::string("there is no ") + (later ? "later" : "earlier") + " clog");
-  frame_ = hit->last;
+  frame_ = hit->first;
   log(later ? "next clog" : "prev clog");
 }
 
@@ -221,10 +281,11 @@ void Inspector::track_region(double x0, double y0, double x1, double y1) {
 }
 
 void Inspector::track_arch_of(bool clog, long k) {
-  // Found as goto finds it, without moving (the frame and the history stay).
+  // Found as goto finds it (a clog's final arch: `goto clog K arch`), without moving (the frame and the
+  // history stay).
   const long keep = frame_;
   const size_t logged = history_.size();
-  clog ? goto_clog(k) : goto_arch(k);
+  clog ? goto_clog_arch(k) : goto_arch(k);
   const std::vector<int> ids = traj_.frame(frame_).arch;
   frame_ = keep;
   history_.resize(logged);

@@ -53,12 +53,17 @@ class Inspector {
   // throws core::InputError naming the problem, and appends the script line that repeats it to history().
   void goto_frame(long k);
   void goto_time(double t);
-  void goto_clog(long k);  // numbered from 1
+  // Clogs are numbered from 1 as the rows of clogs.csv. goto_clog lands on the frame where the clog starts
+  // (its last exit); goto_clog_arch on the frame where its final arch first stands (the arch of its last
+  // frame, the same grains in every frame from there on; the last frame when it ends with none).
+  void goto_clog(long k);
+  void goto_clog_arch(long k);
   void goto_arch(long k);  // the k-th long-lasting arch, numbered from 1
   void goto_start();
   void goto_end();
   void step_frames(long n);
-  void next_clog(bool later);  // the last frame of the next (later) or previous clog
+  void next_clog(bool later);         // the start of the next (later) or previous clog
+  void next_arch_change(bool later);  // the next (earlier) frame whose arch is other grains than this one's
   void set_camera(const render::CameraSpec& c);
   void zoom_by(double f);
   void pan_by(double dx, double dy);  // m
@@ -87,6 +92,12 @@ class Inspector {
   void set_frame(long k);  // clamps to the trajectory
   core::Frame current() const { return traj_.frame(frame_); }
   const std::vector<ClogSpan>& clogs() const { return clogs_; }
+  // The clog (an index into clogs()) whose frames hold frame k, or -1.
+  long clog_at(long k) const;
+  // The frame where clog i's final arch first stands (see goto_clog_arch).
+  long final_arch_frame(size_t i) const;
+  // "clog 3 of 12, 4.211-9.211 s, ended by the rule, arches.csv row 2" for clog i.
+  std::string clog_caption(size_t i) const;
   const FrameSource& trajectory() const { return traj_; }
   const ImageFiles* files() const { return files_; }
   const core::Geometry& geometry() const { return geo_; }

@@ -53,7 +53,8 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     if (cmd == "goto") {
       if (a.size() == 2 && a[1] == "start") return goto_start();
       if (a.size() == 2 && a[1] == "end") return goto_end();
-      need(2, "goto frame N | goto time T | goto clog K | goto arch K | goto start | goto end");
+      if (a.size() == 4 && a[1] == "clog" && a[3] == "arch") return goto_clog_arch(to_long(a[2], "clog"));
+      need(2, "goto frame N | goto time T | goto clog K [arch] | goto arch K | goto start | goto end");
       if (a[1] == "frame") return goto_frame(to_long(a[2], "frame"));
       if (a[1] == "time") return goto_time(to_double(a[2], "time"));
       if (a[1] == "clog") return goto_clog(to_long(a[2], "clog"));
@@ -62,8 +63,9 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "step") return need(1, "step N"), step_frames(to_long(a[1], "step"));
     if (cmd == "next" || cmd == "prev") {
-      need(1, "next clog | prev clog");
-      if (a[1] != "clog") throw core::InputError("usage: next clog | prev clog");
+      need(1, "next clog|arch | prev clog|arch");
+      if (a[1] == "arch") return next_arch_change(cmd == "next");
+      if (a[1] != "clog") throw core::InputError("usage: next clog|arch | prev clog|arch");
       return next_clog(cmd == "next");
     }
     if (cmd == "zoom") {

@@ -36,6 +36,39 @@ void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, b
   }
 }
 
+void final_arch(Inspector& insp) {
+  long i = insp.clog_at(insp.frame_index());
+  if (i < 0)
+    for (size_t j = 0; j < insp.clogs().size() && i < 0; ++j)
+      if (insp.clogs()[j].first > insp.frame_index()) i = static_cast<long>(j);
+  if (i < 0) throw core::InputError("there is no clog here or later");
+  insp.goto_clog_arch(i + 1);
+}
+
+void play_to_next_clog(Inspector& insp, PanelState& ps) {
+  ps.play_until = -1;
+  for (const auto& c : insp.clogs())
+    if (c.first > insp.frame_index()) {
+      ps.play_until = c.first;
+      break;
+    }
+  ps.playing = ps.play_until >= 0;
+  ps.message = ps.playing ? "playing to the next clog" : "there is no later clog";
+}
+
+void advance_playback(Inspector& insp, PanelState& ps, long frames) {
+  const long target = insp.frame_index() + frames;
+  if (ps.play_until >= 0 && target >= ps.play_until) {
+    // Arrived: the same place `goto clog K` lands, written down as that.
+    const long k = insp.clog_at(ps.play_until);
+    ps.play_until = -1;
+    ps.playing = false;
+    if (k >= 0) return act(insp, ps, [&] { insp.goto_clog(k + 1); });
+  }
+  insp.set_frame(target);
+  if (insp.frame_index() == insp.trajectory().size() - 1) ps.playing = false;
+}
+
 namespace {
 void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& f) {
   // Transport.
@@ -46,7 +79,7 @@ void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& 
   ImGui::Text("t = %.3f s   clog timer %.2f s", f.t, f.since_last_exit);
   if (ImGui::Button("|<")) act(insp, ps, [&] { insp.goto_start(); });
   ImGui::SameLine();
-  if (ImGui::Button("< clog")) act(insp, ps, [&] { insp.next_clog(false); });
+  if (ImGui::Button("< clog")) act(insp, ps, [&] { insp.next_clog(false); }), ps.playing = false;
   remember(ps, "prev clog");
   ImGui::SameLine();
   if (ImGui::Button("<")) insp.set_frame(insp.frame_index() - 1);
@@ -58,10 +91,27 @@ void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& 
   if (ImGui::Button(">")) insp.set_frame(insp.frame_index() + 1);
   remember(ps, "step forward");
   ImGui::SameLine();
-  if (ImGui::Button("clog >")) act(insp, ps, [&] { insp.next_clog(true); });
+  if (ImGui::Button("clog >")) act(insp, ps, [&] { insp.next_clog(true); }), ps.playing = false;
   remember(ps, "next clog");
   ImGui::SameLine();
   if (ImGui::Button(">|")) act(insp, ps, [&] { insp.goto_end(); });
+  // Navigation by the run's events: the final arch of this clog, the changes of arch, play to the next clog.
+  if (ImGui::Button("final arch (a)")) act(insp, ps, [&] { final_arch(insp); });
+  remember(ps, "final arch");
+  ImGui::SameLine();
+  if (ImGui::Button("< arch")) act(insp, ps, [&] { insp.next_arch_change(false); });
+  remember(ps, "prev arch");
+  ImGui::SameLine();
+  if (ImGui::Button("arch >")) act(insp, ps, [&] { insp.next_arch_change(true); });
+  remember(ps, "next arch");
+  ImGui::SameLine();
+  if (ImGui::Button("play to clog (c)")) play_to_next_clog(insp, ps);
+  remember(ps, "play to clog");
+  const long here = insp.clog_at(insp.frame_index());
+  if (here >= 0)
+    ImGui::TextWrapped("%s", insp.clog_caption(static_cast<size_t>(here)).c_str());
+  else
+    ImGui::TextUnformatted("flowing (no clog at this frame)");
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderFloat("##speed", &ps.speed, 0.05f, 10.0f, "playback %.2fx", ImGuiSliderFlags_Logarithmic);
 }

@@ -14,8 +14,9 @@ namespace ui {
 
 struct PanelState {
   bool playing = false;
-  float speed = 1.0f;   // video frames per display frame, scaled by the trajectory's frame rate
-  std::string message;  // the last result or error, shown in the panel
+  long play_until = -1;  // playback stops at this frame (play to the next clog), or -1
+  float speed = 1.0f;    // video frames per display frame, scaled by the trajectory's frame rate
+  std::string message;   // the last result or error, shown in the panel
   char snapshot_path[256] = "snapshot-{frame}.png";
   int snapshot_size = 0;  // index into the size presets
   int export_from = 0, export_to = 0;
@@ -34,5 +35,12 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
 // Run a typed inspector action from a button or key; the panel's message says what it did (the script line
 // that repeats it, or the file it wrote) or why it could not.
 void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, bool writes = false);
+
+// The final arch of the clog at this frame, or of the next clog (Inspector::goto_clog_arch).
+void final_arch(Inspector& insp);
+// Play until the next clog starts (then `goto clog K` is what the window did); a message when there is none.
+void play_to_next_clog(Inspector& insp, PanelState& ps);
+// Playback's step: advance by `frames`, stopping at the end or where play_to_next_clog asked.
+void advance_playback(Inspector& insp, PanelState& ps, long frames);
 
 }  // namespace ui

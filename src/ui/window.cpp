@@ -130,8 +130,10 @@ void mouse_view(Inspector& insp, float scene_w, float scene_h) {
   }
 }
 
-// Every queued key press, in order: arrows step (held: repeat), space plays, N/P next/previous clog,
-// Home/End, Q or Escape closes. Ignored while a text field has the keyboard.
+// Every queued key press, in order: arrows step (held: repeat), space plays, N/P next/previous clog (at its
+// start; playback stops), A the final arch of this clog (or the next), '.'/',' the next/previous change of
+// arch, C plays until the next clog starts, Home/End, Q or Escape closes. Ignored while a text field has the
+// keyboard.
 void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
   const std::vector<int> pressed = win.take_keys();
   if (ImGui::GetIO().WantTextInput) return;
@@ -146,11 +148,18 @@ void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
       continue;
     else if (key == GLFW_KEY_SPACE)
       ps.playing = !ps.playing;
-    else if (key == GLFW_KEY_N)
-      act(insp, ps, [&] { insp.next_clog(true); });
-    else if (key == GLFW_KEY_P)
-      act(insp, ps, [&] { insp.next_clog(false); });
-    else if (key == GLFW_KEY_HOME)
+    else if (key == GLFW_KEY_N || key == GLFW_KEY_P) {
+      ps.playing = false;  // landing on a clog stops playback there
+      act(insp, ps, [&] { insp.next_clog(key == GLFW_KEY_N); });
+    } else if (key == GLFW_KEY_A) {
+      ps.playing = false;
+      act(insp, ps, [&] { final_arch(insp); });
+    } else if (key == GLFW_KEY_PERIOD || key == GLFW_KEY_COMMA) {
+      ps.playing = false;
+      act(insp, ps, [&] { insp.next_arch_change(key == GLFW_KEY_PERIOD); });
+    } else if (key == GLFW_KEY_C) {
+      play_to_next_clog(insp, ps);
+    } else if (key == GLFW_KEY_HOME)
       act(insp, ps, [&] { insp.goto_start(); });
     else if (key == GLFW_KEY_END)
       act(insp, ps, [&] { insp.goto_end(); });
@@ -228,8 +237,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
       play_acc += dt * ps.speed / insp.trajectory().frame_interval();
       const long step = static_cast<long>(play_acc);
       play_acc -= step;
-      insp.set_frame(insp.frame_index() + step);
-      if (insp.frame_index() == insp.trajectory().size() - 1) ps.playing = false;
+      advance_playback(insp, ps, step);
     }
     const auto t0 = Clock::now();
     const core::Frame f = insp.current();

@@ -78,14 +78,23 @@ TEST_CASE("a script off-screen makes the expected images", "[ui]") {
   const app::RecordFiles files;
   ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
   REQUIRE(insp.clogs().size() == 1);
-  // Its timer at frame 2 says the clog began before the first frame: the bar starts at frame 0.
+  // The recording's events say the clog began at t = 0 and ended at frame 4 by the rule: frames 0 to 3.
   CHECK(insp.clogs()[0].first == 0);
   CHECK(insp.clogs()[0].last == 3);
+  CHECK(insp.clog_caption(0) == "clog 1 of 1, 0.000-0.133 s, ended by the rule (arrested), arches.csv row 1");
+  insp.execute("goto clog 1");  // its start
+  CHECK(insp.frame_index() == 0);
+  insp.execute("goto clog 1 arch");  // its final arch [0, 1] stands from frame 2 on
+  CHECK(insp.frame_index() == 2);
+  insp.execute("next arch");  // frame 4: the rule removed it
+  CHECK(insp.frame_index() == 4);
+  insp.execute("prev arch");
+  CHECK(insp.frame_index() == 3);
   ui::Painter painter;
-  std::ofstream(d / "fig.txt") << "# a figure\ngoto clog 1\nzoom window:-0.5,0,0.5,1\noverlay none\nsnapshot "
-                               << (d / "a.png").string() << " 400x400\nstep -3\nprint\nsnapshot "
-                               << (d / "b.png").string() << " 400x400\n";
-  CHECK(ui::run_script(insp, painter, (d / "fig.txt").string()) == 7);
+  std::ofstream(d / "fig.txt") << "# a figure\ngoto clog 1 arch\nstep 1\nzoom window:-0.5,0,0.5,1\noverlay "
+                               << "none\nsnapshot " << (d / "a.png").string() << " 400x400\nstep -3\nprint\n"
+                               << "snapshot " << (d / "b.png").string() << " 400x400\n";
+  CHECK(ui::run_script(insp, painter, (d / "fig.txt").string()) == 8);
   CHECK(insp.frame_index() == 0);
   CHECK_THAT(insp.last_output, Contains("b.png"));  // the file the last command wrote
   insp.execute("print");
@@ -230,8 +239,16 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   REQUIRE(insp.frame_index() == 0);
   click("step forward");
   CHECK(insp.frame_index() == 1);
-  click("next clog");
+  click("prev clog");  // the start of the clog (frame 0)
+  CHECK(insp.frame_index() == 0);
+  click("final arch");  // where its final arch first stands
+  CHECK(insp.frame_index() == 2);
+  click("next arch");
+  CHECK(insp.frame_index() == 4);
+  click("step back");
   CHECK(insp.frame_index() == 3);
+  click("play to clog");  // no later clog: playback does not start
+  CHECK_FALSE(ps.playing);
   click("step back");
   CHECK(insp.frame_index() == 2);
   click("zoom", 0.98f);
