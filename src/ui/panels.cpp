@@ -6,8 +6,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include "core/arch.h"
@@ -34,6 +36,26 @@ void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, b
   } catch (const std::exception& e) {
     ps.message = e.what();
   }
+}
+
+void go_to(Inspector& insp, const std::string& text) {
+  const size_t a = text.find_first_not_of(" \t"), b = text.find_last_not_of(" \t");
+  const std::string t = a == std::string::npos ? "" : text.substr(a, b - a + 1);
+  const std::string form = "'" + t + "': give a frame (120), a time (4.5 s) or a step (+30, -5)";
+  if (t.empty()) throw core::InputError(form);
+  char* end = nullptr;
+  errno = 0;
+  if (t.back() == 's') {
+    const double s = std::strtod(t.c_str(), &end);
+    if (end == t.c_str() ||
+        t.find_first_not_of(" s", static_cast<size_t>(end - t.c_str())) != std::string::npos)
+      throw core::InputError(form);
+    return insp.goto_time(s);
+  }
+  const long n = std::strtol(t.c_str(), &end, 10);
+  if (end == t.c_str() || *end != '\0' || errno == ERANGE) throw core::InputError(form);
+  if (t[0] == '+' || t[0] == '-') return insp.step_frames(n);
+  insp.goto_frame(n);
 }
 
 void final_arch(Inspector& insp) {
@@ -107,6 +129,11 @@ void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& 
   ImGui::SameLine();
   if (ImGui::Button("play to clog (c)")) play_to_next_clog(insp, ps);
   remember(ps, "play to clog");
+  ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
+  if (ImGui::InputTextWithHint("##goto", "go to: 120, 4.5 s, +30", ps.go_to, sizeof ps.go_to,
+                               ImGuiInputTextFlags_EnterReturnsTrue))
+    act(insp, ps, [&] { go_to(insp, ps.go_to); });
+  remember(ps, "go to");
   const long here = insp.clog_at(insp.frame_index());
   if (here >= 0)
     ImGui::TextWrapped("%s", insp.clog_caption(static_cast<size_t>(here)).c_str());

@@ -17,6 +17,7 @@ struct PanelState {
   long play_until = -1;  // playback stops at this frame (play to the next clog), or -1
   float speed = 1.0f;    // video frames per display frame, scaled by the trajectory's frame rate
   std::string message;   // the last result or error, shown in the panel
+  char go_to[32] = "";   // the "go to" field: a frame, a time ("12.5 s") or a step ("+30", "-5")
   char snapshot_path[256] = "snapshot-{frame}.png";
   int snapshot_size = 0;  // index into the size presets
   int export_from = 0, export_to = 0;
@@ -40,6 +41,9 @@ void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, b
 void final_arch(Inspector& insp);
 // Play until the next clog starts (then `goto clog K` is what the window did); a message when there is none.
 void play_to_next_clog(Inspector& insp, PanelState& ps);
+// The "go to" field's text: "N" goes to frame N, "T s" to the frame nearest T seconds, "+N" / "-N" steps N
+// frames (the script lines goto frame, goto time, step). Throws core::InputError naming what is allowed.
+void go_to(Inspector& insp, const std::string& text);
 // Playback's step: advance by `frames`, stopping at the end or where play_to_next_clog asked.
 void advance_playback(Inspector& insp, PanelState& ps, long frames);
 

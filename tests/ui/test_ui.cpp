@@ -130,6 +130,17 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "range.txt").string()),
                     Contains("range.txt:3") && Contains("out of range (0 to 4)"));
   CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
+  // The window's "go to" field: a frame, a time or a step.
+  ui::go_to(insp, " 3 ");
+  CHECK(insp.frame_index() == 3);
+  ui::go_to(insp, "-2");
+  CHECK(insp.frame_index() == 1);
+  ui::go_to(insp, "+1");
+  CHECK(insp.frame_index() == 2);
+  ui::go_to(insp, "0.1 s");
+  CHECK(insp.frame_index() == 3);
+  CHECK_THROWS_WITH(ui::go_to(insp, "soon"), Contains("give a frame (120), a time (4.5 s) or a step"));
+  CHECK_THROWS_WITH(ui::go_to(insp, "99"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
   insp.execute("color displacement 0.5 from 0.1");
