@@ -10,6 +10,7 @@ inspector for its clogs and frames, and check frame by frame:
   - the inspector's clogs are clogs.csv's rows.
 
 usage: events_agree.py SILOSCOPE SCENES_DIR WORK_DIR [--report CSV] [--raw] [PRESET...]
+  Each run works in a fresh folder under WORK_DIR, removed when every check passed (kept to look at otherwise).
   --raw reads the trajectory's stored arch without the clog filter (to measure a version-1 recording made by an
   older siloscope) and reports instead of failing.
 Prints a table per preset and variant; exits 1 when any check fails.
@@ -18,8 +19,10 @@ import csv
 import glob
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 
 import matplotlib.image as mpimg
 import numpy as np
@@ -79,7 +82,8 @@ def vtu_arch_flags(directory):
 
 
 def inspector(binary, rec, frames):
-    script = os.path.join(rec, "agree.script")
+    # The script lives beside the recording, not in it: a run directory holds only what siloscope wrote.
+    script = rec + ".script"
     with open(script, "w") as f:
         f.write("clogs\n")
         for k in frames:
@@ -199,6 +203,7 @@ def main(argv):
     presets = rest or sorted(os.path.splitext(os.path.basename(p))[0]
                              for p in glob.glob(os.path.join(scenes, "*.toml")))
     os.makedirs(work, exist_ok=True)
+    work = tempfile.mkdtemp(prefix="agree-", dir=work)
     rows = []
     for preset in presets:
         for rule_off in (False, True):
@@ -220,6 +225,10 @@ def main(argv):
             w.writerows(rows)
     failed = [r for r in rows if r["failures"]]
     print(f"agreement: {len(rows) - len(failed)} of {len(rows)} recordings ok")
+    if failed:
+        print(f"the recordings are kept in {work}")
+    else:
+        shutil.rmtree(work, ignore_errors=True)
     return 1 if failed and not raw else 0
 
 
