@@ -12,14 +12,18 @@ dest=${2:?usage: pack.sh RESULTS DEST}
   exit 2
 }
 mkdir -p "$dest/runs" "$dest/analysis"
+list=$(mktemp)
 cp "$src/campaign.toml" "$dest/"
 (cd "$src" && find runs \( -name metadata.toml -o -name exits.csv -o -name clogs.csv -o -name arches.csv \
-  -o -name '*.refused.toml' \) | LC_ALL=C sort > /tmp/pack-$$.list)
-tar -C "$src" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T /tmp/pack-$$.list \
+  -o -name '*.refused.toml' \) | LC_ALL=C sort > "$list")
+tar -C "$src" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T "$list" \
   | xz -9e > "$dest/runs/runs.tar.xz.partial"
-rm -f /tmp/pack-$$.list
+rm -f "$list"
 mv "$dest/runs/runs.tar.xz.partial" "$dest/runs/runs.tar.xz"
 for f in points.csv realizations.csv survival.csv avalanches.csv clog_survival.csv species.csv metadata.toml; do
   cp "$src/analysis/$f" "$dest/analysis/"
 done
+# No path of this machine in the pack: realizations are named relative to the pack (runs/p000/r000).
+abs=$(cd "$src" && pwd)
+sed -i "s#,$abs/runs/#,runs/#" "$dest/analysis/realizations.csv"
 echo "packed $(tar -tJf "$dest/runs/runs.tar.xz" | grep -c metadata.toml) realizations into $dest ($(du -sh "$dest" | cut -f1))"
