@@ -219,4 +219,10 @@ ContactGraph contacts_from_positions(const std::vector<Vec2>& pos, const std::ve
   return g;
 }
 
+bool same_grains(std::vector<int> a, std::vector<int> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return a == b;
+}
+
 }  // namespace core

@@ -71,6 +71,10 @@ struct ArchDescriptors {
 ArchDescriptors arch_descriptors(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                                  const std::vector<double>& radius);
 
+// Whether two arches are the same arch: the same set of grains, in any order (their left-to-right order can
+// change as they rattle).
+bool same_grains(std::vector<int> a, std::vector<int> b);
+
 // Span, height and largest angle of an arch (members left to right).
 ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                            const std::vector<double>& radius);

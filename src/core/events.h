@@ -30,7 +30,6 @@ struct ClogState {
 struct StepEvents {
   std::vector<ExitEvent> exits;         // grains that left through the outlet
   std::vector<int> clogs_opened;        // numbers of the clogs that opened
-  int arch_found = 0;                   // the open clog's arch was found or replaced (count)
   std::vector<ArchEvent> rule_removed;  // the rule fired and removed these arches (rows of arches.csv)
   std::vector<ClogEvent> clogs_closed;  // clogs that closed (rows of clogs.csv, in order)
   // After the last step: seconds until the rule falls due if no grain leaves before (infinity with the
@@ -38,13 +37,11 @@ struct StepEvents {
   double rule_due_in = INFINITY;
 
   bool empty() const {
-    return exits.empty() && clogs_opened.empty() && arch_found == 0 && rule_removed.empty() &&
-           clogs_closed.empty();
+    return exits.empty() && clogs_opened.empty() && rule_removed.empty() && clogs_closed.empty();
   }
   void clear() {
     exits.clear();
     clogs_opened.clear();
-    arch_found = 0;
     rule_removed.clear();
     clogs_closed.clear();
     rule_due_in = INFINITY;
@@ -53,7 +50,6 @@ struct StepEvents {
   void append(const StepEvents& later) {
     exits.insert(exits.end(), later.exits.begin(), later.exits.end());
     clogs_opened.insert(clogs_opened.end(), later.clogs_opened.begin(), later.clogs_opened.end());
-    arch_found += later.arch_found;
     rule_removed.insert(rule_removed.end(), later.rule_removed.begin(), later.rule_removed.end());
     clogs_closed.insert(clogs_closed.end(), later.clogs_closed.begin(), later.clogs_closed.end());
     rule_due_in = later.rule_due_in;

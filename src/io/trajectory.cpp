@@ -256,16 +256,16 @@ void Trajectory::parse(std::vector<unsigned char> data, const std::string& p) {
   } catch (const core::InputError&) {
     model_.reset();
   }
-  const core::Setup* setup_ = model_ ? &model_->setup : nullptr;
+  const core::Setup* setup = model_ ? &model_->setup : nullptr;
   sides_.assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
     const int sp = core::species_index(info_.species[i]);
-    if (setup_ && static_cast<size_t>(sp) >= setup_->species.size())
+    if (setup && static_cast<size_t>(sp) >= setup->species.size())
       throw core::InputError(p + ": corrupted trajectory header (particle " + std::to_string(i) +
                              " has species " + std::to_string(sp) + "; the scene has " +
-                             std::to_string(setup_->species.size()) + ")");
-    if (setup_ && setup_->n_total == static_cast<int>(n))
-      sides_[i] = static_cast<std::uint8_t>(setup_->species[static_cast<size_t>(sp)].sides);
+                             std::to_string(setup->species.size()) + ")");
+    if (setup && setup->n_total == static_cast<int>(n))
+      sides_[i] = static_cast<std::uint8_t>(setup->species[static_cast<size_t>(sp)].sides);
   }
   for (size_t i = 0; i < n; ++i)
     if (!(info_.radius[i] > 0 && info_.radius[i] < 1e6))

@@ -1,17 +1,11 @@
 #include "sim/clog.h"
 
+#include "core/arch.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace sim {
-
-namespace {
-bool same_grains(std::vector<int> a, std::vector<int> b) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  return a == b;
-}
-}  // namespace
 
 void ClogTracker::open(core::StepEvents& out) {
   state_.open = true;
@@ -22,7 +16,6 @@ void ClogTracker::open(core::StepEvents& out) {
   state_.arch_changes = 0;
   candidate_.clear();
   out.clogs_opened.push_back(state_.number);
-  if (!state_.arch.empty()) ++out.arch_found;
 }
 
 void ClogTracker::close(double t, core::ClogEnd how, core::StepEvents& out) {
@@ -48,31 +41,28 @@ void ClogTracker::on_exit(double t, core::StepEvents& out) {
   close(t, arrested_ && driven_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous, out);
 }
 
-void ClogTracker::hold_arch(const std::vector<int>& arch, core::StepEvents& out) {
+void ClogTracker::hold_arch(const std::vector<int>& arch) {
   if (arch.empty()) return;  // no arch found now: the one held stays (contacts flicker)
   if (state_.arch.empty()) {
     state_.arch = arch;
-    ++out.arch_found;
     return;
   }
-  if (same_grains(arch, state_.arch)) {
+  if (core::same_grains(arch, state_.arch)) {
     state_.arch = arch;  // the same grains (their left-to-right order as it is now)
     candidate_.clear();
     return;
   }
   // A different set of grains: replace the held arch when it is seen twice in a row.
-  if (!candidate_.empty() && same_grains(arch, candidate_)) {
+  if (!candidate_.empty() && core::same_grains(arch, candidate_)) {
     state_.arch = arch;
     ++state_.arch_changes;
-    ++out.arch_found;
     candidate_.clear();
   } else {
     candidate_ = arch;
   }
 }
 
-void ClogTracker::on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch,
-                                core::StepEvents& out) {
+void ClogTracker::on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch) {
   // Only a gap that has lasted long enough to be a clog can be arrested; during flow the outlet is never at
   // rest.
   if (outlet_at_rest && t - last_ > 0) arrested_ = true;
@@ -81,7 +71,7 @@ void ClogTracker::on_rest_check(double t, bool outlet_at_rest, const std::vector
     return;
   }
   state_.arrested = arrested_;
-  hold_arch(arch, out);
+  hold_arch(arch);
 }
 
 double ClogTracker::rule_due_in(double t) const {

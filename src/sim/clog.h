@@ -18,7 +18,7 @@ class ClogTracker {
   ClogTracker(double min_gap, double timeout, bool driven = true)
       : min_gap_(min_gap), timeout_(timeout), driven_(driven) {}
 
-  // Each call that changes something adds it to `out` (the step's report).
+  // Each call that ends or opens something adds it to `out` (the step's report).
   // A particle left through the aperture at time t.
   void on_exit(double t, core::StepEvents& out);
   // Called just before each kick: whether the outlet is arrested (a blocking arch stands and every disk near
@@ -26,7 +26,7 @@ class ClogTracker {
   // arrest by displacement over a window that ends before the kick, not by speed, keeps it independent of the
   // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
   // kick strength. `arch`: the blocking arch found at this check (core::blocks_outlet), or empty.
-  void on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch, core::StepEvents& out);
+  void on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch);
   // After the step's exits and rule at time t: opens a clog when the gap has reached clog_min_gap, with the
   // arch `find_arch()` finds then (a blocking arch or empty: the last check's arch of this gap is kept).
   template <class FindArch>
@@ -55,7 +55,7 @@ class ClogTracker {
  private:
   void close(double t, core::ClogEnd how, core::StepEvents& out);
   void open(core::StepEvents& out);
-  void hold_arch(const std::vector<int>& arch, core::StepEvents& out);
+  void hold_arch(const std::vector<int>& arch);
   double min_gap_, timeout_;
   bool driven_;
   double last_ = 0;        // last exit, rule firing, or the opening

@@ -206,10 +206,8 @@ const core::StepEvents& Silo::step() {
   last_.clear();
   integrate_step();
   last_.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
-  if (!last_.empty() || !pending_.empty())
-    pending_.append(last_);
-  else
-    pending_.rule_due_in = last_.rule_due_in;
+  if (!last_.empty()) pending_.append(last_);
+  pending_.rule_due_in = last_.rule_due_in;
   return last_;
 }
 
@@ -241,7 +239,7 @@ void Silo::integrate_step() {
       std::vector<int> arch = current_arch();
       const bool arrested = outlet_arrested(arch);
       if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
-      clogs_.on_rest_check(t_, arrested, arch, last_);
+      clogs_.on_rest_check(t_, arrested, arch);
       check_overlaps();
       sample_airborne();
       if (scene_.arrest_skip > 0) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/arch.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/scene.h"
@@ -113,13 +114,6 @@ void Inspector::goto_time(double t) {
   log("goto time " + std::to_string(t));
 }
 
-namespace {
-std::vector<int> sorted_ids(std::vector<int> ids) {
-  std::sort(ids.begin(), ids.end());
-  return ids;
-}
-}  // namespace
-
 long Inspector::clog_at(long k) const {
   for (size_t i = 0; i < clogs_.size(); ++i)
     if (clogs_[i].first <= k && k <= clogs_[i].last) return static_cast<long>(i);
@@ -128,10 +122,10 @@ long Inspector::clog_at(long k) const {
 
 long Inspector::final_arch_frame(size_t i) const {
   const ClogSpan& c = clogs_[i];
-  const std::vector<int> final_arch = sorted_ids(traj_.frame(c.last).arch);
+  const std::vector<int> final_arch = traj_.frame(c.last).arch;
   if (final_arch.empty()) return c.last;
   long k = c.last;
-  while (k > c.first && sorted_ids(traj_.frame(k - 1).arch) == final_arch) --k;
+  while (k > c.first && core::same_grains(traj_.frame(k - 1).arch, final_arch)) --k;
   return k;
 }
 
@@ -169,10 +163,10 @@ void Inspector::goto_clog_arch(long k) {
 }
 
 void Inspector::next_arch_change(bool later) {
-  const std::vector<int> here = sorted_ids(traj_.frame(frame_).arch);
+  const std::vector<int> here = traj_.frame(frame_).arch;
   long k = frame_;
   for (k += later ? 1 : -1; k >= 0 && k < traj_.size(); k += later ? 1 : -1)
-    if (sorted_ids(traj_.frame(k).arch) != here) break;
+    if (!core::same_grains(traj_.frame(k).arch, here)) break;
   if (k < 0 || k >= traj_.size())
     throw core::InputError(std::string("the arch does not change ") + (later ? "after" : "before") +
                            " this frame");

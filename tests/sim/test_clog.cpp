@@ -33,11 +33,11 @@ TEST_CASE(
     "[clog]") {
   sim::ClogTracker t(0.5, 5.0);
   core::StepEvents e;
-  t.on_rest_check(0.6, false, {}, e);
+  t.on_rest_check(0.6, false, {});
   t.on_exit(1.0, e);  // flowing jam: never arrested
-  t.on_rest_check(1.7, true, {}, e);
+  t.on_rest_check(1.7, true, {});
   t.on_exit(2.0, e);  // arrested, then flow: a kick broke it
-  t.on_rest_check(2.4, true, {}, e);
+  t.on_rest_check(2.4, true, {});
   core::ArchEvent removed;
   removed.t = 7.0;
   t.on_rule(7.0, removed, e);
@@ -63,8 +63,8 @@ TEST_CASE(
   auto none = [] { return std::vector<int>{}; };
   t.on_exit(1.0, e);  // the gap from the opening was clog 1
   e.clear();
-  t.on_rest_check(1.1, false, {}, e);
-  t.on_rest_check(1.2, false, a, e);  // an arch stands before the gap is a clog
+  t.on_rest_check(1.1, false, {});
+  t.on_rest_check(1.2, false, a);  // an arch stands before the gap is a clog
   t.on_step_end(1.3, none, e);
   CHECK_FALSE(t.state().open);
   CHECK(e.clogs_opened.empty());
@@ -74,14 +74,14 @@ TEST_CASE(
   CHECK(t.state().start == 1.0);
   CHECK(t.state().arch == a);
   CHECK(e.clogs_opened == std::vector<int>{2});
-  t.on_rest_check(1.6, false, {}, e);  // contacts flicker: the arch stays
+  t.on_rest_check(1.6, false, {});  // contacts flicker: the arch stays
   CHECK(t.state().arch == a);
-  t.on_rest_check(1.7, false, b, e);  // a different arch once: not yet
+  t.on_rest_check(1.7, false, b);  // a different arch once: not yet
   CHECK(t.state().arch == a);
-  t.on_rest_check(1.8, true, a, e);  // back to the first: the candidate is forgotten
-  t.on_rest_check(1.9, true, b, e);
+  t.on_rest_check(1.8, true, a);  // back to the first: the candidate is forgotten
+  t.on_rest_check(1.9, true, b);
   CHECK(t.state().arch == a);
-  t.on_rest_check(2.0, true, b, e);  // twice in a row: the arch really changed
+  t.on_rest_check(2.0, true, b);  // twice in a row: the arch really changed
   CHECK(t.state().arch == b);
   CHECK(t.state().arch_changes == 1);
   CHECK(t.state().arrested);
