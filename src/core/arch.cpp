@@ -117,6 +117,20 @@ bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
   return true;
 }
 
+std::vector<double> bead_angles_deg(const std::vector<int>& ids, const std::vector<Vec2>& pos) {
+  // From the bond to the left neighbour, counter-clockwise through "down", to the bond to the right
+  // neighbour: 180 deg is flat, below 180 a dome, above 180 a defect pointing at the outlet.
+  std::vector<double> angles;
+  for (size_t k = 1; k + 1 < ids.size(); ++k) {
+    const Vec2 u = pos[ids[k - 1]] - pos[ids[k]], v = pos[ids[k + 1]] - pos[ids[k]];
+    double ang = std::atan2(v.y, v.x) - std::atan2(u.y, u.x);
+    while (ang < 0) ang += 2 * kPi;
+    while (ang >= 2 * kPi) ang -= 2 * kPi;
+    angles.push_back(ang * 180.0 / kPi);
+  }
+  return angles;
+}
+
 ArchDescriptors arch_descriptors(const std::vector<int>& ids, const std::vector<Vec2>& pos,
                                  const std::vector<double>& radius) {
   ArchDescriptors d;
@@ -132,14 +146,7 @@ ArchDescriptors arch_descriptors(const std::vector<int>& ids, const std::vector<
   const double half = 0.5 * d.span;
   d.aspect = half > 0 ? d.rise / half : std::numeric_limits<double>::quiet_NaN();
   d.inverse_aspect = d.rise > 0 ? half / d.rise : std::numeric_limits<double>::infinity();
-  std::vector<double> angles;
-  for (size_t k = 1; k + 1 < ids.size(); ++k) {
-    const Vec2 u = pos[ids[k - 1]] - pos[ids[k]], v = pos[ids[k + 1]] - pos[ids[k]];
-    double ang = std::atan2(v.y, v.x) - std::atan2(u.y, u.x);
-    while (ang < 0) ang += 2 * kPi;
-    while (ang >= 2 * kPi) ang -= 2 * kPi;
-    angles.push_back(ang * 180.0 / kPi);
-  }
+  const std::vector<double> angles = bead_angles_deg(ids, pos);
   double sum = 0;
   for (double x : angles) {
     d.theta_max_deg = std::max(d.theta_max_deg, x);
@@ -161,16 +168,7 @@ ArchGeometry arch_geometry(const std::vector<int>& ids, const std::vector<Vec2>&
   if (ids.empty()) return a;
   a.span = (pos[ids.back()].x + radius[ids.back()]) - (pos[ids.front()].x - radius[ids.front()]);
   for (int i : ids) a.height = std::max(a.height, pos[i].y);
-  // Angle at each interior member from the bond to its left neighbour, counter-clockwise through "down", to
-  // the bond to its right neighbour: 180 deg is flat, below 180 a dome, above 180 a defect pointing at the
-  // outlet.
-  for (size_t k = 1; k + 1 < ids.size(); ++k) {
-    Vec2 u = pos[ids[k - 1]] - pos[ids[k]], v = pos[ids[k + 1]] - pos[ids[k]];
-    double ang = std::atan2(v.y, v.x) - std::atan2(u.y, u.x);
-    while (ang < 0) ang += 2 * kPi;
-    while (ang >= 2 * kPi) ang -= 2 * kPi;
-    a.max_angle_deg = std::max(a.max_angle_deg, ang * 180.0 / kPi);
-  }
+  for (double ang : bead_angles_deg(ids, pos)) a.max_angle_deg = std::max(a.max_angle_deg, ang);
   return a;
 }
 

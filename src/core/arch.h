@@ -62,6 +62,9 @@ bool blocks_outlet(const std::vector<int>& arch, const std::vector<Vec2>& pos,
 //   deg: flat); its largest value theta_max; defects: bead angles above 180 deg (a member poking down towards
 //   the outlet; Lozano et al., PRL 109, 068001, 2012, relate theta_max to an arch's resistance to vibration);
 //   and the standard deviation of the bead angles.
+// The bead angle (deg) at each interior member of an arch (members left to right): entry k - 1 for member k.
+std::vector<double> bead_angles_deg(const std::vector<int>& ids, const std::vector<Vec2>& pos);
+
 struct ArchDescriptors {
   int grains = 0;
   double span = 0, rise = 0, aspect = 0, inverse_aspect = 0;  // m, m, 1, 1 (inf/nan for a flat pair)

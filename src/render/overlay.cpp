@@ -61,11 +61,13 @@ OverlayOptions parse_overlay(const std::string& spec) {
       o.legend = true;
     else if (item == "scale")
       o.scale = true;
+    else if (item == "ids")
+      o.ids = true;
     else
       throw core::InputError(
           "--overlay " + spec + ": '" + item +
           "' is not one of all, all+plot, none, time, counts, rate, timer, arch, legend, scale, "
-          "events, zoombox, plot, colorbar");
+          "events, zoombox, plot, colorbar, ids");
   }
   return o;
 }
@@ -137,12 +139,23 @@ void Overlay::ensure_font(int h, double scale) {
   laid_out_ = false;  // the panel's size changes with the font
 }
 
+void Overlay::reset() {
+  history_.clear();
+  laid_out_ = false;
+  info_w_ = info_h_ = info_x_ = info_y_ = 0;
+  info_shown_ = false;
+  bar_w_ = bar_h_ = 0;
+  bar_rect_ = {};
+  info_corner_ = 0;
+  info_left_ = false;
+}
+
 void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                    const std::vector<View>& views, const Style& style, int w, int h,
                    const core::Geometry* geo, const Annotations* notes) {
   static const Annotations none;
   const Annotations& marks = notes ? *notes : none;
-  if (!o.any()) return;
+  if (!o.any() && marks.selected < 0) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
   ensure_font(h, o.font_scale);
@@ -182,6 +195,7 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
 
   if (o.zoombox && views.size() > 1) draw_zoombox(views, h);
   if (o.events) draw_events(notes, views, em);
+  if (o.ids || notes.selected >= 0) draw_ids(f, views, o.ids, notes.selected, em);
   // The information box first: the plot, the colour bar and the scale bar are placed clear of it.
   info_shown_ = false;
   draw_info(f, d, o, views, style, w, h, geo, em);

@@ -22,6 +22,7 @@ struct OverlayOptions {
   bool zoombox = true;    // the outlet panel's region outlined on the whole-hopper panel (split camera)
   bool plot = false;      // cumulative exits of each species against time, clogs shaded (not in "all")
   bool colorbar = false;  // only the colour bar (speed/force colouring), e.g. with nothing else
+  bool ids = false;       // each arch member's id beside it (not in "all": the inspector's and talks' choice)
   // Not an element: put the information box in the corner where it covers the fewest disks (the windows,
   // whose views are zoomed and panned at will); off, it stays top-right (movies: the outlet view leaves room
   // there).
@@ -39,11 +40,11 @@ struct OverlayOptions {
   }
   bool any() const {
     return time || counts || rate || timer || arch || legend || scale || events || zoombox || plot ||
-           colorbar;
+           colorbar || ids;
   }
 };
 // Parse "all", "none" or a comma list of
-// time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar
+// time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar,ids
 // ("all+plot" is all of the default elements and the plot). Throws core::InputError.
 OverlayOptions parse_overlay(const std::string& spec);
 
@@ -57,6 +58,7 @@ struct Annotations {
   std::vector<Ring> removed;  // the members the clog rule removed, where they were
   std::string caption;        // e.g. "arch removed (5 s rule)"
   double slowdown = 1;        // > 1: the video runs this many times slower than real time
+  int selected = -1;          // a grain asked about in the inspector: ringed and labelled with its id
 };
 
 struct OverlayData {
@@ -91,6 +93,10 @@ class Overlay {
   void draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
             const std::vector<View>& views, const Style& style, int w, int h,
             const core::Geometry* geo = nullptr, const Annotations* notes = nullptr);
+  // Forget what earlier pictures left: the boxes' sizes and corner, the discharge plot's history. The next
+  // picture is laid out from itself alone (a snapshot that a script replays must not depend on what a window
+  // showed before it).
+  void reset();
   // The last draw left the information box out of the picture (place_clear and may_leave, no clear corner).
   bool info_left() const { return info_left_; }
   // Where the last draw put the information box and the colour bar (pixels: x0, y0, x1, y1; empty if not
@@ -115,6 +121,7 @@ class Overlay {
                  const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
                  float em);
   void draw_scale(const OverlayData& d, const std::vector<View>& views, float em);
+  void draw_ids(const core::Frame& f, const std::vector<View>& views, bool arch_ids, int selected, float em);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
   struct Sample {

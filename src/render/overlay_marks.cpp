@@ -170,6 +170,41 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
   }
 }
 
+void Overlay::draw_ids(const core::Frame& f, const std::vector<View>& views, bool arch_ids, int selected,
+                       float em) {
+  // Arch members' ids in small boxes above each member, and the selected grain ringed in the inspector's
+  // highlight colour with its id, in every view (clipped to it).
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImU32 ink = IM_COL32(255, 255, 255, 255), box = IM_COL32(30, 30, 30, 200);
+  const ImU32 ring = IM_COL32(0, 170, 255, 255);
+  const bool has_selected = selected >= 0 && static_cast<size_t>(selected) < f.particles.size();
+  for (const auto& v : views) {
+    dl->PushClipRect(
+        ImVec2(static_cast<float>(v.rect.x), static_cast<float>(v.rect.y)),
+        ImVec2(static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)));
+    auto label = [&](int id, float above) {
+      const core::Particle& p = f.particles[static_cast<size_t>(id)];
+      const core::Vec2 c = v.world_to_pixel({p.x, p.y});
+      const float r = static_cast<float>(p.radius * v.px_per_m());
+      const std::string text = std::to_string(id);
+      boxed_text(dl, static_cast<float>(c.x), static_cast<float>(c.y) - r - above - 1.2f * em, text.c_str(),
+                 ink, box, em);
+      return std::pair<ImVec2, float>(ImVec2(static_cast<float>(c.x), static_cast<float>(c.y)), r);
+    };
+    // Only where members are drawn big enough to tell apart (at least a text height across).
+    const bool legible =
+        !f.arch.empty() && f.particles[static_cast<size_t>(f.arch.front())].radius * v.px_per_m() > 0.5 * em;
+    if (arch_ids && legible)
+      for (int id : f.arch)
+        if (id != selected) label(id, 0);
+    if (has_selected) {
+      const auto [c, r] = label(selected, 0.3f * em);
+      dl->AddCircle(c, r + 0.15f * em, ring, 0, std::max(2.0f, 0.18f * em));
+    }
+    dl->PopClipRect();
+  }
+}
+
 void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, float em) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   // Scale bar: one original diameter, bottom-left of the most zoomed view.

@@ -61,6 +61,12 @@ core::Image Painter::paint(const std::vector<PanelInput>& panels, const Style& s
   return img;
 }
 
+void Painter::start_afresh() {
+  for (auto& o : overlays_) o->reset();
+  for (auto& t : trails_) t = Trails{};
+  laid_out_w_ = laid_out_h_ = 0;
+}
+
 void Painter::paint(core::Image& img, const std::vector<PanelInput>& panels, const Style& style,
                     const OverlayOptions& overlay, int w, int h) {
   if (!target_ || target_->width() != w || target_->height() != h) target_ = std::make_unique<Target>(w, h);

@@ -61,6 +61,9 @@ class Painter {
                     const core::Frame* reference = nullptr) {
     return paint({{&f, &geo, &views, &data, nullptr, reference}}, style, overlay, w, h);
   }
+  // The next picture depends on its own inputs alone: the overlays forget their layout and history, the
+  // tracked grains their trails (Overlay::reset). Snapshots and clips of the inspector start so.
+  void start_afresh();
   const PaintTiming& timing() const { return timing_; }
   // The last draw left the first panel's information box out of the picture (OverlayOptions::may_leave).
   bool info_left() const { return info_left_; }

@@ -82,8 +82,12 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   o.place_clear = !o.plot;
   o.may_leave = false;
   const core::Frame ref = reference_frame();
-  return p.paint(current(), geo_, views(w, h), style, o, overlay_data, w, h,
-                 ref.particles.empty() ? nullptr : &ref);
+  const core::Frame f = current();
+  const auto vs = views(w, h);
+  render::Annotations notes;
+  notes.selected = static_cast<int>(selected);
+  return p.paint({{&f, &geo_, &vs, &overlay_data, &notes, ref.particles.empty() ? nullptr : &ref}}, style, o,
+                 w, h);
 }
 
 long Inspector::in_range(long k) const {
@@ -91,10 +95,6 @@ long Inspector::in_range(long k) const {
     throw core::InputError("frame " + std::to_string(k) + " is out of range (0 to " +
                            std::to_string(traj_.size() - 1) + ")");
   return k;
-}
-
-void Inspector::log(const std::string& command) {
-  history_.push_back(command);
 }
 
 void Inspector::goto_frame(long k) {
@@ -234,6 +234,18 @@ void Inspector::zoom_by(double f) {
   log("zoom by " + std::to_string(f));
 }
 
+void Inspector::zoom_to(double f) {
+  if (!(f >= 0.1 && f <= 100))
+    throw core::InputError("zoom " + core::format_shortest(f) + ": the magnification must be 0.1 to 100");
+  zoom = f;
+  log("zoom to " + core::format_shortest(f));
+}
+
+void Inspector::pan_to(double x, double y) {
+  pan = {x, y};
+  log("pan to " + core::format_shortest(x) + " " + core::format_shortest(y));
+}
+
 void Inspector::pan_by(double dx, double dy) {
   pan.x += dx;
   pan.y += dy;
@@ -356,6 +368,7 @@ std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painte
     }
     files_->write_vector(path, table, 2 * half_w, 2 * half_h, text);
   } else {
+    painter->start_afresh();  // the picture of this state alone, as a replayed script makes it
     files_->write_png(path, render_current(*painter, w, h));
   }
   last_output = path;
@@ -373,6 +386,7 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
   const std::string path = output_name(pattern, "export " + pattern);
   auto movie = files_->open_movie(path, width, height, fps);
   const long keep = frame_;
+  painter->start_afresh();
   const long copies = freeze.copies(fps);
   using At = render::Freeze::At;
   for (long k = from; k <= to; ++k) {

@@ -5,13 +5,16 @@
 //   step N                       one or more frames forward (N > 0) or back (N < 0)
 //   next clog | prev clog        the last frame of the next / previous clog (the arch fully formed)
 //   zoom hopper|outlet|split|window:X0,Y0,X1,Y1     the camera;  zoom by F   magnify about the view centre
-//   pan DX DY                    move the view, metres
+//   zoom to F                    the magnification on top of the camera (1: as the camera frames it)
+//   pan DX DY | pan to X Y       move the view by / to an offset from the camera's centre, metres
 //   color species|speed|force    palette paper|colorblind    overlay all|none|time,counts,...    arch on|off
 //   snapshot FILE.png [WxH]      re-render the current view off-screen at any resolution (default 1920x1080)
 //   export FILE.mp4 FROM TO [WxH] [FPS]    frames FROM..TO as a movie
 //   export clog FILE.mp4 [WxH] [FPS]       the clog at or after this frame, 1 s before to 0.5 s after
 //   (FILE may hold {frame} and {t}, e.g. snapshot arch-{frame}.png; an existing file is never written over)
-//   print                        frame, time, clog timer and arch members on standard output
+//   select ID|off                ask about a grain (ringed; its details in the panel)
+//   print [grain|arch]           frame, time, clog timer and arch members (the selected grain's details; the
+//                                arch member by member) on standard output
 #pragma once
 
 #include <memory>
@@ -38,6 +41,16 @@ struct ClogSpan {
 };
 
 using render::Painter;  // Frame -> Image, shared with record (render/painter.h)
+
+// One member of the arch, as the inspector's arch table shows it (members left to right).
+struct ArchMember {
+  int id;
+  std::string species;
+  double x, y;                     // m
+  double bead_deg;                 // the bead angle (core::bead_angles_deg); NaN at the two ends
+  double force_left, force_right;  // N, normal force to the left / right neighbour; NaN when not known
+  std::string walls;  // the walls or obstacle it touches ("left hopper wall", "floor", ...), or ""
+};
 
 class Inspector {
  public:
@@ -66,7 +79,9 @@ class Inspector {
   void next_arch_change(bool later);  // the next (earlier) frame whose arch is other grains than this one's
   void set_camera(const render::CameraSpec& c);
   void zoom_by(double f);
+  void zoom_to(double f);             // 0.1 to 100
   void pan_by(double dx, double dy);  // m
+  void pan_to(double x, double y);    // m
   void set_color(render::ColorMode m, const std::string& name);
   void set_palette(render::Palette p, const std::string& name);
   void set_overlay(const std::string& spec);
@@ -75,7 +90,20 @@ class Inspector {
   // `goto clog K` / `goto arch K` lands (found without moving).
   void track_region(double x0, double y0, double x1, double y1);
   void track_arch_of(bool clog, long k);
+  // Ask about a grain: select_grain(id) (-1: none) rings it in the window and pictures and lists its details;
+  // the script line is `select ID|off`. grain_at: the grain whose outline holds the point (m), or -1.
+  void select_grain(long id);
+  long grain_at(core::Vec2 p) const;
+  // The selected grain's details, one line each: id and species, position, speed, angle, summed force,
+  // coordination and its contacts (with normal forces when the run kept its contacts, else by distance).
+  std::vector<std::string> grain_details() const;
+  // The arch of the current frame, member by member.
+  std::vector<ArchMember> arch_table() const;
   std::string print_frame();
+  // `print grain`: grain_details(); `print arch`: the arch table as CSV (id,species,x_m,y_m,bead_angle_deg,
+  // force_left_N,force_right_N,walls), a header line first.
+  std::string print_grain();
+  std::string print_arch();
   // Every clog of the run as the inspector holds it (the recording's own events: the rows of clogs.csv), one
   // line each: "clog K START END ENDED_BY arrested|not-arrested frames FIRST-LAST".
   std::string print_clogs();
@@ -86,6 +114,18 @@ class Inspector {
   std::string export_clog(const std::string& pattern, int w, int h, int fps, Painter* painter);
   // Every action so far as script lines: what the window did, written down to be made again.
   const std::vector<std::string>& history() const { return history_; }
+  // The state the pictures depend on, as the script lines that set it, in an order that replays: frame,
+  // camera, zoom to, pan to, palette, color, colormap, arch, chains, overlay, track, select (the `zoom to`
+  // and `pan to` values printed to round-trip exactly).
+  std::vector<std::string> state_lines() const;
+  // The window's recorder, called once per redraw after every control ran: each change of state that no
+  // action wrote down (an arrow key, the frame slider, the timeline, wheel zoom, a drag, a checkbox) is
+  // appended as the line that makes it; a run of frame, zoom or pan changes is one line. The first call
+  // starts the session with the whole state (what the command-line flags set).
+  void sync_history();
+  // The session as a script (a comment naming the trajectory, then history()), to `pattern` ({frame} and {t}
+  // as snapshot); never over an existing file. Returns the path.
+  std::string save_session(const std::string& pattern, const std::string& trajectory_name);
 
   long frame_index() const { return frame_; }
   bool has_contacts() const { return traj_.has_contacts(); }
@@ -111,6 +151,7 @@ class Inspector {
   core::Frame reference_frame() const;
 
   render::CameraSpec camera;  // split
+  long selected = -1;         // the grain asked about (select_grain), or -1
   // A camera move (script `camera-path`): while set, pictures follow it by each frame's time (zoom and pan
   // do not apply).
   render::CameraPath path;
@@ -133,6 +174,9 @@ class Inspector {
   void color_command(const std::vector<std::string>& a, const std::string& line);
   void track_command(const std::vector<std::string>& a);
   std::vector<std::string> history_;
+  std::vector<std::string> recorded_;  // state_lines() as history_ last left it (sync_history)
+  bool synced_tail_ = false;           // history_'s last line came from sync_history (it may be merged)
+  bool session_started_ = false;
   const FrameSource& traj_;
   const ImageFiles* files_;
   core::Model model_;

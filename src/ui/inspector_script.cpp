@@ -28,7 +28,7 @@ double to_double(const std::string& s, const char* what) {
 }
 const char* kCommands =
     "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
-    "freeze, snapshot, export, print, clogs";
+    "freeze, select, snapshot, export, print, clogs";
 
 // A script line's words, a comment cut off.
 std::vector<std::string> words_of(const std::string& line) {
@@ -70,11 +70,14 @@ void Inspector::execute(const std::string& line, Painter* painter) {
     }
     if (cmd == "zoom") {
       if (a.size() == 3 && a[1] == "by") return zoom_by(to_double(a[2], "zoom factor"));
-      need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F");
+      if (a.size() == 3 && a[1] == "to") return zoom_to(to_double(a[2], "zoom"));
+      need(1, "zoom hopper|outlet|split|window:X0,Y0,X1,Y1 | zoom by F | zoom to F");
       return set_camera(render::parse_camera(a[1]));
     }
-    if (cmd == "pan")
-      return need(2, "pan DX DY (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
+    if (cmd == "pan") {
+      if (a.size() == 4 && a[1] == "to") return pan_to(to_double(a[2], "X"), to_double(a[3], "Y"));
+      return need(2, "pan DX DY | pan to X Y (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
+    }
     if (cmd == "color") return color_command(a, line);
     if (cmd == "chains") {
       // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
@@ -116,7 +119,17 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       return show_arch(a[1] == "on");
     }
     if (cmd == "track") return track_command(a);
-    if (cmd == "print") return (void)print_frame();
+    if (cmd == "select") {
+      need(1, "select ID|off");
+      return select_grain(a[1] == "off" ? -1 : to_long(a[1], "grain id"));
+    }
+    if (cmd == "print") {
+      if (a.size() == 1) return (void)print_frame();
+      need(1, "print | print grain | print arch");
+      if (a[1] == "grain") return (void)print_grain();
+      if (a[1] == "arch") return (void)print_arch();
+      throw core::InputError("usage: print | print grain | print arch");
+    }
     if (cmd == "clogs") return (void)print_clogs();
     if (cmd == "snapshot") {
       if (a.size() < 2 || a.size() > 3) throw core::InputError("usage: snapshot FILE.png|.svg|.pdf [WxH]");

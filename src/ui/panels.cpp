@@ -14,6 +14,7 @@
 
 #include "core/arch.h"
 #include "core/error.h"
+#include "ui/live_panel.h"
 
 namespace ui {
 
@@ -36,6 +37,12 @@ void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, b
   } catch (const std::exception& e) {
     ps.message = e.what();
   }
+}
+
+void snapshot_from_panel(Inspector& insp, PanelState& ps, Painter* painter) {
+  int sw = 0, sh = 0;
+  render::parse_size(kSizes[ps.snapshot_size], "snapshot size", sw, sh);
+  insp.snapshot(ps.snapshot_path, sw, sh, painter);
 }
 
 void go_to(Inspector& insp, const std::string& text) {
@@ -89,6 +96,49 @@ void advance_playback(Inspector& insp, PanelState& ps, long frames) {
   }
   insp.set_frame(target);
   if (insp.frame_index() == insp.trajectory().size() - 1) ps.playing = false;
+}
+
+const std::vector<std::pair<const char*, const char*>>& inspector_keys() {
+  static const std::vector<std::pair<const char*, const char*>> keys = {
+      {"right / left", "one frame forward / back (held: repeats)"},
+      {"space", "play / pause"},
+      {"n / p", "the start of the next / previous clog (playback stops)"},
+      {"a", "the frame where this clog's final arch first stands (or the next clog's)"},
+      {". / ,", "the next / previous change of arch"},
+      {"c", "play until the next clog starts"},
+      {"s", "snapshot this frame (the outputs tab's name and size)"},
+      {"w", "save the session as a script (the outputs tab's name)"},
+      {"Home / End", "the first / last frame"},
+      {"?", "this list (again, Escape or a click closes it)"},
+      {"q / Escape", "close the window"},
+      {"wheel", "zoom the main view"},
+      {"drag", "pan the main view"},
+      {"click a grain", "its details in the panel, ringed in the picture (empty space: none)"},
+      {"ctrl + click a field", "type a value"},
+  };
+  return keys;
+}
+
+void draw_keys_overlay(PanelState& ps, float w, float h) {
+  ImGui::SetNextWindowPos(ImVec2(0.5f * w, 0.5f * h), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.95f);
+  ImGui::Begin("keys", nullptr,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+    for (const auto& [key, what] : inspector_keys()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(key);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(what);
+    }
+    ImGui::EndTable();
+  }
+  if (ImGui::Button("close")) ps.show_keys = false;
+  remember(ps, "close keys");
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !ImGui::IsWindowHovered()) ps.show_keys = false;
+  ImGui::End();
 }
 
 namespace {
@@ -171,23 +221,58 @@ void draw_view(Inspector& insp, PanelState& ps) {
     if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
       act(insp, ps, [&] { insp.set_color(colors[k].second, colors[k].first); });
   }
-  if (insp.style.color != render::ColorMode::Species && insp.style.color != render::ColorMode::Id) {
-    // The colour map of the scale (the script line `colormap NAME`).
-    for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
-                   render::Colormap::Cividis}) {
-      if (m != render::Colormap::Viridis) ImGui::SameLine();
-      if (ImGui::RadioButton(render::colormap_name(m), insp.style.colormap == m))
-        act(insp, ps, [&] { insp.execute(std::string("colormap ") + render::colormap_name(m)); });
-    }
+  // The colour map and range of the scale (the script lines `colormap NAME`, `color MODE MIN:MAX`), shown for
+  // every colouring so the panel does not jump; disabled where there is no scale.
+  const bool scaled =
+      insp.style.color != render::ColorMode::Species && insp.style.color != render::ColorMode::Id;
+  ImGui::BeginDisabled(!scaled);
+  ImGui::PushID("colormap");
+  for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
+                 render::Colormap::Cividis}) {
+    if (m != render::Colormap::Viridis) ImGui::SameLine();
+    if (ImGui::RadioButton(render::colormap_name(m), insp.style.colormap == m))
+      act(insp, ps, [&] { insp.execute(std::string("colormap ") + render::colormap_name(m)); });
   }
+  ImGui::PopID();
+  double* top = insp.style.color == render::ColorMode::Speed          ? &insp.style.speed_max
+                : insp.style.color == render::ColorMode::Force        ? &insp.style.force_max
+                : insp.style.color == render::ColorMode::Displacement ? &insp.style.displacement_max
+                : insp.style.color == render::ColorMode::Coordination ? &insp.style.coordination_max
+                                                                      : nullptr;
+  double none = 0, lo_min = 0, hi_max = 1e6;
+  ImGui::SetNextItemWidth(0.6f * ImGui::GetContentRegionAvail().x);
+  // Drag in steps of 0.5% of the top; the top stays above the bottom (displacement: 0 is each frame's own).
+  const float step = static_cast<float>(std::max(1e-4, 0.005 * (top ? *top : 1.0)));
+  ImGui::DragScalar("##colour_min", ImGuiDataType_Double, &insp.style.color_min, step, &lo_min,
+                    top ? top : &none, "from %.3g", ImGuiSliderFlags_AlwaysClamp);
+  remember(ps, "colour min");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  ImGui::DragScalar("##colour_max", ImGuiDataType_Double, top ? top : &none, step, &insp.style.color_min,
+                    &hi_max, "to %.3g", ImGuiSliderFlags_AlwaysClamp);
+  remember(ps, "colour max");
+  ImGui::EndDisabled();
   bool cb = insp.style.palette == render::Palette::ColorBlind;
   if (ImGui::Checkbox("colour-blind palette", &cb))
     insp.style.palette = cb ? render::Palette::ColorBlind : render::Palette::Paper;
   ImGui::SameLine();
   ImGui::Checkbox("arch", &insp.style.show_arch);
+  ImGui::SameLine();
+  ImGui::Checkbox("member ids", &insp.overlay.ids);
   if (insp.has_contacts()) {  // the run kept its contacts: force chains as record draws them
-    ImGui::SameLine();
     ImGui::Checkbox("force chains", &insp.style.chains);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!insp.style.chains);
+    double chain_lo = 0, chain_hi = 1e6;
+    ImGui::SetNextItemWidth(-1);
+    double range[2] = {insp.style.chain_min, insp.style.chain_max};
+    if (ImGui::DragScalarN("##chains", ImGuiDataType_Double, range, 2,
+                           static_cast<float>(std::max(0.01, 0.005 * range[1])), &chain_lo, &chain_hi,
+                           "%.3g N", ImGuiSliderFlags_AlwaysClamp)) {
+      insp.style.chain_min = range[0];
+      insp.style.chain_max = std::max(range[1], range[0] + 1e-3);
+    }
+    ImGui::EndDisabled();
   }
   auto& o = insp.overlay;
   ImGui::Checkbox("time", &o.time);
@@ -204,39 +289,72 @@ void draw_view(Inspector& insp, PanelState& ps) {
   ImGui::Checkbox("arch info", &o.arch);
 }
 
-void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
-  // The arch of this frame.
-  ImGui::Separator();
-  if (f.arch.empty()) {
-    ImGui::TextUnformatted("no arch spans the hopper in this frame");
-  } else {
-    std::vector<core::Vec2> pos;
-    std::vector<double> rad;
-    for (const auto& p : f.particles) pos.push_back({p.x, p.y}), rad.push_back(p.radius);
-    const auto g = core::arch_geometry(f.arch, pos, rad);
-    const auto& names = insp.overlay_data.species_names;
-    const bool shorthand = names.size() == 2 && names[0] == "original";
-    int added = 0;
-    for (int id : f.arch) added += f.particles[id].species != core::Species::Original;
-    const char* clogging = f.clog_arrested ? ", arrested" : ", clogging";
-    if (shorthand)
-      ImGui::Text("arch: %zu disks, %d added%s", f.arch.size(), added, clogging);
-    else
-      ImGui::Text("arch: %zu grains%s", f.arch.size(), clogging);
-    ImGui::Text("span %.3f m, height %.3f m, largest angle %.0f deg", g.span, g.height, g.max_angle_deg);
-    const auto d = core::arch_descriptors(f.arch, pos, rad);
-    ImGui::TextWrapped(
-        "rise %.3f m, aspect rise/(span/2) %.2f, theta_max %.0f deg, %d defect%s, bead angles sd %.0f deg",
-        d.rise, d.aspect, d.theta_max_deg, d.defects, d.defects == 1 ? "" : "s", d.angle_sd_deg);
-    std::string members;
-    for (int id : f.arch) {
-      const size_t sp = static_cast<size_t>(core::species_index(f.particles[id].species));
-      members += std::to_string(id) +
-                 (shorthand ? (sp == 1 ? "a " : "o ") : " (" + (sp < names.size() ? names[sp] : "?") + ") ");
+void draw_grain(Inspector& insp, PanelState& ps) {
+  // The grain asked about (a click on it, or `select ID`).
+  if (insp.selected < 0) {
+    ImGui::TextDisabled("click a grain for its details");
+    return;
+  }
+  for (const auto& line : insp.grain_details()) ImGui::TextWrapped("%s", line.c_str());
+  if (ImGui::Button("track this grain"))
+    act(insp, ps, [&] { insp.execute("track " + std::to_string(insp.selected)); });
+  remember(ps, "track grain");
+  ImGui::SameLine();
+  if (ImGui::Button("clear selection")) act(insp, ps, [&] { insp.select_grain(-1); });
+  remember(ps, "clear selection");
+}
+
+void draw_arch(Inspector& insp, PanelState& ps, Painter* painter, const core::Frame& f) {
+  // The arch of this frame: its summary, then member by member (left to right).
+  draw_arch_summary(f, insp.overlay_data);
+  const std::vector<ArchMember> rows = insp.arch_table();
+  if (!rows.empty()) {
+    const bool forces = !f.contacts.empty();
+    const int cols = forces ? 7 : 5;
+    if (ImGui::BeginTable("arch members", cols,
+                          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+      const char* heads[] = {"id", "species", "x [m]", "y [m]", "bead", "F left [N]", "F right [N]"};
+      for (int c = 0; c < cols; ++c) ImGui::TableSetupColumn(heads[c]);
+      ImGui::TableHeadersRow();
+      for (const auto& m : rows) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::PushID(m.id);
+        if (ImGui::Selectable(std::to_string(m.id).c_str(), insp.selected == m.id,
+                              ImGuiSelectableFlags_SpanAllColumns))
+          act(insp, ps, [&] { insp.select_grain(m.id); });
+        ImGui::PopID();
+        if (!m.walls.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("touches %s", m.walls.c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(m.species.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", m.x);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", m.y);
+        ImGui::TableNextColumn();
+        if (std::isnan(m.bead_deg))
+          ImGui::TextDisabled("%s", m.walls.empty() ? "end" : "wall");
+        else
+          ImGui::Text("%.0f", m.bead_deg);
+        if (forces) {
+          for (double F : {m.force_left, m.force_right}) {
+            ImGui::TableNextColumn();
+            if (std::isnan(F))
+              ImGui::TextDisabled("-");
+            else
+              ImGui::Text("%.2f", F);
+          }
+        }
+      }
+      ImGui::EndTable();
     }
-    ImGui::TextWrapped(
-        shorthand ? "members (left to right, o/a = original/added): %s" : "members (left to right): %s",
-        members.c_str());
+    if (ImGui::Button("track the arch's members")) {
+      std::string ids;
+      for (const auto& m : rows) ids += (ids.empty() ? "" : ",") + std::to_string(m.id);
+      act(insp, ps, [&] { insp.execute("track " + ids); });
+    }
+    remember(ps, "track arch");
+    if (!forces) ImGui::TextDisabled("forces: the run kept no contacts (record keeps them)");
   }
   ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
   // No corner of the picture is clear of the container (zoomed in): the information box is shown here.
@@ -248,21 +366,14 @@ void draw_arch(Inspector& insp, Painter* painter, const core::Frame& f) {
 
 void draw_outputs(Inspector& insp, PanelState& ps, Painter* painter, float w) {
   // Outputs.
-  ImGui::Separator();
   ImGui::SetNextItemWidth(0.55f * w);
   ImGui::InputText("##snap", ps.snapshot_path, sizeof ps.snapshot_path);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
-  if (ImGui::Button("snapshot this frame"))
+  if (ImGui::Button("snapshot this frame (s)"))
     act(
-        insp, ps,
-        [&] {
-          int sw = 0, sh = 0;
-          render::parse_size(kSizes[ps.snapshot_size], "snapshot size", sw, sh);
-          insp.snapshot(ps.snapshot_path, sw, sh, painter);
-        },
-        true);
+        insp, ps, [&] { snapshot_from_panel(insp, ps, painter); }, true);
   remember(ps, "snapshot");
   ImGui::SetNextItemWidth(0.3f * w);
   ImGui::InputInt("from", &ps.export_from, 0);
@@ -284,15 +395,18 @@ void draw_outputs(Inspector& insp, PanelState& ps, Painter* painter, float w) {
     act(
         insp, ps, [&] { insp.export_clog(ps.export_path, 1280, 720, clip_fps, painter); }, true);
   remember(ps, "export clog");
-  ImGui::Separator();
-  ImGui::TextWrapped("%s", ps.message.c_str());
-  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
-  ImGui::TextWrapped(
-      "keys: left/right step, space play, n/p next/previous clog, Home/End, q close; "
-      "wheel zooms, drag pans");
-  ImGui::PopStyleColor();
+  // The session so far as a script: replayed with --script it makes the same pictures.
+  ImGui::SetNextItemWidth(0.55f * w);
+  ImGui::InputText("##session", ps.session_path, sizeof ps.session_path);
+  ImGui::SameLine();
+  if (ImGui::Button("save session (w)"))
+    act(
+        insp, ps, [&] { insp.save_session(ps.session_path, ps.trajectory_name); }, true);
+  remember(ps, "save session");
+  ImGui::SetNextItemWidth(0.55f * w);
+  ImGui::SliderFloat("text size", &ps.font_scale, 0.8f, 2.0f, "%.2fx");
+  remember(ps, "text size");
   if (ps.last_redraw_ms > 0) ImGui::TextDisabled("last redraw %.1f ms", ps.last_redraw_ms);
-  ImGui::End();
 }
 
 void draw_timeline(Inspector& insp, PanelState& ps, long n, float timeline_y, float timeline_w,
@@ -303,19 +417,42 @@ void draw_timeline(Inspector& insp, PanelState& ps, long n, float timeline_y, fl
   ImGui::SetNextWindowSize(ImVec2(timeline_w, timeline_h));
   ImGui::Begin("timeline", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
   ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const float x_seek = p0.x;
   const float bw = ImGui::GetContentRegionAvail().x, bh = ImGui::GetContentRegionAvail().y;
   ImGui::InvisibleButton("##timeline", ImVec2(bw, std::max(4.0f, bh)));
   remember(ps, "timeline");
-  if (ImGui::IsItemActive()) insp.set_frame(std::lround((ImGui::GetIO().MousePos.x - p0.x) / bw * (n - 1)));
+  if (ImGui::IsItemActive()) insp.set_frame(std::lround((ImGui::GetIO().MousePos.x - x_seek) / bw * (n - 1)));
   ImDrawList* dl = ImGui::GetWindowDrawList();
-  // The bar over the top 55%, a time axis (seconds) under it.
-  const float bar_h = std::max(4.0f, 0.55f * bh);
-  dl->AddRectFilled(p0, ImVec2(p0.x + bw, p0.y + bar_h), IM_COL32(235, 235, 235, 255));
+  // A legend row, the bar, a time axis (seconds) under it.
+  const float line = ImGui::GetTextLineHeight();
+  const ImU32 clog_ink = IM_COL32(240, 150, 30, 255), rule_ink = IM_COL32(200, 40, 30, 255);
+  const ImU32 text_ink = IM_COL32(60, 60, 60, 255);
+  {
+    float lx = p0.x;
+    auto key = [&](ImU32 colour, const char* label) {
+      dl->AddRectFilled(ImVec2(lx, p0.y + 0.2f * line), ImVec2(lx + 0.8f * line, p0.y + 0.9f * line), colour);
+      dl->AddText(ImVec2(lx + 1.1f * line, p0.y), text_ink, label);
+      lx += 1.1f * line + ImGui::CalcTextSize(label).x + 1.2f * line;
+    };
+    key(clog_ink, "clog");
+    key(rule_ink, "clog ended by the rule (long-lasting arch)");
+    key(IM_COL32(0, 0, 0, 255), "this frame; click or drag to seek");
+  }
+  const ImVec2 b0(p0.x, p0.y + line + 2);
+  const float bar_h = std::max(4.0f, bh - 2 * line - 8);
+  dl->AddRectFilled(b0, ImVec2(b0.x + bw, b0.y + bar_h), IM_COL32(235, 235, 235, 255));
   auto xof = [&](long k) { return p0.x + bw * static_cast<float>(k) / std::max(1L, n - 1); };
-  for (const auto& c : insp.clogs())
-    dl->AddRectFilled(ImVec2(xof(c.first), p0.y + 0.25f * bar_h),
-                      ImVec2(std::max(xof(c.last), xof(c.first) + 1), p0.y + bar_h),
-                      c.removed ? IM_COL32(200, 40, 30, 255) : IM_COL32(240, 150, 30, 255));
+  // Each clog from its first frame to the frame after its last, one pixel short of the next clog when they
+  // touch, so back-to-back clogs read as two bars.
+  const auto& clogs = insp.clogs();
+  for (size_t i = 0; i < clogs.size(); ++i) {
+    const auto& c = clogs[i];
+    float x1 = std::max(xof(c.last + 1), xof(c.first) + 2);
+    if (i + 1 < clogs.size()) x1 = std::min(x1, xof(clogs[i + 1].first) - 1);
+    dl->AddRectFilled(ImVec2(xof(c.first), b0.y), ImVec2(std::max(x1, xof(c.first) + 1), b0.y + bar_h),
+                      c.removed ? rule_ink : clog_ink);
+  }
+  p0.y = b0.y;  // the frame line and the axis below measure from the bar
   dl->AddLine(ImVec2(xof(insp.frame_index()), p0.y), ImVec2(xof(insp.frame_index()), p0.y + bar_h),
               IM_COL32(0, 0, 0, 255), 2);
   const double t0 = insp.trajectory().time(0), t1 = insp.trajectory().time(n - 1);
@@ -328,7 +465,7 @@ void draw_timeline(Inspector& insp, PanelState& ps, long n, float timeline_y, fl
         step *= m;
         break;
       }
-    const ImU32 ink = IM_COL32(60, 60, 60, 255);
+    const ImU32 ink = text_ink;
     for (double t = std::ceil(t0 / step) * step; t <= t1 + 1e-9; t += step) {
       const float x = p0.x + bw * static_cast<float>((t - t0) / (t1 - t0));
       dl->AddLine(ImVec2(x, p0.y + bar_h), ImVec2(x, p0.y + bar_h + 4), ink);
@@ -354,9 +491,37 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
 
   draw_transport(insp, ps, n, f);
   draw_view(insp, ps);
-  draw_arch(insp, painter, f);
-  draw_outputs(insp, ps, painter, w);
+  // The arch and the grain, or the outputs, in a region of fixed height above the message: nothing jumps
+  // while stepping (the region scrolls when a long arch and a grain's contacts need more).
+  ImGui::Separator();
+  const float bottom_h = 3.2f * ImGui::GetTextLineHeightWithSpacing();
+  const float details_h =
+      std::max(4 * ImGui::GetTextLineHeightWithSpacing(), ImGui::GetContentRegionAvail().y - bottom_h);
+  ImGui::BeginChild("details", ImVec2(0, details_h));
+  if (ImGui::BeginTabBar("tabs")) {
+    if (ImGui::BeginTabItem("arch and grain")) {
+      draw_arch(insp, ps, painter, f);
+      ImGui::Separator();
+      draw_grain(insp, ps);
+      ImGui::EndTabItem();
+    }
+    remember(ps, "arch tab");
+    if (ImGui::BeginTabItem("outputs")) {
+      draw_outputs(insp, ps, painter, w);
+      ImGui::EndTabItem();
+    }
+    remember(ps, "outputs tab");
+    ImGui::EndTabBar();
+  }
+  ImGui::EndChild();
+  ImGui::Separator();
+  ImGui::TextWrapped("%s", ps.message.c_str());
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
+  ImGui::TextWrapped("? lists every key; wheel zooms, drag pans, click a grain");
+  ImGui::PopStyleColor();
+  ImGui::End();
   draw_timeline(insp, ps, n, timeline_y, timeline_w, timeline_h);
+  if (ps.show_keys) draw_keys_overlay(ps, x + w, h);
 }
 
 }  // namespace ui

@@ -7,6 +7,8 @@
 #include <array>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ui/inspector.h"
 
@@ -22,6 +24,10 @@ struct PanelState {
   int snapshot_size = 0;  // index into the size presets
   int export_from = 0, export_to = 0;
   char export_path[256] = "clip-{frame}.mp4";
+  char session_path[256] = "session-{frame}.txt";
+  std::string trajectory_name;  // named in a saved session's first line
+  float font_scale = 1.0f;      // the window's text size (io.FontGlobalScale); pictures keep their own
+  bool show_keys = false;       // the key overlay ('?')
   double last_redraw_ms = 0;
   // Screen rectangles (x0, y0, x1, y1) of named widgets from the last frame, for tests and tooltips.
   std::map<std::string, std::array<float, 4>> rects;
@@ -41,6 +47,13 @@ void act(Inspector& insp, PanelState& ps, const std::function<void()>& action, b
 void final_arch(Inspector& insp);
 // Play until the next clog starts (then `goto clog K` is what the window did); a message when there is none.
 void play_to_next_clog(Inspector& insp, PanelState& ps);
+// Every key of the inspector window and what it does, as the '?' overlay lists them.
+const std::vector<std::pair<const char*, const char*>>& inspector_keys();
+// The '?' overlay: every key, centred over the window (w x h); closes on '?', Escape or a click.
+void draw_keys_overlay(PanelState& ps, float w, float h);
+
+// Snapshot this frame as the outputs tab names and sizes it.
+void snapshot_from_panel(Inspector& insp, PanelState& ps, Painter* painter);
 // The "go to" field's text: "N" goes to frame N, "T s" to the frame nearest T seconds, "+N" / "-N" steps N
 // frames (the script lines goto frame, goto time, step). Throws core::InputError naming what is allowed.
 void go_to(Inspector& insp, const std::string& text);

@@ -48,6 +48,8 @@ class ImageFiles {
   // A vector picture (.svg or .pdf): a draw list as a table (render::draw_list_csv) of a window width_m x
   // height_m, with a caption; written whole under a temporary name and renamed. Throws core::RuntimeFault
   // when it cannot be made.
+  // A text file (a saved session), written whole under a temporary name and renamed.
+  virtual void write_text(const std::string& path, const std::string& text) const = 0;
   virtual void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
                             double height_m, const std::string& caption) const = 0;
 };

@@ -26,6 +26,7 @@
 #include "render/context.h"
 #include "render/painter.h"
 #include "render/target.h"
+#include "ui/live_panel.h"
 #include "ui/panels.h"
 
 bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
@@ -37,7 +38,7 @@ namespace ui {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-constexpr float kPanelWidth = 400, kTimelineHeight = 60;
+constexpr float kPanelWidth = 400, kTimelineHeight = 80;  // pixels at text size 1
 
 void* glfw_proc(const char* name) {
   return reinterpret_cast<void*>(glfwGetProcAddress(name));
@@ -115,18 +116,48 @@ class Window {
   ImGuiContext* ctx_ = nullptr;
 };
 
-// Mouse wheel zooms about the cursor, dragging pans; only over the scene, not over the panels.
-void mouse_view(Inspector& insp, float scene_w, float scene_h) {
+// Over the scene (not the panels): the mouse wheel zooms, dragging pans the most magnified view. Returns the
+// scene's view under the cursor, or null.
+const render::View* mouse_zoom_pan(const std::vector<render::View>& views, double& zoom, core::Vec2& pan,
+                                   float scene_w, float scene_h) {
   ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureMouse || io.MousePos.x < 0 || io.MousePos.x > scene_w || io.MousePos.y > scene_h) return;
-  auto views = insp.views(static_cast<int>(scene_w), static_cast<int>(scene_h));
+  if (io.WantCaptureMouse || io.MousePos.x < 0 || io.MousePos.y < 0 || io.MousePos.x > scene_w ||
+      io.MousePos.y > scene_h)
+    return nullptr;
   const render::View* main = &views.front();
   for (const auto& v : views)
     if (v.px_per_m() > main->px_per_m()) main = &v;
-  if (io.MouseWheel != 0) insp.zoom = std::clamp(insp.zoom * std::pow(1.15, io.MouseWheel), 0.1, 100.0);
+  if (io.MouseWheel != 0) zoom = std::clamp(zoom * std::pow(1.15, io.MouseWheel), 0.1, 100.0);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
-    insp.pan.x -= io.MouseDelta.x / main->px_per_m();
-    insp.pan.y += io.MouseDelta.y / main->px_per_m();
+    pan.x -= io.MouseDelta.x / main->px_per_m();
+    pan.y += io.MouseDelta.y / main->px_per_m();
+  }
+  for (const auto& v : views)
+    if (io.MousePos.x >= v.rect.x && io.MousePos.x < v.rect.x + v.rect.w && io.MousePos.y >= v.rect.y &&
+        io.MousePos.y < v.rect.y + v.rect.h)
+      return &v;
+  return nullptr;
+}
+
+// The inspector's mouse: zoom and pan, a click (no drag) on a grain selects it (on empty space: none), and a
+// grain under the resting cursor names itself in a tooltip.
+void mouse_view(Inspector& insp, PanelState& ps, float scene_w, float scene_h) {
+  const auto views = insp.views(static_cast<int>(scene_w), static_cast<int>(scene_h));
+  const render::View* under = mouse_zoom_pan(views, insp.zoom, insp.pan, scene_w, scene_h);
+  if (!under) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  const core::Vec2 at = under->pixel_to_world({io.MousePos.x, io.MousePos.y});
+  const long id = insp.grain_at(at);
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 16)
+    act(insp, ps, [&] { insp.select_grain(id); });
+  else if (id >= 0 && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+    const core::Frame f = insp.current();
+    const auto& g = f.particles[static_cast<size_t>(id)];
+    const size_t sp = static_cast<size_t>(core::species_index(g.species));
+    const auto& names = insp.overlay_data.species_names;
+    ImGui::SetTooltip("grain %ld (%s), %.3f m/s; click for details", id,
+                      sp < names.size() ? names[sp].c_str() : "?",
+                      std::hypot(static_cast<double>(g.vx), static_cast<double>(g.vy)));
   }
 }
 
@@ -163,6 +194,16 @@ void keys(Window& win, Inspector& insp, PanelState& ps, Painter* painter) {
       act(insp, ps, [&] { insp.goto_start(); });
     else if (key == GLFW_KEY_END)
       act(insp, ps, [&] { insp.goto_end(); });
+    else if (key == GLFW_KEY_S)
+      act(
+          insp, ps, [&] { snapshot_from_panel(insp, ps, painter); }, true);
+    else if (key == GLFW_KEY_W)
+      act(
+          insp, ps, [&] { insp.save_session(ps.session_path, ps.trajectory_name); }, true);
+    else if (key == GLFW_KEY_SLASH || key == GLFW_KEY_F1)
+      ps.show_keys = !ps.show_keys;
+    else if (key == GLFW_KEY_ESCAPE && ps.show_keys)
+      ps.show_keys = false;
     else if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE)
       glfwSetWindowShouldClose(win.get(), GLFW_TRUE);
   }
@@ -196,19 +237,23 @@ void imgui_frame(Window& win, int fw, int fh, Panels&& panels) {
 
 // One window frame: the scene (painter: renderer + in-frame overlay) on the left, ImGui panels over the rest.
 template <class Panels>
-void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspector& insp, Panels&& panels) {
+void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspector& insp, float text_scale,
+                Panels&& panels) {
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(win.get(), &fw, &fh);
-  const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
-  const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight));
+  // The panel and the timeline grow with the text.
+  const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth * text_scale));
+  const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight * text_scale));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   const auto views = insp.views(scene_w, scene_h);
   render::OverlayOptions overlay = insp.overlay;
   // Views are zoomed and panned at will: keep the information box off the container, or beside the picture.
   overlay.place_clear = overlay.may_leave = true;
   const core::Frame ref = insp.reference_frame();  // displacement from the trajectory's own reference frame
+  render::Annotations notes;
+  notes.selected = static_cast<int>(insp.selected);
   painter.draw(
-      {{&f, &insp.geometry(), &views, &insp.overlay_data, nullptr, ref.particles.empty() ? nullptr : &ref}},
+      {{&f, &insp.geometry(), &views, &insp.overlay_data, &notes, ref.particles.empty() ? nullptr : &ref}},
       insp.style, overlay, fw, fh, scene_w);
   imgui_frame(win, fw, fh, [&] {
     panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh),
@@ -222,6 +267,13 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
   Painter painter;
   PanelState ps;
   ps.export_to = static_cast<int>(insp.trajectory().size() - 1);
+  ps.trajectory_name = o.source_name;
+  {
+    // Text that reads at the window's size: 1x at 720 pixels high, up to 2x.
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(win.get(), &fw, &fh);
+    ps.font_scale = std::clamp(static_cast<float>(fh) / 720.0f, 1.0f, 2.0f);
+  }
   std::vector<double> redraws;
   long shown = -1;
   double play_acc = 0;
@@ -241,11 +293,13 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     }
     const auto t0 = Clock::now();
     const core::Frame f = insp.current();
-    draw_frame(win, painter, f, insp, [&](float scene_w, float fw, float fh, float scene_h) {
+    draw_frame(win, painter, f, insp, ps.font_scale, [&](float scene_w, float fw, float fh, float scene_h) {
       ImGui::SetCurrentContext(win.imgui());
+      ImGui::GetIO().FontGlobalScale = ps.font_scale;
       keys(win, insp, ps, &painter);
-      mouse_view(insp, scene_w, scene_h);
+      mouse_view(insp, ps, scene_w, scene_h);
       draw_panels(insp, ps, &painter, scene_w, fw - scene_w, fh, scene_h, scene_w, fh - scene_h);
+      insp.sync_history();  // what the controls changed, written down as script lines
     });
     if (insp.frame_index() != shown || n == 0) {
       glFinish();  // the redraw is done when the pixels are
@@ -280,47 +334,6 @@ std::string free_snapshot_name(double t) {
 }  // namespace
 
 namespace {
-// A slider for one scene key, with its field's range (logarithmic where it spans decades) and unit; edits
-// `s`.
-void key_slider(core::Scene& s, const std::string& key) {
-  double lo = 0, hi = 1;
-  const char* unit = "";
-  if (const core::Field* f = core::find_field(key)) {
-    lo = f->min, hi = f->max, unit = f->unit;
-  } else if (key.rfind("species.", 0) == 0) {
-    if (const core::SpeciesField* sf = core::find_species_field(key.substr(key.rfind('.') + 1)))
-      lo = sf->min, hi = sf->max, unit = sf->unit;
-  }
-  const auto values = core::scene_values(s);
-  const auto it = values.find(key);
-  if (it == values.end()) return;
-  float v = static_cast<float>(std::strtod(it->second.c_str(), nullptr));
-  const bool log = hi > 100 * std::max(lo, 1e-12);
-  const std::string label =
-      key + (unit && *unit && std::string(unit) != "1" ? " [" + std::string(unit) + "]" : "");
-  ImGui::SetNextItemWidth(0.5f * ImGui::GetContentRegionAvail().x);
-  if (ImGui::SliderFloat(label.c_str(), &v, static_cast<float>(lo), static_cast<float>(hi),
-                         log ? "%.3g" : "%.3f", log ? ImGuiSliderFlags_Logarithmic : 0)) {
-    try {
-      core::set_field(s, key, core::format_shortest(v), "the live panel");
-    } catch (const std::exception&) {
-      // a whole-number field: the slider shows it, set_field keeps it whole on the next edit
-    }
-  }
-}
-
-struct LiveState {
-  float speed = 1.0f, zoom = 1.0f;
-  bool paused = false, snapshot = false;
-  double step_pending = 0;  // s to advance while paused (single steps)
-  std::string message = "running";
-  render::Style style;
-  render::OverlayOptions overlay;
-  render::CameraSpec camera;  // split
-  core::Scene edit;           // the panel's values, applied on restart
-};
-constexpr double kLiveStep = 1.0 / 30.0;
-
 void live_keys_pressed(Window& win, LiveState& st) {
   for (int k : win.take_keys()) {
     if (ImGui::GetIO().WantTextInput) break;
@@ -338,77 +351,6 @@ void live_keys_pressed(Window& win, LiveState& st) {
   }
 }
 
-void live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
-                Painter& painter) {
-  ImGui::Text("t = %.2f s, %lld exits", f.t, static_cast<long long>(f.exits_total()));
-  if (ImGui::Button(st.paused ? "resume (space)" : "pause (space)")) st.paused = !st.paused;
-  ImGui::SameLine();
-  ImGui::BeginDisabled(!st.paused);
-  if (ImGui::Button("step 1/30 s (right)")) st.step_pending += kLiveStep;
-  ImGui::EndDisabled();
-  ImGui::SameLine();
-  if (ImGui::Button("snapshot (s)")) st.snapshot = true;
-  ImGui::SliderFloat("speed", &st.speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
-  ImGui::Separator();
-  ImGui::TextUnformatted("scene (applies on restart)");
-  for (const auto& key : source.live_keys()) key_slider(st.edit, key);
-  if (st.edit.shorthand()) {
-    const double weight = core::mass_of(st.edit.radius_added(), st.edit.density) * st.edit.gravity;
-    ImGui::Text("dipole contact force / weight = %.3g",
-                weight > 0 ? core::dipole_contact_force(st.edit) / weight : 0.0);
-  }
-  if (ImGui::Button("restart (settles first)")) {
-    try {
-      source.restart(st.edit);
-      st.message = "restarted";
-    } catch (const std::exception& e) {
-      st.message = e.what();
-    }
-  }
-  ImGui::Separator();
-  for (const char* c : {"split", "outlet", "hopper"}) {
-    if (ImGui::RadioButton(c, st.camera.text == c)) st.camera = render::parse_camera(c);
-    ImGui::SameLine();
-  }
-  ImGui::NewLine();
-  ImGui::SliderFloat("zoom", &st.zoom, 0.5f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-  const std::pair<const char*, render::ColorMode> colors[] = {
-      {"species", render::ColorMode::Species},
-      {"speed", render::ColorMode::Speed},
-      {"force", render::ColorMode::Force},
-      {"displacement", render::ColorMode::Displacement},
-      {"coordination", render::ColorMode::Coordination},
-      {"id", render::ColorMode::Id}};
-  // The colourings in an ID scope of their own: "speed" is also the simulation speed's slider in this window
-  // (one ImGui ID for both aborted the window on the first click).
-  ImGui::PushID("color");
-  for (const auto& [label, mode] : colors) {
-    if (mode == render::ColorMode::Displacement) ImGui::NewLine();
-    if (ImGui::RadioButton(label, st.style.color == mode)) st.style.color = mode;
-    ImGui::SameLine();
-  }
-  ImGui::PopID();
-  ImGui::NewLine();
-  if (st.style.color != render::ColorMode::Species && st.style.color != render::ColorMode::Id) {
-    for (auto m : {render::Colormap::Viridis, render::Colormap::Magma, render::Colormap::Inferno,
-                   render::Colormap::Cividis}) {
-      if (ImGui::RadioButton(render::colormap_name(m), st.style.colormap == m)) st.style.colormap = m;
-      ImGui::SameLine();
-    }
-    ImGui::NewLine();
-  }
-  ImGui::Checkbox("arch", &st.style.show_arch);
-  ImGui::SameLine();
-  ImGui::Checkbox("force chains", &st.style.chains);
-  if (painter.info_left()) {  // no corner of the picture is clear of the container
-    ImGui::Separator();
-    render::info_contents(f, od, st.overlay, st.style, ImGui::GetFontSize());
-  }
-  ImGui::TextWrapped("%s", st.message.c_str());
-  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
-  ImGui::TextWrapped("keys: space pause, right step (paused), s snapshot, q close");
-  ImGui::PopStyleColor();
-}
 }  // namespace
 
 void run_live_window(LiveSource& source, const WindowOptions& o) {
@@ -436,12 +378,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);
     const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
-    auto views_for = [&](int w, int h) {
-      auto views = render::layout_views(st.camera, source.geometry(), w, h);
-      for (auto& v : views)
-        if (v.name != "hopper") v.cam.height /= st.zoom;
-      return views;
-    };
+    auto views_for = [&](int w, int h) { return live_views(st, source.geometry(), w, h); };
     if (st.snapshot) {
       st.snapshot = false;
       try {
@@ -465,8 +402,9 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
       ImGui::Begin("siloscope live", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-      live_panel(source, st, f, od, painter);
+      draw_live_panel(source, st, f, od, &painter);
       ImGui::End();
+      mouse_zoom_pan(views, st.zoom, st.pan, static_cast<float>(scene_w), static_cast<float>(fh));
     });
     if (o.frames > 0 && n + 1 >= o.frames) {
       if (!o.screenshot.empty()) save_screenshot(o.files, o.screenshot, fw, fh);

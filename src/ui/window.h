@@ -17,6 +17,7 @@ struct WindowOptions {
   std::string screenshot;  // save the window's own pixels to this PNG after `frames` frames, then close
   int frames = 0;          // > 0: close after this many frames (tests, screenshots)
   const ImageFiles* files = nullptr;  // where screenshots and snapshots go (none: they are refused)
+  std::string source_name;            // the run or trajectory shown (a saved session names it)
 };
 
 // Returns the median redraw time (ms) of frames where the shown frame changed, 0 if none.

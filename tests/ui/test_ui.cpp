@@ -554,6 +554,7 @@ struct CountingFiles : ui::ImageFiles {
   void write_png(const std::string&, const core::Image&) const override {}
   void write_vector(const std::string&, const std::string&, double, double,
                     const std::string&) const override {}
+  void write_text(const std::string&, const std::string&) const override {}
   void check_movie(int, int, int) const override {}
   std::unique_ptr<ui::MovieSink> open_movie(const std::string&, int, int, int) const override {
     auto s = std::make_unique<Sink>();
@@ -593,4 +594,38 @@ TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, an
   CHECK(insp.views(160, 120).size() == 2);  // back to split
   CHECK_THROWS_WITH(insp.execute("freeze jam 2"), Contains("freeze clog|rule SECONDS"));
   CHECK_THROWS_WITH(insp.execute("camera-path 0:split"), Contains("a path moves one"));
+}
+
+TEST_CASE("a window session saved as a script replays off-screen to the same snapshot bytes (Xvfb, xdotool)",
+          "[ui]") {
+  fs::path d = temp_dir("session");
+  REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml --duration 12 --size 320x240 --fps 30 --quiet --out " +
+             (d / "rec").string()) == 0);
+  const std::string log = (d / "log.txt").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/tests/ui/ui_session.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log +
+             " 2>&1") == 0);
+  std::ifstream in(log);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  INFO(text);
+  CHECK_THAT(text, Contains("window exit 0") && Contains("replay exit 0"));
+  // What was done in the window, written down: the navigation, the colouring clicked, the wheel's zoom,
+  // the grain clicked, the snapshot.
+  CHECK_THAT(text, Contains("\nnext clog\nnext clog\ngoto clog 2 arch\ncolor force\nzoom to 1.32"));
+  CHECK_THAT(text, Contains("\nselect ") && Contains("\nsnapshot snapshot-{frame}.png 1920x1080\n"));
+  CHECK(text.find("\nselect off\nsnapshot") == std::string::npos);  // the click hit a grain
+  auto path_after = [&](const std::string& key) {
+    const auto at = text.find("\n" + key + " ");
+    REQUIRE(at != std::string::npos);
+    return text.substr(at + key.size() + 2, text.find('\n', at + 1) - at - key.size() - 2);
+  };
+  const std::string a = path_after("window-snapshot"), b = path_after("replay-snapshot");
+  std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+  REQUIRE(fa);
+  REQUIRE(fb);
+  const std::string pa((std::istreambuf_iterator<char>(fa)), std::istreambuf_iterator<char>());
+  const std::string pb((std::istreambuf_iterator<char>(fb)), std::istreambuf_iterator<char>());
+  CHECK(pa.size() > 10000);
+  CHECK(pa == pb);
 }

@@ -84,6 +84,7 @@ int inspect(const InspectOptions& o) {
   w.screenshot = o.screenshot;
   w.frames = o.frames > 0 ? o.frames : (o.screenshot.empty() ? 0 : 3);
   w.files = &files;
+  w.source_name = o.path;
   const double redraw = ui::run_inspector_window(insp, w);
   if (!o.quiet && redraw > 0) std::fprintf(stderr, "median redraw after a frame change: %.1f ms\n", redraw);
   return 0;

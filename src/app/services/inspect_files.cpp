@@ -42,6 +42,10 @@ void RecordFiles::write_png(const std::string& path, const core::Image& img) con
   record::write_png(path, img, true);
 }
 
+void RecordFiles::write_text(const std::string& path, const std::string& text) const {
+  io::write_file_atomic(path, text);
+}
+
 void RecordFiles::check_movie(int width, int height, int fps) const {
   record::validate(settings(width, height, fps));
 }

@@ -44,6 +44,7 @@ class RecordFiles : public ui::ImageFiles {
                                             int fps) const override;
   void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
                     double height_m, const std::string& caption) const override;
+  void write_text(const std::string& path, const std::string& text) const override;
 };
 
 }  // namespace app
