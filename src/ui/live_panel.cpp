@@ -181,4 +181,14 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
   ImGui::PopStyleColor();
 }
 
+void draw_live_window(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
+                      const render::Painter* painter, float x, float w, float h) {
+  ImGui::SetNextWindowPos(ImVec2(x, 0));
+  ImGui::SetNextWindowSize(ImVec2(w, h));
+  ImGui::Begin("siloscope live", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  draw_live_panel(source, st, f, od, painter);
+  ImGui::End();
+}
+
 }  // namespace ui

@@ -41,6 +41,10 @@ std::vector<render::View> live_views(const LiveState& st, const core::Geometry& 
 void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
                      const render::Painter* painter);
 
+// The panel as the live window shows it: a fixed ImGui window at (x, 0) of w x h holding draw_live_panel.
+void draw_live_window(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
+                      const render::Painter* painter, float x, float w, float h);
+
 // A scene key's control: dragged in steps of 0.5% of its value (of its field's range when it is 0), clamped
 // to the range of its field in the scene's field table, its unit in the label; edits `s`. Returns whether it
 // changed.

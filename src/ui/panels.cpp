@@ -304,7 +304,7 @@ void draw_grain(Inspector& insp, PanelState& ps) {
   remember(ps, "clear selection");
 }
 
-void draw_arch(Inspector& insp, PanelState& ps, Painter* painter, const core::Frame& f) {
+void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
   // The arch of this frame: its summary, then member by member (left to right).
   draw_arch_summary(f, insp.overlay_data);
   const std::vector<ArchMember> rows = insp.arch_table();
@@ -355,12 +355,6 @@ void draw_arch(Inspector& insp, PanelState& ps, Painter* painter, const core::Fr
     }
     remember(ps, "track arch");
     if (!forces) ImGui::TextDisabled("forces: the run kept no contacts (record keeps them)");
-  }
-  ImGui::Text("%zu clogs in this trajectory", insp.clogs().size());
-  // No corner of the picture is clear of the container (zoomed in): the information box is shown here.
-  if (painter && painter->info_left()) {
-    ImGui::Separator();
-    render::info_contents(f, insp.overlay_data, insp.overlay, insp.style, ImGui::GetFontSize());
   }
 }
 
@@ -500,9 +494,14 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
   ImGui::BeginChild("details", ImVec2(0, details_h));
   if (ImGui::BeginTabBar("tabs")) {
     if (ImGui::BeginTabItem("arch and grain")) {
-      draw_arch(insp, ps, painter, f);
+      draw_arch(insp, ps, f);
       ImGui::Separator();
       draw_grain(insp, ps);
+      // No corner of the picture is clear of the container (zoomed in): the information box is shown here.
+      if (painter && painter->info_left()) {
+        ImGui::Separator();
+        render::info_contents(f, insp.overlay_data, insp.overlay, insp.style, ImGui::GetFontSize());
+      }
       ImGui::EndTabItem();
     }
     remember(ps, "arch tab");

@@ -398,12 +398,8 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     const auto views = views_for(scene_w, fh);
     painter.draw({{&f, &source.geometry(), &views, &od}}, st.style, st.overlay, fw, fh, scene_w);
     imgui_frame(win, fw, fh, [&] {
-      ImGui::SetNextWindowPos(ImVec2(static_cast<float>(scene_w), 0));
-      ImGui::SetNextWindowSize(ImVec2(static_cast<float>(fw - scene_w), static_cast<float>(fh)));
-      ImGui::Begin("siloscope live", nullptr,
-                   ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-      draw_live_panel(source, st, f, od, &painter);
-      ImGui::End();
+      draw_live_window(source, st, f, od, &painter, static_cast<float>(scene_w),
+                       static_cast<float>(fw - scene_w), static_cast<float>(fh));
       mouse_zoom_pan(views, st.zoom, st.pan, static_cast<float>(scene_w), static_cast<float>(fh));
     });
     if (o.frames > 0 && n + 1 >= o.frames) {

@@ -13,16 +13,21 @@
 #include <filesystem>
 #include <fstream>
 
+#include <functional>
+#include <set>
 #include "app/services/inspect_files.h"
+#include "app/services/live_silo.h"
 #include "core/error.h"
 #include "fixtures.h"
 #include "helpers.h"
+#include "io/contacts.h"
 #include "io/metadata.h"
 #include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/context.h"
 #include "render/palette.h"
 #include "ui/inspector.h"
+#include "ui/live_panel.h"
 #include "ui/panels.h"
 
 bool ImGui_ImplOpenGL3_Init(const char* glsl_version);
@@ -628,4 +633,141 @@ TEST_CASE("a window session saved as a script replays off-screen to the same sna
   const std::string pb((std::istreambuf_iterator<char>(fb)), std::istreambuf_iterator<char>());
   CHECK(pa.size() > 10000);
   CHECK(pa == pb);
+}
+
+namespace {
+// Synthetic mouse input for a panel drawn by `draw` (between NewFrame and Render): a click (press, release)
+// at every point of a grid over [x0, x1] x [y0, y1], then a 40-pixel drag to the right from the same point,
+// rows from the top. `skip(y)` leaves rows out. `between` runs after each point (the live panel's
+// simulation).
+struct GridClicker {
+  ImGuiIO& io;
+  std::function<void()> draw;
+  long frames = 0;
+  void frame(ImVec2 mouse, bool down) {
+    io.DeltaTime = 1.0f / 60;
+    io.MousePos = mouse;
+    io.MouseDown[0] = down;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    draw();
+    ImGui::Render();
+    ++frames;
+  }
+  void click(ImVec2 p) {
+    frame(p, false);
+    frame(p, true);
+    frame(p, false);
+  }
+  void grid(float x0, float y0, float x1, float y1, float step, const std::function<bool(float)>& skip = {},
+            const std::function<void()>& between = {}) {
+    for (float y = y0; y <= y1; y += step) {
+      if (skip && skip(y)) continue;
+      for (float x = x0; x <= x1; x += step) {
+        click(ImVec2(x, y));
+        frame(ImVec2(x, y), true);
+        frame(ImVec2(x + 20, y), true);
+        frame(ImVec2(x + 40, y), true);
+        frame(ImVec2(x + 40, y), false);
+        frame(ImVec2(-1, -1), false);
+        if (between) between();
+      }
+    }
+  }
+};
+}  // namespace
+
+TEST_CASE(
+    "every control of the inspector's and the live window's panels survives clicks and drags (paper, "
+    "pentagons)",
+    "[ui]") {
+  gl();
+  for (const std::string scene : {"paper", "pentagons"}) {
+    INFO(scene);
+    fs::path d = temp_dir("click_" + scene);
+    const std::string file = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/" + scene + ".toml";
+    REQUIRE(sh(kBin + " record " + file + " --duration 4 --size 320x240 --fps 10 --quiet --out " +
+               (d / "rec").string()) == 0);
+    io::Trajectory t((d / "rec" / "trajectory.sstraj").string());
+    io::Contacts contacts((d / "rec" / "contacts.sscon").string(), t.info().n_particles);
+    const app::TrajectoryFrames frames(t, &contacts);
+    const app::RecordFiles files;
+    const core::Model model = app::run_model(t, (d / "rec").string());
+    ui::Inspector insp(frames, model, &files);
+    ui::Painter painter;
+    ImGuiContext* ctx = ImGui::CreateContext();
+    ImGui::SetCurrentContext(ctx);
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(1280, 720);
+    REQUIRE(ImGui_ImplOpenGL3_Init("#version 330 core"));
+    ui::PanelState ps;
+    ps.export_to = static_cast<int>(t.size() - 1);
+    for (auto [field, name] :
+         {std::pair{ps.snapshot_path, "snap-{frame}.png"}, std::pair{ps.export_path, "clip-{frame}.mp4"},
+          std::pair{ps.session_path, "session-{frame}.txt"}})
+      std::snprintf(field, 256, "%s", (d / name).c_str());
+    GridClicker g{io, [&] {
+                    ui::draw_panels(insp, ps, &painter, 880, 400, 720, 640, 880, 80);
+                    ImGui::SetCurrentContext(ctx);  // the painter's overlay has an ImGui context of its own
+                  }};
+    g.frame(ImVec2(-1, -1), false);
+    // The panel and the timeline, twice: the outputs tab ends up open for the rows below the tabs in the
+    // first pass, the arch tab (clicked) in the second.
+    auto advance = [&] {
+      if (ps.playing) ui::advance_playback(insp, ps, 3);
+    };
+    g.grid(884, 4, 1276, 716, 12, {}, advance);
+    g.grid(4, 644, 876, 716, 24);
+    REQUIRE(ps.rects.count("arch tab"));
+    const auto tab = ps.rects["arch tab"];
+    g.click(ImVec2(0.5f * (tab[0] + tab[2]), 0.5f * (tab[1] + tab[3])));
+    g.grid(884, tab[3] + 4, 1276, 716, 12, {}, advance);
+    // The key overlay and its close button.
+    ps.show_keys = true;
+    g.frame(ImVec2(-1, -1), false);
+    REQUIRE(ps.rects.count("close keys"));
+    const auto close = ps.rects["close keys"];
+    g.click(ImVec2(0.5f * (close[0] + close[2]), 0.5f * (close[1] + close[3])));
+    CHECK_FALSE(ps.show_keys);
+    // The clicks did things: the window's session holds many kinds of command.
+    insp.sync_history();
+    std::set<std::string> kinds;
+    for (const auto& line : insp.history()) kinds.insert(line.substr(0, line.find(' ')));
+    INFO(kinds.size() << " kinds of command after " << g.frames << " frames");
+    CHECK(kinds.size() >= 8);
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui::DestroyContext(ctx);
+
+    // The live window's panel on the running scene (settled for 2 s), the simulation advanced between clicks.
+    core::Scene s = model.scene;
+    core::apply_overrides(s, {"settle_time=2"});
+    app::LiveSilo live(core::compile(s));
+    ImGuiContext* lctx = ImGui::CreateContext();
+    ImGui::SetCurrentContext(lctx);
+    ImGuiIO& lio = ImGui::GetIO();
+    lio.IniFilename = nullptr;
+    lio.DisplaySize = ImVec2(1280, 720);
+    REQUIRE(ImGui_ImplOpenGL3_Init("#version 330 core"));
+    ui::LiveState st;
+    st.edit = live.scene();
+    core::Frame f = live.frame(false);
+    GridClicker lg{lio,
+                   [&] { ui::draw_live_window(live, st, f, live.overlay_data(), nullptr, 880, 400, 720); }};
+    long points = 0;
+    lg.grid(884, 4, 1276, 716, 20, {}, [&] {
+      if (++points % 15 || st.paused) return;
+      try {
+        live.advance(ui::kLiveStep);
+      } catch (const std::exception& e) {
+        st.message = e.what(), st.paused = true;  // as the window does: the health monitor's word, paused
+      }
+      f = live.frame(st.style.color == render::ColorMode::Force || st.style.chains);
+    });
+    CHECK(lg.frames > 3000);
+    CHECK(st.rects.count("pause") + st.rects.count("speed") == 2);
+    CHECK(st.message != "running");  // a restart (or the health monitor) spoke
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui::DestroyContext(lctx);
+  }
 }

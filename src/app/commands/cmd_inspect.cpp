@@ -7,6 +7,7 @@
 
 #include "app/services/cli.h"
 #include "app/services/inspect_files.h"
+#include "app/services/live_silo.h"
 #include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "app/services/session.h"
@@ -89,42 +90,6 @@ int inspect(const InspectOptions& o) {
   if (!o.quiet && redraw > 0) std::fprintf(stderr, "median redraw after a frame change: %.1f ms\n", redraw);
   return 0;
 }
-
-// The live window's simulation: a Silo the window never sees (ui knows no simulation).
-class LiveSilo final : public ui::LiveSource {
- public:
-  explicit LiveSilo(const core::Model& model)
-      : model_(model), session_(std::make_unique<Session>(std::vector{model})) {}
-  void advance(double seconds) override {
-    session_->run(session_->world(0).time() + seconds, FrameClock::none(), {});
-  }
-  core::Frame frame(bool forces) const override { return session_->world(0).frame(forces); }
-  const core::Geometry& geometry() const override { return session_->world(0).geometry(); }
-  render::OverlayData overlay_data() const override { return render::overlay_data_for(model_); }
-  const core::Scene& scene() const override { return model_.scene; }
-  // The keys worth changing live: the paper's shorthand (r, chi, mu, the kick), or a scene's drive, outlet,
-  // obstacle, tilt and each species' dipole.
-  std::vector<std::string> live_keys() const override {
-    if (scene_.shorthand()) return {"size_ratio", "chi", "mu", "kick_impulse_max"};
-    std::vector<std::string> keys = {"kick_impulse_max", "aperture", "tilt"};
-    if (scene_.vibration_amplitude > 0) keys.push_back("vibration_amplitude");
-    if (scene_.vibration_gamma > 0) keys.push_back("vibration_gamma");
-    if (scene_.vibration_amplitude > 0 || scene_.vibration_gamma > 0) keys.push_back("vibration_frequency");
-    if (scene_.obstacle != "none") keys.push_back("obstacle_height");
-    for (const auto& sp : scene_.species) keys.push_back("species." + sp.name + ".dipole");
-    return keys;
-  }
-  void restart(const core::Scene& s) override {
-    core::Model m = core::compile(s);
-    session_ = std::make_unique<Session>(std::vector{m});
-    model_ = std::move(m);
-  }
-
- private:
-  core::Model model_;
-  const core::Scene& scene_ = model_.scene;
-  std::unique_ptr<Session> session_;
-};
 
 int live(const LiveOptions& o) {
   const core::Model model = o.scene.compile();
