@@ -25,7 +25,10 @@ void scale_bar(const char* label, double lo, double hi, const Style& style, floa
                                               to_u32(colormap(style, (k + 0.5) / steps)));
   ImGui::Dummy(ImVec2(bw, bh));
   ImGui::SameLine();
-  ImGui::Text("%.3g", hi);
+  if (hi > lo)
+    ImGui::Text("%.3g", hi);
+  else
+    ImGui::TextUnformatted("each frame's largest");  // displacement "auto", not yet settled on a frame
 }
 }  // namespace
 

@@ -361,10 +361,9 @@ void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
 void draw_outputs(Inspector& insp, PanelState& ps, Painter* painter, float w) {
   // Outputs.
   ImGui::SetNextItemWidth(0.55f * w);
-  ImGui::InputText("##snap", ps.snapshot_path, sizeof ps.snapshot_path);
-  ImGui::SameLine();
+  ImGui::Combo("size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));  // of snapshots and clips
   ImGui::SetNextItemWidth(-1);
-  ImGui::Combo("##size", &ps.snapshot_size, kSizes, IM_ARRAYSIZE(kSizes));
+  ImGui::InputText("##snap", ps.snapshot_path, sizeof ps.snapshot_path);
   if (ImGui::Button("snapshot this frame (s)"))
     act(
         insp, ps, [&] { snapshot_from_panel(insp, ps, painter); }, true);
@@ -381,13 +380,21 @@ void draw_outputs(Inspector& insp, PanelState& ps, Painter* painter, float w) {
     act(
         insp, ps,
         [&] {
-          insp.export_frames(ps.export_path, ps.export_from, ps.export_to, 1280, 720, clip_fps, painter);
+          int cw = 0, ch = 0;
+          render::parse_size(kSizes[ps.snapshot_size], "export size", cw, ch);
+          insp.export_frames(ps.export_path, ps.export_from, ps.export_to, cw, ch, clip_fps, painter);
         },
         true);
   ImGui::SameLine();
   if (ImGui::Button("export this clog"))
     act(
-        insp, ps, [&] { insp.export_clog(ps.export_path, 1280, 720, clip_fps, painter); }, true);
+        insp, ps,
+        [&] {
+          int cw = 0, ch = 0;
+          render::parse_size(kSizes[ps.snapshot_size], "export size", cw, ch);
+          insp.export_clog(ps.export_path, cw, ch, clip_fps, painter);
+        },
+        true);
   remember(ps, "export clog");
   // The session so far as a script: replayed with --script it makes the same pictures.
   ImGui::SetNextItemWidth(0.55f * w);

@@ -48,11 +48,14 @@ void* glfw_proc(const char* name) {
 // per-frame key state saw 2 of 5 quick taps). ImGui's own callback is chained after this one.
 struct KeyQueue {
   std::vector<int> keys;
+  Clock::time_point first;  // when the oldest queued key arrived (key-to-picture latency)
 };
 void on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w)))
+  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) {
+    if (q->keys.empty()) q->first = Clock::now();
     q->keys.push_back(action == GLFW_REPEAT ? -key : key);
+  }
 }
 
 // A GLFW window with a GL 3.3 core context and an ImGui context of its own.
@@ -96,7 +99,12 @@ class Window {
   GLFWwindow* get() const { return win_; }
   ImGuiContext* imgui() const { return ctx_; }
   // The key presses since the last call (negative: auto-repeat of a held key).
-  std::vector<int> take_keys() { return std::exchange(queue_.keys, {}); }
+  std::vector<int> take_keys() {
+    if (!queue_.keys.empty()) key_at_ = queue_.first;
+    return std::exchange(queue_.keys, {});
+  }
+  // When the oldest key of the last non-empty take_keys() arrived.
+  Clock::time_point key_at() const { return key_at_; }
   // Poll while something moves (playing, a test's frame budget, the few frames ImGui needs to settle after an
   // event); otherwise sleep until the next event: an idle window costs no CPU.
   void wait_or_poll(bool busy) {
@@ -111,6 +119,7 @@ class Window {
 
  private:
   KeyQueue queue_;
+  Clock::time_point key_at_;
   int settle_ = 3;
   GLFWwindow* win_ = nullptr;
   ImGuiContext* ctx_ = nullptr;
@@ -274,7 +283,8 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     glfwGetFramebufferSize(win.get(), &fw, &fh);
     ps.font_scale = std::clamp(static_cast<float>(fh) / 720.0f, 1.0f, 2.0f);
   }
-  std::vector<double> redraws;
+  std::vector<double> redraws, key_to_picture;
+  Clock::time_point key_seen;
   long shown = -1;
   double play_acc = 0;
   auto last = Clock::now();
@@ -303,8 +313,14 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     });
     if (insp.frame_index() != shown || n == 0) {
       glFinish();  // the redraw is done when the pixels are
-      ps.last_redraw_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
+      const auto done = Clock::now();
+      ps.last_redraw_ms = 1e3 * std::chrono::duration<double>(done - t0).count();
       if (n > 0) redraws.push_back(ps.last_redraw_ms);
+      // A key moved the frame: from its arrival to the new picture's pixels (before the buffer swap).
+      if (n > 0 && win.key_at() > key_seen) {
+        key_to_picture.push_back(1e3 * std::chrono::duration<double>(done - win.key_at()).count());
+        key_seen = win.key_at();
+      }
       shown = insp.frame_index();
     }
     if (o.frames > 0 && n + 1 >= o.frames) {
@@ -318,6 +334,10 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
+  if (!key_to_picture.empty())
+    std::fprintf(stderr, "key to picture: median %.1f ms, largest %.1f ms (%zu keys that moved the frame)\n",
+                 core::median(key_to_picture),
+                 *std::max_element(key_to_picture.begin(), key_to_picture.end()), key_to_picture.size());
   return redraws.empty() ? 0.0 : core::median(redraws);
 }
 
