@@ -16,9 +16,13 @@ list=$(mktemp)
 cp "$src/campaign.toml" "$dest/"
 (cd "$src" && find runs \( -name metadata.toml -o -name exits.csv -o -name clogs.csv -o -name arches.csv \
   -o -name '*.refused.toml' \) | LC_ALL=C sort > "$list")
-tar -C "$src" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T "$list" \
+# Staged, so that each realization's command line names the program, not where this machine keeps it.
+stage=$(mktemp -d)
+(cd "$src" && cp --parents $(cat "$list") "$stage/")
+find "$stage" -name metadata.toml -exec sed -i -E 's#^command = "[^" ]*/(siloscope[^" ]*) #command = "siloscope #' {} +
+tar -C "$stage" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T "$list" \
   | xz -9e > "$dest/runs/runs.tar.xz.partial"
-rm -f "$list"
+rm -rf "$list" "$stage"
 mv "$dest/runs/runs.tar.xz.partial" "$dest/runs/runs.tar.xz"
 for f in points.csv realizations.csv survival.csv avalanches.csv clog_survival.csv species.csv metadata.toml; do
   cp "$src/analysis/$f" "$dest/analysis/"

@@ -350,3 +350,48 @@ TEST_CASE("figures draws what the grid allows, avalanche sizes included, and nam
   CHECK_THAT(r.output,
              Catch::Matchers::Contains("not drawn: the point r = 1, chi = 0.25, mu = 0 fits no figure"));
 }
+
+TEST_CASE("emit-jobs groups realizations into array tasks of --task-minutes and at most --max-array of them",
+          "[campaign][app]") {
+  fs::path d = temp_dir("array");
+  fs::path c = tiny_campaign(d, 2);
+  // Without a finished realization there is no wall time to fill minutes with: the limit on tasks decides.
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --emit-jobs --max-array 4 --results " + (d / "cold").string() +
+             " > " + (d / "cold.txt").string()) == 0);
+  CHECK_THAT(slurp(d / "cold.txt"), Catch::Matchers::Contains("array:         3 tasks of 2 realizations") &&
+                                        Catch::Matchers::Contains("no finished realization"));
+  // A first pass measures the wall time; the rest goes into at most 2 tasks, run as SLURM runs them (its
+  // array variables), and the aggregate equals a local sweep's.
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --up-to 1 --quiet --results " + (d / "arr").string()) == 0);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --emit-jobs --task-minutes 0.1 --max-array 2 --results " +
+             (d / "arr").string() + " > " + (d / "emit.txt").string()) == 0);
+  const std::string emit = slurp(d / "emit.txt");
+  INFO(emit);
+  CHECK_THAT(emit, Catch::Matchers::Contains("3 jobs written"));
+  // T tasks of K: K fills 6 s at the measured median (at least 2 so that T <= 2), T * K covers the 3 jobs.
+  const auto at = emit.find("array:");
+  REQUIRE(at != std::string::npos);
+  int tasks = 0, per = 0;
+  double minutes = 0, median = 0;
+  REQUIRE(std::sscanf(emit.c_str() + at,
+                      "array: %d tasks of %d realizations (about %lf min each at the median %lf", &tasks,
+                      &per, &minutes, &median) == 4);
+  CHECK(tasks <= 2);
+  CHECK(tasks * per >= 3);
+  CHECK((tasks - 1) * per < 3);
+  CHECK(per >= 2);
+  CHECK((per == 2 || per * median <= 6.0 * 1.01));  // the most that fit 6 s (the median printed to 3 digits)
+  CHECK((per + 1) * median > 6.0 * 0.99);
+  CHECK_THAT(slurp(d / "arr" / "jobs.slurm"), Catch::Matchers::Contains("per=" + std::to_string(per) + "\n"));
+  for (int task = 1; task <= tasks; ++task)
+    REQUIRE(sh("cd " + (d / "arr").string() + " && SLURM_ARRAY_TASK_ID=" + std::to_string(task) +
+               " bash jobs.slurm") == 0);
+  CHECK(count_runs(d / "arr") == 6);
+  REQUIRE(sh(kBin + " analyze " + (d / "arr" / "runs").string() + " --out " +
+             (d / "arr" / "analysis").string() + " --force > /dev/null") == 0);
+  REQUIRE(sh(kBin + " sweep " + c.string() + " --quiet --results " + (d / "local").string()) == 0);
+  CHECK(slurp(d / "arr" / "analysis" / "points.csv") == slurp(d / "local" / "analysis" / "points.csv"));
+  // Options that only mean something for a job list are refused without it.
+  CHECK(sh(kBin + " sweep " + c.string() + " --max-array 5 --results " + (d / "x").string() +
+           " 2> /dev/null") == 2);
+}

@@ -32,6 +32,7 @@
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/stats.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -45,7 +46,9 @@ namespace fs = std::filesystem;
 struct SweepOptions {
   std::string campaign, results, binary;
   int workers = 0;
-  int up_to = 0;  // run only realizations 0..up_to-1 of every point (0: all)
+  int up_to = 0;             // run only realizations 0..up_to-1 of every point (0: all)
+  double task_minutes = 30;  // --emit-jobs: the target length of one array task
+  int max_array = 1000;      // --emit-jobs: at most this many array tasks (SLURM's MaxArraySize is 1001)
   bool emit_jobs = false, dry_run = false, no_analyze = false, quiet = false, status = false;
 };
 
@@ -338,22 +341,47 @@ int print_status(const Campaign& c, const fs::path& dir, int up_to, int workers)
   return 0;
 }
 
-void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& jobs) {
+// The median wall time (s) of the campaign's finished realizations, 0 when none records one.
+double median_wall_s(const Campaign& c, const fs::path& dir) {
+  std::vector<double> walls;
+  for (size_t p = 0; p < c.points.size(); ++p)
+    for (int k = 0; k < c.realizations; ++k)
+      if (double w = realization_wall_s(dir / "runs" / c.run_dir(p, k) / "metadata.toml"); w > 0)
+        walls.push_back(w);
+  return walls.empty() ? 0.0 : core::median(walls);
+}
+
+// How many realizations one array task runs: as many as fill task_minutes at the measured median wall time
+// (one when none is measured yet), and never so few that the tasks exceed max_array.
+size_t realizations_per_task(size_t jobs, double median_s, double task_minutes, int max_array) {
+  size_t k =
+      median_s > 0 ? static_cast<size_t>(std::max(1.0, std::floor(60.0 * task_minutes / median_s))) : 1;
+  const size_t least = (jobs + static_cast<size_t>(max_array) - 1) / static_cast<size_t>(max_array);
+  return std::max<size_t>({k, least, 1});
+}
+
+void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& jobs, double task_minutes,
+               int max_array) {
   std::string list;
   for (const auto& j : jobs) list += j.line + "\n";
   io::write_file_atomic(dir / "jobs.txt", list);
+  const double median = median_wall_s(c, dir);
+  const size_t per = realizations_per_task(jobs.size(), median, task_minutes, max_array);
+  const size_t tasks = (jobs.size() + per - 1) / per;
+  const std::string n = std::to_string(tasks), k = std::to_string(per);
   std::string slurm =
       "#!/bin/bash\n"
       "# SLURM array for campaign " +
-      c.name +
-      ": one realization per task. Submit from this directory:\n"
+      c.name + ": " + std::to_string(jobs.size()) + " realizations, " + k + " per task (lines (i-1)*" + k +
+      "+1 to i*" + k + " of jobs.txt in task i), " + n +
+      " tasks. Submit from this directory:\n"
       "#   sbatch --array=1-" +
-      std::to_string(jobs.size()) +
+      n +
       " jobs.slurm\n"
       "# Throttle to K tasks at a time with --array=1-" +
-      std::to_string(jobs.size()) +
-      "%K. A task that is cancelled,\n"
-      "# pre-empted or times out leaves nothing under its run directory; rerun `siloscope sweep CAMPAIGN\n"
+      n +
+      "%K. A task that is cancelled, pre-empted or\n"
+      "# times out leaves nothing under the run directory it was writing; rerun `siloscope sweep CAMPAIGN\n"
       "# --emit-jobs --results THIS_DIR` and submit again: only missing realizations are listed "
       "(docs/cluster.md).\n"
       "#SBATCH --requeue\n"
@@ -362,16 +390,35 @@ void emit_jobs(const Campaign& c, const fs::path& dir, const std::vector<Job>& j
       "\n"
       "#SBATCH --cpus-per-task=1\n"
       "#SBATCH --output=logs/slurm-%A_%a.out\n"
-      "set -euo pipefail\n"
+      "set -uo pipefail\n"
       "cd \"${SLURM_SUBMIT_DIR:-.}\"\n"
       "mkdir -p logs\n"
-      "line=$(sed -n \"${SLURM_ARRAY_TASK_ID}p\" jobs.txt)\n"
-      "eval \"$line\"\n";
+      "per=" +
+      k +
+      "\n"
+      "first=$(( (SLURM_ARRAY_TASK_ID - 1) * per + 1 ))\n"
+      "last=$(( SLURM_ARRAY_TASK_ID * per ))\n"
+      "status=0\n"
+      "# Each realization in turn; one that fails does not stop the others (the task fails at the end).\n"
+      "while IFS= read -r line; do\n"
+      "  eval \"$line\" || status=1\n"
+      "done < <(sed -n \"${first},${last}p\" jobs.txt)\n"
+      "exit $status\n";
   io::write_file_atomic(dir / "jobs.slurm", slurm);
   std::printf("%zu jobs written to %s/jobs.txt (finished realizations left out)\n", jobs.size(), dir.c_str());
+  if (median > 0)
+    std::printf(
+        "array:         %zu tasks of %zu realizations (about %.3g min each at the median %.3g s per "
+        "realization of the finished ones; --task-minutes %g, --max-array %d)\n",
+        tasks, per, per * median / 60.0, median, task_minutes, max_array);
+  else
+    std::printf(
+        "array:         %zu tasks of %zu realizations (no finished realization measures a wall time "
+        "yet: --task-minutes needs one; run `sweep --up-to 1` first; --max-array %d)\n",
+        tasks, per, max_array);
   std::printf("GNU parallel:  cd %s && parallel --joblog logs/parallel.log -j $(nproc) < jobs.txt\n",
               dir.c_str());
-  std::printf("SLURM:         cd %s && sbatch --array=1-%zu jobs.slurm\n", dir.c_str(), jobs.size());
+  std::printf("SLURM:         cd %s && sbatch --array=1-%zu jobs.slurm\n", dir.c_str(), tasks);
   std::printf("then:          siloscope analyze %s/runs --out %s/analysis --force\n", dir.c_str(),
               dir.c_str());
 }
@@ -491,7 +538,7 @@ int sweep(const SweepOptions& o) {
   const size_t total =
       c.points.size() * static_cast<size_t>(o.up_to > 0 ? std::min(o.up_to, c.realizations) : c.realizations);
   if (o.emit_jobs) {
-    emit_jobs(c, dir, jobs);
+    emit_jobs(c, dir, jobs, o.task_minutes, o.max_array);
     return 0;
   }
   if (!o.quiet)
@@ -538,6 +585,17 @@ void add_sweep_command(CLI::App& app, Action& action) {
       ->check(whole_number(1, 1000000));
   auto* emit = cmd->add_flag("--emit-jobs", o->emit_jobs,
                              "write jobs.txt (GNU parallel) and jobs.slurm (SLURM array) instead of running");
+  cmd->add_option("--task-minutes", o->task_minutes,
+                  "with --emit-jobs: realizations per array task to fill this many minutes at the finished "
+                  "ones' median wall time")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 10000.0))
+      ->needs(emit);
+  cmd->add_option("--max-array", o->max_array,
+                  "with --emit-jobs: at most this many array tasks (SLURM's default MaxArraySize is 1001)")
+      ->capture_default_str()
+      ->check(whole_number(1, 100000000))
+      ->needs(emit);
   cmd->add_option("--binary", o->binary, "siloscope binary named in job lists (default: this one)");
   auto* dry = cmd->add_flag("--dry-run", o->dry_run, "print the expanded grid and seeds, run nothing");
   cmd->add_flag("--status", o->status,
