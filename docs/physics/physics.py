@@ -139,6 +139,42 @@ def beverloo(results, out, lines):
               "![Beverloo fit](figures/beverloo.png)", ""]
 
 
+def per_run_avalanches(results, keys):
+    """Each realization's avalanche count and mean size (analysis/realizations.csv, by the definition the
+    analysis used) with the scene keys `keys` of its point (read from the run's own metadata)."""
+    c = siloscope.read_campaign(results)
+    scenes = {os.path.relpath(r.path, results): r.scene for r in runs_of(results)}
+    rows = []
+    for _, r in c.realizations.iterrows():
+        sc = scenes[r["source"]]
+        rows.append({**{k: sc[k] for k in keys}, "avalanches": int(r["avalanches"]), "mean": float(r["avalanche_mean"]),
+                     "spontaneous": int(r["clogs_spontaneous"])})
+    import pandas as pd
+    return pd.DataFrame(rows)
+
+
+def pooled_mean(runs):
+    """Avalanches pooled over realizations: all sizes' mean (sum of n_i m_i over sum of n_i)."""
+    n = runs["avalanches"].to_numpy(float)
+    m = np.nan_to_num(runs["mean"].to_numpy(float))
+    return float((n * m).sum() / n.sum()) if n.sum() else math.nan
+
+
+def boot_ratio(a, b, stat, k=2000):
+    """95% percentile interval of stat(a) / stat(b), resampling the realizations of a and b independently."""
+    out = []
+    for _ in range(k):
+        ra = a.iloc[RNG.integers(0, len(a), len(a))]
+        rb = b.iloc[RNG.integers(0, len(b), len(b))]
+        out.append(stat(ra) / stat(rb))
+    return tuple(np.quantile(out, [0.025, 0.975]))
+
+
+def boot_stat(a, stat, k=2000):
+    out = [stat(a.iloc[RNG.integers(0, len(a), len(a))]) for _ in range(k)]
+    return tuple(np.quantile(out, [0.025, 0.975]))
+
+
 def avalanche_table(campaign):
     return campaign.points
 
@@ -175,23 +211,82 @@ def obstacle(results, out, lines):
     fig.savefig(os.path.join(out, "obstacle.png"))
     plt.close(fig)
     best = with_ob.loc[with_ob["avalanche_mean"].idxmax()]
-    ratio = best["avalanche_mean"] / none["avalanche_mean"]
-    rel = math.hypot(best["avalanche_mean_ci95"] / best["avalanche_mean"], none["avalanche_mean_ci95"] / none["avalanche_mean"])
+    runs = per_run_avalanches(results, ("obstacle", "obstacle_height"))
+    base = runs[runs["obstacle"] == "none"]
+    per_run_mean = lambda r: float(np.nanmean(r["mean"].to_numpy(float)))  # noqa: E731
+    end = str(p["avalanche_end"].iloc[0]) if "avalanche_end" in p else "gaps"
     lines += ["## An obstacle above the outlet", "",
               f"`assets/campaigns/obstacle.toml` (`silo-obstacle.toml`): outlet D = {D:g} m = {D / 0.1:g} mean grain "
-              "diameters, no drive (a clog lasts until the rule removes its arch after 1 s), a disk obstacle of "
-              f"diameter D with its centre at h = 1, 1.5, 2 and 3 D above the outlet, and none; "
-              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per point. Mean avalanche size "
-              "(grains leaving between two clogs; Zuriguel et al., PRL 107, 278001, 2011 measure the same):", "",
-              f"- no obstacle: <s> = {none['avalanche_mean']:.1f} +- {none['avalanche_mean_ci95']:.1f} "
-              f"(Q = {none['q_per_s']:.2f} +- {none['q_per_s_ci95']:.2f} grains/s)"]
-    for _, row in with_ob.iterrows():
-        lines.append(f"- h = {row['obstacle_height'] / D:g} D: <s> = {row['avalanche_mean']:.1f} +- "
-                     f"{row['avalanche_mean_ci95']:.1f} ({row['avalanche_mean'] / none['avalanche_mean']:.2f}x; "
-                     f"Q = {row['q_per_s']:.2f} +- {row['q_per_s_ci95']:.2f} grains/s)")
-    lines += [f"- the best height measured, h = {best['obstacle_height'] / D:g} D, makes avalanches {ratio:.1f} +- "
-              f"{ratio * rel:.1f} times larger; an obstacle too close (h = 1 D) makes them smaller", "",
-              "![Obstacle](figures/obstacle.png)", ""]
+              "diameters, no drive, a disk obstacle of diameter D with its centre at h = 1, 1.5, 2 and 3 D above "
+              f"the outlet, and none; {int(p['n_runs'].min())} realizations of {scene['duration']:g} s per point.", "",
+              f"**Avalanches** (analyze's `--avalanche-end {end}`): as Zuriguel et al. (PRL 107, 278001, 2011) count "
+              "them, an avalanche ends only when the outlet is arrested: here, at a clog that stood until the clog "
+              "rule removed its arch (1 s, the experiment's blow of air) or the run ended. A stop of at least "
+              "clog_min_gap (0.5 s) that resumed by itself is a *transient stop*: counted apart (below) and not an "
+              "avalanche's end. (Ending avalanches at every 0.5 s gap, as the first version of this page did, cut "
+              "the largest avalanches at their transient stops: a quarter of the ends at h = 1.5 D.)", "",
+              "Two estimates of the mean size per point: *per run* (the mean of the realizations' own means, t "
+              "interval over realizations) and *pooled* (every avalanche of the point together: the sum of sizes "
+              "over the count; bootstrap interval over realizations). Gains are ratios to the no-obstacle point, "
+              "their 95% intervals from resampling the realizations of both points (2000 resamples):", "",
+              "| point | realizations | avalanches | transient stops | <s> per run (95%) | <s> pooled (95%) | gain per "
+              "run (95%) | gain pooled (95%) | Q [grains/s] |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for _, row in [(None, none)] + list(with_ob.iterrows()):
+        sel = runs[(runs["obstacle"] == row["obstacle"]) & np.isclose(runs["obstacle_height"], row["obstacle_height"])]
+        label = "no obstacle" if row["obstacle"] == "none" else f"h = {row['obstacle_height'] / D:g} D"
+        pm = pooled_mean(sel)
+        plo, phi = boot_stat(sel, pooled_mean)
+        if row["obstacle"] == "none":
+            gains = "1 | 1"
+        else:
+            glo, ghi = boot_ratio(sel, base, per_run_mean)
+            qlo, qhi = boot_ratio(sel, base, pooled_mean)
+            gains = (f"{per_run_mean(sel) / per_run_mean(base):.2f} ({glo:.2f}-{ghi:.2f}) | "
+                     f"{pm / pooled_mean(base):.2f} ({qlo:.2f}-{qhi:.2f})")
+        lines.append(f"| {label} | {len(sel)} | {int(sel['avalanches'].sum())} | {int(sel['spontaneous'].sum())} | "
+                     f"{row['avalanche_mean']:.1f} +- {row['avalanche_mean_ci95']:.1f} | {pm:.1f} ({plo:.1f}-{phi:.1f}) | "
+                     f"{gains} | {row['q_per_s']:.2f} +- {row['q_per_s_ci95']:.2f} |")
+    lines += ["", f"The best height measured is h = {best['obstacle_height'] / D:g} D; an obstacle too close (h = 1 D) "
+              "makes avalanches smaller. Per-run and pooled means differ where a few long avalanches fall in "
+              "short-lived runs: the pooled mean weighs each avalanche alike, the per-run mean each realization.", ""]
+    baseline_families(results, base, lines)
+    lines += ["![Obstacle](figures/obstacle.png)", ""]
+
+
+def baseline_families(results, base, lines):
+    """The no-obstacle point against the same point run with an independent seed family
+    (assets/campaigns/obstacle-baseline.toml), when its results sit beside the obstacle's."""
+    other = os.path.join(os.path.dirname(os.path.abspath(results)), "obstacle-baseline")
+    if not os.path.exists(other):
+        lines += ["The no-obstacle baseline with an independent seed family (assets/campaigns/obstacle-baseline.toml)"
+                  " has not been measured yet.", ""]
+        return
+    b = per_run_avalanches(other, ("obstacle", "obstacle_height"))
+    per_run_mean = lambda r: float(np.nanmean(r["mean"].to_numpy(float)))  # noqa: E731
+    rows = []
+    for name, r in (("obstacle.toml (seed 2011)", base), ("obstacle-baseline.toml (seed 90210)", b)):
+        m, h, n = ci95(r["mean"])
+        lo, hi = boot_stat(r, pooled_mean)
+        rows.append((name, n, int(r["avalanches"].sum()), int(r["spontaneous"].sum()), m, h, pooled_mean(r), lo, hi,
+                     float(np.std(r["mean"], ddof=1))))
+    from statistics import NormalDist
+    (_, na, *_a), (_, nb, *_b) = rows
+    va, vb = rows[0][9] ** 2 / na, rows[1][9] ** 2 / nb
+    z = (rows[0][4] - rows[1][4]) / math.sqrt(va + vb)
+    p_value = 2 * (1 - NormalDist().cdf(abs(z)))
+    # The spread of a run's mean expected from independent avalanches: sd(s) / sqrt(n) per run, sd(s) from the
+    # pooled avalanches of both families taken as exponential-like (sd ~ mean), against the spread observed.
+    lines += ["**The baseline, twice.** The no-obstacle point of the campaign and the same point with an "
+              "independent seed family (another campaign seed: every realization's seed differs):", "",
+              "| family | realizations | avalanches | transient stops | <s> per run (95%) | <s> pooled (95%) | sd of the "
+              "runs' means |", "|---|---|---|---|---|---|---|"]
+    for name, n, av, sp, m, h, pm, lo, hi, sd in rows:
+        lines.append(f"| {name} | {n} | {av} | {sp} | {m:.1f} +- {h:.1f} | {pm:.1f} ({lo:.1f}-{hi:.1f}) | {sd:.1f} |")
+    verdict = ("agree within chance" if p_value > 0.05 else
+               "differ beyond chance (p < 0.05): see the reading below")
+    lines += ["", f"The two families' per-run means {verdict} (Welch z = {z:.2f}, p = {p_value:.2g}).", ""]
+    return p_value
 
 
 def polygons(results, out, lines):
@@ -224,7 +319,10 @@ def polygons(results, out, lines):
     lines += ["## Pentagons against disks of equal area", "",
               f"`assets/campaigns/polygons.toml` (`pentagons.toml`): the same flat silo and outlet (D = "
               f"{scene['aperture']:g} m = {scene['aperture'] / 0.1:g} equal-area diameters), no obstacle, no drive, "
-              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per shape:", "",
+              f"{int(p['n_runs'].min())} realizations of {scene['duration']:g} s per shape. Avalanches end as in "
+              "the obstacle's section (at clogs held until the rule removed the arch; transient stops, "
+              f"{int(disk['clogs_spontaneous'])} with disks and {int(pent['clogs_spontaneous'])} with pentagons, "
+              "do not end one):", "",
               f"- pentagons: <s> = {pent['avalanche_mean']:.1f} +- {pent['avalanche_mean_ci95']:.1f} grains, Q = "
               f"{pent['q_per_s']:.2f} +- {pent['q_per_s_ci95']:.2f} /s",
               f"- disks: <s> = {disk['avalanche_mean']:.1f} +- {disk['avalanche_mean_ci95']:.1f} grains, Q = "
@@ -278,8 +376,12 @@ def harmonic(results, out, lines):
               "run's end) | P(clog lasts > 10 s) (95%) | Q [grains/s] |", "|---|---|---|---|---|---|---|"]
     for g, clogs, broken, censored, q, qh, s10, n in rows:
         lo, hi = wilson(censored, clogs)
+        # A Kaplan-Meier estimate of 0 has a band of zero width: say what it rests on instead (none of the clogs
+        # lasted 10 s; the Wilson upper bound of 0 in that many).
+        p10 = (f"{s10[0]:.2f} ({s10[1]:.2f}-{s10[2]:.2f})" if s10[0] > 0 else
+               f"0: none of {clogs} lasted 10 s (95% upper bound {wilson(0, clogs)[1]:.3f})")
         lines.append(f"| {g:g} | {n} | {clogs} | {broken} | {censored} ({censored / clogs:.0%}, 95% {lo:.0%}-{hi:.0%}) | "
-                     f"{s10[0]:.2f} ({s10[1]:.2f}-{s10[2]:.2f}) | {q:.2f} +- {qh:.2f} |"
+                     f"{p10} | {q:.2f} +- {qh:.2f} |"
                      if clogs else f"| {g:g} | {n} | 0 | - | - | - | {q:.2f} |")
     lines += ["", "The share never broken is of clogs (Wilson interval; clogs of one realization are not "
               "independent, so it is a little optimistic); P(clog lasts > 10 s) is the Kaplan-Meier estimate with "

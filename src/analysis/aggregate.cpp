@@ -224,7 +224,7 @@ std::string points_csv(const std::vector<Point>& points) {
                          "airborne_fraction",
                          "avalanche_mean"};
   for (const char* n : names) s += std::string(",") + n + "," + n + "_ci95";
-  s += "\n";
+  s += ",avalanche_end\n";  // what ended the avalanches of avalanche_mean (analysis/measure.h)
   for (const auto& p : points) {
     s += key_values(p);
     // The shorthand's dipole strength and kick; a scene of its own species has neither (its species.csv
@@ -249,7 +249,7 @@ std::string points_csv(const std::vector<Point>& points) {
                               &p.fraction_broken_by_vibration, &p.q_tilde_over_qp, &p.q_p,
                               &p.airborne_fraction, &p.avalanche_mean})
       s += "," + core::format_g(e->mean) + "," + core::format_g(e->half_width);
-    s += "\n";
+    s += std::string(",") + avalanche_end_name(p.runs.front()->m.avalanche_end) + "\n";
   }
   return s;
 }
@@ -282,7 +282,7 @@ std::string pooled_avalanches_csv(const std::vector<Point>& points) {
       std::vector<core::ExitEvent> within;
       for (const auto& e : r->events.exits)
         if (e.t <= r->m.duration) within.push_back(e);
-      auto a = avalanche_sizes(within, p.scene.clog_min_gap);
+      auto a = avalanche_sizes(within, r->events.clogs, p.scene.clog_min_gap, r->m.avalanche_end);
       sizes.insert(sizes.end(), a.begin(), a.end());
     }
     const std::string prefix = key_values(p);

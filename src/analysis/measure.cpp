@@ -5,8 +5,19 @@
 
 namespace analysis {
 
-Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species) {
+AvalancheEnd avalanche_end_for(const core::Scene& s) {
+  const bool driven = s.kick_impulse_max > 0 || s.vibration_gamma > 0 || s.vibration_amplitude > 0;
+  return driven ? AvalancheEnd::Gaps : AvalancheEnd::Held;
+}
+
+const char* avalanche_end_name(AvalancheEnd e) {
+  return e == AvalancheEnd::Held ? "held" : "gaps";
+}
+
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species,
+                     AvalancheEnd end) {
   Measurements m;
+  m.avalanche_end = end;
   m.duration = duration;
   m.exits_by_species.assign(static_cast<size_t>(std::max(1, n_species)), 0);
   std::vector<core::ExitEvent> within;
@@ -58,7 +69,7 @@ Measurements measure(const core::Events& ev, double duration, double clog_min_ga
     m.lapses_ge_1s += g >= 1.0;
     m.lapses_ge_2s += g >= 2.0;
   }
-  const std::vector<double> sizes = avalanche_sizes(within, clog_min_gap);
+  const std::vector<double> sizes = avalanche_sizes(within, ev.clogs, clog_min_gap, end);
   m.avalanches = static_cast<long>(sizes.size());
   double sum = 0;
   for (double s : sizes) sum += s;
@@ -90,6 +101,24 @@ std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits, d
     last = e.t;
   }
   return sizes;  // `current`, the avalanche the run's end cut short, is left out
+}
+
+std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits,
+                                    const std::vector<core::ClogEvent>& clogs, double min_gap,
+                                    AvalancheEnd end) {
+  if (end == AvalancheEnd::Gaps) return avalanche_sizes(exits, min_gap);
+  // Each held clog starts at its avalanche's last exit (clogs.csv rounds times to the millisecond; the next
+  // exit is at least min_gap later, so half of it tells the two apart).
+  std::vector<double> sizes;
+  size_t k = 0;
+  for (const auto& c : clogs) {
+    if (c.ended_by == core::ClogEnd::Spontaneous) continue;
+    long n = 0;
+    while (k < exits.size() && exits[k].t <= c.start + 0.5 * min_gap) ++k, ++n;
+    if (n == 0) continue;  // no exit before it: beyond the analysed exits, or at the opening (as with Gaps)
+    sizes.push_back(static_cast<double>(n));
+  }
+  return sizes;  // the exits after the last held clog, cut short by the run's end, are left out
 }
 
 std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus) {

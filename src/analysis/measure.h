@@ -4,8 +4,20 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "core/scene.h"
 
 namespace analysis {
+
+// Where an avalanche ends (analyze --avalanche-end):
+//   Gaps: at every clog, an exit gap of at least clog_min_gap (the paper's reading, with its kicks);
+//   Held: only at a clog the outlet held until something outside it ended it (the clog rule, the drive, or
+//         the run's end): a stop that resumed by itself is a transient stop, its avalanche goes on. Without a
+//         drive this is the avalanche of the silo literature (Zuriguel et al., PRL 107, 278001, 2011: an
+//         avalanche ends when the outlet is arrested).
+// avalanche_end_for: Held for a scene without a drive (no kicks, no vibration), Gaps with one.
+enum class AvalancheEnd { Gaps, Held };
+AvalancheEnd avalanche_end_for(const core::Scene& s);
+const char* avalanche_end_name(AvalancheEnd e);
 
 // For a scene with its own species list, "original" means the first species and "added" every other one
 // (Q~ is the first species' flow); exits_by_species has each species' own count.
@@ -23,6 +35,7 @@ struct Measurements {
   long clogs = 0;                    // exit gaps >= clog_min_gap, any ending
   long clogs_spontaneous = 0, clogs_vibration = 0, clogs_rule = 0, clogs_run_end = 0;
   double fraction_broken_by_vibration = 0;  // among clogs that ended by vibration or the rule (NaN if none)
+  AvalancheEnd avalanche_end = AvalancheEnd::Gaps;  // what ends the avalanches below
   long avalanches = 0;        // complete avalanches between clogs (avalanche_sizes), within `duration`
   double avalanche_mean = 0;  // mean disks (both species) per complete avalanche (NaN if none)
   // Time lapses between consecutive exits of original disks (original_gaps), and how many last at least 1 s
@@ -37,7 +50,8 @@ struct Measurements {
 
 // `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches;
 // `n_species`: how many species the scene has.
-Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species = 2);
+Measurements measure(const core::Events& ev, double duration, double clog_min_gap, int n_species = 2,
+                     AvalancheEnd end = AvalancheEnd::Gaps);
 
 // Gaps between consecutive exits of original disks, s (added disks may exit in between).
 std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);
@@ -46,6 +60,12 @@ std::vector<double> original_gaps(const std::vector<core::ExitEvent>& exits);
 // of at least `min_gap` s. The last avalanche is left out (the end of the run cuts it short); a run that
 // never clogs gives none. Many samples per run, so it tells numerical settings apart where Q~ per run cannot.
 std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits, double min_gap);
+// The same, ended only at the clogs that `end` counts (AvalancheEnd): with Gaps, avalanche_sizes; with Held,
+// the exits up to the start of each clog not ended spontaneously (the avalanche the run's end cuts short left
+// out).
+std::vector<double> avalanche_sizes(const std::vector<core::ExitEvent>& exits,
+                                    const std::vector<core::ClogEvent>& clogs, double min_gap,
+                                    AvalancheEnd end);
 
 // Survival function P(dt >= tau) of `gaps` at each tau.
 std::vector<double> survival(std::vector<double> gaps, const std::vector<double>& taus);

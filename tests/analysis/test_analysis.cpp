@@ -90,7 +90,45 @@ TEST_CASE("avalanche sizes between clogs, by hand", "[analysis]") {
                       Catch::Matchers::Contains(",3,0.666666667,3\n"));
   CHECK(std::count(csv.begin(), csv.end(), '\n') == 4);  // header + s = 1, 2, 3 (the largest)
   CHECK_THAT(analysis::points_csv(points),
-             Catch::Matchers::Contains(",avalanche_mean,avalanche_mean_ci95\n"));
+             Catch::Matchers::Contains(",avalanche_mean,avalanche_mean_ci95,avalanche_end\n") &&
+                 Catch::Matchers::EndsWith(",gaps\n"));
+}
+
+TEST_CASE("avalanches held: only clogs the outlet held end one, transient stops do not, by hand",
+          "[analysis]") {
+  // Exits at 1.0 1.1 1.2 | 1.8 2.0 | 3.0 3.1 3.2 3.3 with clogs (gaps >= 0.5 s) after 1.2 (it resumed by
+  // itself: spontaneous) and after 2.0 (the rule removed its arch). Held: 5 (1.0-2.0, through the transient
+  // stop), then 4 cut short by the run's end: left out. Gaps: 3 and 2.
+  std::vector<core::ExitEvent> exits;
+  int id = 0;
+  for (double t : {1.0, 1.1, 1.2, 1.8, 2.0, 3.0, 3.1, 3.2, 3.3})
+    exits.push_back({t, id++, Species::Original});
+  const std::vector<core::ClogEvent> clogs = {{1.2, 1.8, core::ClogEnd::Spontaneous, false},
+                                              {2.0, 3.0, core::ClogEnd::Rule, true}};
+  using analysis::AvalancheEnd;
+  CHECK(analysis::avalanche_sizes(exits, clogs, 0.5, AvalancheEnd::Held) == std::vector<double>{5});
+  CHECK(analysis::avalanche_sizes(exits, clogs, 0.5, AvalancheEnd::Gaps) == std::vector<double>{3, 2});
+  // A clog still standing at the run's end closes the avalanche before it; clogs.csv's millisecond times
+  // still find their exits.
+  std::vector<core::ClogEvent> run_end = clogs;
+  run_end.push_back({3.3004, 10.0, core::ClogEnd::RunEnd, true});
+  CHECK(analysis::avalanche_sizes(exits, run_end, 0.5, AvalancheEnd::Held) == std::vector<double>{5, 4});
+  core::Events ev;
+  ev.exits = exits;
+  ev.clogs = run_end;
+  const auto m = analysis::measure(ev, 10.0, 0.5, 1, AvalancheEnd::Held);
+  CHECK(m.avalanches == 2);
+  CHECK(m.avalanche_mean == Approx(4.5));
+  CHECK(m.clogs_spontaneous == 1);
+  // Per protocol: held without a drive, gaps with kicks or a vibrating container.
+  core::Scene s;
+  s.kick_impulse_max = 0;
+  CHECK(analysis::avalanche_end_for(s) == AvalancheEnd::Held);
+  s.vibration_gamma = 1.0;
+  CHECK(analysis::avalanche_end_for(s) == AvalancheEnd::Gaps);
+  s.vibration_gamma = 0;
+  s.kick_impulse_max = 5e-5;
+  CHECK(analysis::avalanche_end_for(s) == AvalancheEnd::Gaps);
 }
 
 TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {

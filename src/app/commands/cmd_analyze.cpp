@@ -28,6 +28,7 @@ struct AnalyzeOptions {
   std::string out;
   bool force = false;
   bool include_interrupted = false, include_unhealthy = false;
+  std::string avalanche_end = "auto";
 };
 
 // Run directories (holding metadata.toml and exits.csv) at or below `root`, sorted; and the records of
@@ -56,8 +57,12 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs:
 }  // namespace
 
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
-                 bool include_interrupted, bool include_unhealthy, const std::vector<std::string>& by) {
-  AnalyzeOptions o{inputs, by, out_dir, force, include_interrupted, include_unhealthy};
+                 bool include_interrupted, bool include_unhealthy, const std::vector<std::string>& by,
+                 const std::string& avalanche_end) {
+  AnalyzeOptions o{inputs, by, out_dir, force, include_interrupted, include_unhealthy, avalanche_end};
+  if (o.avalanche_end != "auto" && o.avalanche_end != "gaps" && o.avalanche_end != "held")
+    throw core::InputError("--avalanche-end " + o.avalanche_end +
+                           ": expected auto (held without a drive, gaps with one), gaps or held");
   std::vector<fs::path> dirs, refused_files;
   for (const auto& in : o.inputs) {
     size_t before = dirs.size();
@@ -103,7 +108,11 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                          " --unsafe warnings (--include-unhealthy counts it)");
       continue;
     }
-    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap, static_cast<int>(setup.species.size()));
+    const analysis::AvalancheEnd end = o.avalanche_end == "auto"   ? analysis::avalanche_end_for(r.scene)
+                                       : o.avalanche_end == "held" ? analysis::AvalancheEnd::Held
+                                                                   : analysis::AvalancheEnd::Gaps;
+    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap, static_cast<int>(setup.species.size()),
+                            end);
     r.m.health_warnings = rec.health_warnings;
     r.m.ballistic = rec.ballistic;
     r.m.airborne_fraction = rec.airborne_fraction;
@@ -138,6 +147,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                     {"by", o.by},
                     {"points", points.size()},
                     {"runs_left_out", left_out.size()},
+                    {"avalanche_end", o.avalanche_end},
                     {"runs_refused", refused.size()},
                     {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
                                                      [](const analysis::Run& r) { return r.m.ballistic; })}},
@@ -198,6 +208,12 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->add_option("--by", opts->by,
                   "also tell points apart by this scene key (repeatable; e.g. aperture, obstacle_height, "
                   "species.grains.sides): what a campaign of your own varies");
+  cmd->add_option(
+         "--avalanche-end", opts->avalanche_end,
+         "what ends an avalanche: gaps (every clog, an exit gap >= clog_min_gap), held (only a clog the "
+         "outlet held until the rule, the drive or the run's end ended it; stops that resumed by "
+         "themselves are transient), auto (held without a drive, gaps with one)")
+      ->capture_default_str();
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--include-interrupted", opts->include_interrupted,
                 "count interrupted recordings, for the discharge time each covered");
@@ -206,7 +222,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->callback([opts, &action] {
     action = [opts] {
       return analyze_runs(opts->inputs, opts->out, opts->force, false, opts->include_interrupted,
-                          opts->include_unhealthy, opts->by);
+                          opts->include_unhealthy, opts->by, opts->avalanche_end);
     };
   });
 }

@@ -53,10 +53,11 @@ void add_scene_command(CLI::App& app, Action& action);
 void add_gallery_command(CLI::App& app, Action& action);
 void add_claims_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
-// Interrupted and unhealthy runs are left out (named on stderr) unless included.
+// Interrupted and unhealthy runs are left out (named on stderr) unless included. avalanche_end: "auto" (per
+// protocol: analysis::avalanche_end_for), "gaps" or "held" (analysis/measure.h).
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
                  bool include_interrupted = false, bool include_unhealthy = false,
-                 const std::vector<std::string>& by = {});
+                 const std::vector<std::string>& by = {}, const std::string& avalanche_end = "auto");
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);

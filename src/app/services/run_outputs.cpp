@@ -13,8 +13,9 @@
 namespace app {
 
 analysis::Measurements measure_run(const sim::Silo& h, double duration) {
-  analysis::Measurements m = analysis::measure(h.events(), duration, h.scene().clog_min_gap,
-                                               static_cast<int>(h.setup().species.size()));
+  analysis::Measurements m =
+      analysis::measure(h.events(), duration, h.scene().clog_min_gap,
+                        static_cast<int>(h.setup().species.size()), analysis::avalanche_end_for(h.scene()));
   m.health_warnings = h.health_warnings();
   m.airborne_fraction = h.airborne().mean();
   m.ballistic = h.ballistic();
