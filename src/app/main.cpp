@@ -1,6 +1,8 @@
 // siloscope: clogging in a vibrated 2D hopper (Carlevaro et al., Granular Matter 24, 2022).
 // Exit codes: 0 success, 1 a fault while running, 2 bad input (arguments, scene, files), 130 interrupted.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 #include "app/services/cli.h"
 #include "app/services/process.h"
@@ -59,7 +61,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return action();
+    const int rc = action();
+    // What was printed must have reached standard output (a full disk, a closed pipe): otherwise the command
+    // did not do what it said, whatever it computed.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::fprintf(stderr,
+                   "siloscope: error: cannot write to standard output (%s): what was printed is lost\n",
+                   std::strerror(errno));
+      return rc == 0 ? 1 : rc;
+    }
+    return rc;
   } catch (const core::OutputBusy& e) {
     std::fprintf(stderr, "siloscope: busy: %s\n", e.what());
     return 75;

@@ -238,3 +238,19 @@ TEST_CASE("integer options refuse negative and out-of-range values with the allo
   CHECK_FALSE(fs::exists(d / "r"));
   CHECK_FALSE(fs::exists(d / "m"));
 }
+
+TEST_CASE("conflicting flags are refused with both named, and output lost on a full device is an error",
+          "[trust][app]") {
+  fs::path d = temp_dir("conflicts");
+  // A camera move decides every frame's view: a fixed camera beside it would be ignored silently.
+  auto r = cli("record " + kScene + kShort + " --camera outlet --camera-path 0:hopper,1:outlet --out " +
+               (d / "m").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("--camera") && Catch::Matchers::Contains("--camera-path"));
+  CHECK_FALSE(fs::exists(d / "m"));
+  CHECK_FALSE(fs::exists(d / "m.mp4"));
+  // What a command prints must arrive: /dev/full takes nothing.
+  CHECK(test::sh(kBin + " scene " + kScene + " > /dev/full 2> " + (d / "err.txt").string()) == 1);
+  CHECK_THAT(test::slurp(d / "err.txt"), Catch::Matchers::Contains("cannot write to standard output"));
+  CHECK(test::sh(kBin + " scene " + kScene + " > /dev/null") == 0);
+}

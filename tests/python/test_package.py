@@ -42,6 +42,11 @@ def test_run_calls_the_binary_with_an_argument_vector(binary, tmp_path, root):
     assert not os.path.exists("nope")
     with pytest.raises(siloscope.SiloscopeError, match="chi = 2.0 is not allowed"):
         siloscope.run(os.path.join(root, "assets/scenes/pure.toml"), tmp_path / "bad", set={"chi": 2})
+    # A seed is a whole number: 2.7 is refused before anything runs, not run as seed 2.
+    for seed in (2.7, -1, True, "3"):
+        with pytest.raises(siloscope.SiloscopeError, match="seed = .*whole number"):
+            siloscope.run(os.path.join(root, "assets/scenes/pure.toml"), tmp_path / "seed", seed=seed)
+    assert not os.path.exists(tmp_path / "seed")
 
 
 def test_read_campaign_gives_the_committed_tables(root):

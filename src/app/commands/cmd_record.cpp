@@ -542,12 +542,17 @@ void add_record_command(CLI::App& app, Action& action) {
          "--slowmo", o->slowmo,
          "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
       ->capture_default_str();
-  cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
-      ->capture_default_str();
+  auto* camera =
+      cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
+          ->capture_default_str();
+  // A camera move decides the view at every frame: a fixed camera beside it would be ignored, so the two are
+  // refused together (CLI11 names both).
   cmd->add_option(
-      "--camera-path", o->camera_path,
-      "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet or window:X0,Y0,X1,Y1), "
-      "e.g. 0:hopper,3:outlet,8:outlet,10:hopper; eased between keys, still before and after");
+         "--camera-path", o->camera_path,
+         "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet or window:X0,Y0,X1,Y1), "
+         "e.g. 0:hopper,3:outlet,8:outlet,10:hopper; eased between keys, still before and after; not with "
+         "--camera")
+      ->excludes(camera);
   cmd->add_option(
       "--freeze", o->freeze,
       "hold the picture at each event: clog:SECONDS (a clog has formed) or rule:SECONDS (the last "

@@ -99,6 +99,10 @@ def run(scene, out, seed=None, duration=None, set=None, trajectory_fps=None, for
     the binary's own message."""
     args = [binary(), "run", str(scene), "--out", str(out), "--quiet"]
     if seed is not None:
+        # A seed is a whole number: 2.7 is refused, not run as seed 2.
+        import numbers
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+            raise SiloscopeError(f"seed = {seed!r}: expected a whole number >= 0")
         args += ["--seed", str(int(seed))]
     if duration is not None:
         args += ["--duration", repr(float(duration))]
