@@ -4,6 +4,9 @@
 // resolves a scene again (MuJoCo's mjSpec compiled to an mjModel).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "core/scene.h"
 #include "core/setup.h"
 
@@ -17,5 +20,10 @@ struct Model {
 // Checks every field and the relations between them (core::validate) and resolves the scene, once. Throws
 // core::InputError naming FILE:LINE, the key, the value and what is allowed.
 Model compile(const Scene& scene);
+
+// What a compiled scene was given that does nothing in it, one sentence each naming the key, where it was set
+// and why: an obstacle's keys with no obstacle, a kick's with no kicks, a vibration's with no vibration, a
+// species whose fraction rounds to no grains. Commands print them as warnings; the scene still runs.
+std::vector<std::string> ineffective_keys(const Model& m);
 
 }  // namespace core

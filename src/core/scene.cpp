@@ -286,6 +286,37 @@ Model compile(const Scene& s) {
   return {s, resolve(s)};
 }
 
+std::vector<std::string> ineffective_keys(const Model& m) {
+  const Scene& s = m.scene;
+  std::vector<std::string> out;
+  auto given = [&](const char* key, const std::string& why) {
+    const auto it = s.origin.find(key);
+    if (it != s.origin.end()) out.push_back(std::string(key) + " (" + it->second + ") does nothing: " + why);
+  };
+  if (s.obstacle == "none")
+    for (const char* k : {"obstacle_size", "obstacle_thickness", "obstacle_height", "obstacle_x"})
+      given(k, "obstacle = \"none\" (set obstacle = \"disk\" or \"bar\")");
+  else if (s.obstacle == "disk")
+    given("obstacle_thickness", "a disk obstacle is as thick as it is wide (obstacle_size)");
+  if (!(s.kick_impulse_max > 0))
+    for (const char* k : {"kick_period", "global_kick"}) given(k, "kick_impulse_max = 0 (no kicks)");
+  if (!(s.vibration_amplitude > 0) && !(s.vibration_gamma > 0))
+    for (const char* k : {"vibration_frequency", "vibration_direction"})
+      given(k, "the container does not vibrate (vibration_amplitude = vibration_gamma = 0)");
+  if (!(s.clog_timeout > 0)) given("arrest_hold", "clog_timeout = 0 (the clog rule is off)");
+  // Grains lost to rounding: a species asked for by a fraction (or the shorthand's chi) that has none.
+  for (const auto& sp : m.setup.species)
+    if (sp.count == 0) {
+      const bool shorthand_added = m.setup.shorthand && sp.name == "added";
+      if (shorthand_added && !(s.chi > 0)) continue;
+      out.push_back("species " + sp.name + " has no grains: " +
+                    (shorthand_added ? "chi = " + format_shortest(s.chi) : std::string("its fraction")) +
+                    " of n_total = " + std::to_string(s.n_total) +
+                    " rounds to 0 (raise n_total or the fraction)");
+    }
+  return out;
+}
+
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint) {
   check_input_file(path, what, kMaxTextFileBytes, dir_hint);
 }

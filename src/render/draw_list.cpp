@@ -81,7 +81,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       const auto& b = frame.particles[static_cast<size_t>(c.b)];
       const double u = std::clamp((c.force - style.chain_min) / span, 0.0, 1.0);
       SegmentInstance seg{a.x, a.y, b.x, b.y, {}, 0};
-      copy(seg.color, colormap(style, u));
+      copy(seg.color, chain_color(style, u));
       out.chains.push_back(seg);
       out.chain_width_m.push_back(static_cast<float>((0.15 + 0.85 * u) * std::min(a.radius, b.radius)));
     }

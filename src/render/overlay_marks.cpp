@@ -13,16 +13,16 @@ namespace render {
 namespace overlay_detail {
 
 namespace {
-void scale_bar(const char* label, double lo, double hi, const Style& style, float em) {
+void scale_bar(const char* label, double lo, double hi, const Style& style, float em, bool chains = false) {
   ImGui::Text("%s %.3g", label, lo);
   ImGui::SameLine();
   ImVec2 p = ImGui::GetCursorScreenPos();
   const int steps = 32;
   const float bw = 8 * em, bh = ImGui::GetTextLineHeight();
   for (int k = 0; k < steps; ++k)
-    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x + bw * k / steps, p.y),
-                                              ImVec2(p.x + bw * (k + 1) / steps, p.y + bh),
-                                              to_u32(colormap(style, (k + 0.5) / steps)));
+    ImGui::GetWindowDrawList()->AddRectFilled(
+        ImVec2(p.x + bw * k / steps, p.y), ImVec2(p.x + bw * (k + 1) / steps, p.y + bh),
+        to_u32(chains ? chain_color(style, (k + 0.5) / steps) : colormap(style, (k + 0.5) / steps)));
   ImGui::Dummy(ImVec2(bw, bh));
   ImGui::SameLine();
   if (hi > lo)
@@ -36,7 +36,7 @@ void colour_bar(const Style& style, float em) {
   // The grains' colour scale, then the force chains' (each on its own line).
   const std::string label = color_scale_label(style);
   if (!label.empty()) scale_bar(label.c_str(), style.color_min, color_scale_max(style), style, em);
-  if (style.chains) scale_bar("force chains [N]", style.chain_min, style.chain_max, style, em);
+  if (style.chains) scale_bar("force chains [N]", style.chain_min, style.chain_max, style, em, true);
 }
 
 const View& most_zoomed(const std::vector<View>& views) {

@@ -282,6 +282,18 @@ Rgba colormap(const Style& s, double t) {
           m[k][2] + u * (m[k + 1][2] - m[k][2]), 1};
 }
 
+Colormap chain_colormap(const Style& s) {
+  if (s.chain_colormap) return *s.chain_colormap;
+  const bool scaled = s.color != ColorMode::Species && s.color != ColorMode::Id;
+  return scaled && s.colormap == Colormap::Viridis ? Colormap::Magma : s.colormap;
+}
+
+Rgba chain_color(const Style& s, double t) {
+  Style as = s;
+  as.colormap = chain_colormap(s);
+  return colormap(as, t);
+}
+
 Rgba value_color(const Style& s, double value, double top) {
   if (!std::isfinite(value)) return {0.62f, 0.62f, 0.62f, 1};
   const double span = top - s.color_min;

@@ -1,6 +1,7 @@
 // Colours and styles of a rendered frame. Pure data, no GL.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct Style {
   bool chains = false;
   double chain_min = 2.0;   // N
   double chain_max = 20.0;  // N
+  // The chains' own colour map; unset: the grains' map, or (grains coloured on a scale by viridis) magma, so
+  // that chains stand out on force-coloured grains (chain_colormap()).
+  std::optional<Colormap> chain_colormap;
   // Tracked grains (by id): a ring of their own colour and a trail of their last trail_s seconds.
   std::vector<int> tracked;
   double trail_s = 2.0;
@@ -81,6 +85,9 @@ Rgba colormap(double t);
 // The style's colour map of t in [0, 1] (viridis: the polynomial above; the others: matplotlib's map sampled
 // at 17 points, linearly interpolated).
 Rgba colormap(const Style& s, double t);
+// The force chains' map (Style::chain_colormap) and their colour at t in [0, 1].
+Colormap chain_colormap(const Style& s);
+Rgba chain_color(const Style& s, double t);
 // The colour of a value on the style's scale [color_min, top]; NaN (no value: a grain re-injected since the
 // reference time) is a neutral grey.
 Rgba value_color(const Style& s, double value, double top);

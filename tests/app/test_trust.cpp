@@ -254,3 +254,22 @@ TEST_CASE("conflicting flags are refused with both named, and output lost on a f
   CHECK_THAT(test::slurp(d / "err.txt"), Catch::Matchers::Contains("cannot write to standard output"));
   CHECK(test::sh(kBin + " scene " + kScene + " > /dev/null") == 0);
 }
+
+TEST_CASE("keys that do nothing in this scene and species rounded to no grains are warned about, by origin",
+          "[trust][app]") {
+  auto r = cli("scene " + kScene +
+               " --set obstacle_height=0.5 --set chi=0.001 --set kick_impulse_max=0 --set "
+               "kick_period=0.5");
+  CHECK(r.code == 0);  // the scene still runs: a warning, not an error
+  CHECK_THAT(r.output, Catch::Matchers::Contains("warning: obstacle_height (--set) does nothing: obstacle = "
+                                                 "\"none\"") &&
+                           Catch::Matchers::Contains("warning: kick_period (--set) does nothing") &&
+                           Catch::Matchers::Contains("species added has no grains: chi = 0.001 of n_total"));
+  // The shipped scenes give none.
+  for (const char* f :
+       {"paper", "paper-vibrated", "pure", "pentagons", "silo-obstacle", "three-species", "vibrated-silo"}) {
+    r = cli("scene " + std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/" + f + ".toml");
+    CHECK(r.code == 0);
+    CHECK(r.output.find("warning") == std::string::npos);
+  }
+}

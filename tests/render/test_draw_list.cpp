@@ -74,6 +74,19 @@ TEST_CASE("force chains: a segment per contact at or above the threshold, wider 
   // The colour map's top (yellow, viridis) at 40 N, its dark end near the threshold.
   CHECK(d.chains[1].color[0] > 0.8f);
   CHECK(d.chains[0].color[0] < 0.4f);
+  // On grains coloured by force with viridis the chains take magma (they would vanish in the grains' own
+  // map); a map asked for is used as it is.
+  style.color = render::ColorMode::Force;
+  CHECK(render::chain_colormap(style) == render::Colormap::Magma);
+  const render::DrawList on_force = render::build_draw_list(f, geo, style);
+  const render::Rgba magma_top = render::chain_color(style, 1.0), viridis_top = render::colormap(style, 1.0);
+  CHECK(on_force.chains[1].color[2] == Approx(magma_top.b));
+  CHECK(std::abs(magma_top.b - viridis_top.b) > 0.3f);
+  style.chain_colormap = render::Colormap::Cividis;
+  CHECK(render::chain_colormap(style) == render::Colormap::Cividis);
+  style.chain_colormap.reset();
+  style.colormap = render::Colormap::Inferno;
+  CHECK(render::chain_colormap(style) == render::Colormap::Inferno);
 }
 
 TEST_CASE(

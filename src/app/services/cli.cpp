@@ -42,7 +42,9 @@ core::Model SceneOptions::compile() const {
     s.origin["duration"] = "--duration";  // a range error names the option, not the file's line
   }
   if (unsafe) s.unsafe = true;
-  return core::compile(s);
+  core::Model m = core::compile(s);
+  for (const auto& w : core::ineffective_keys(m)) std::fprintf(stderr, "siloscope: warning: %s\n", w.c_str());
+  return m;
 }
 
 std::string command_line() {

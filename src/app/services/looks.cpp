@@ -36,6 +36,12 @@ void LookOptions::add_to(CLI::App& cmd) {
       "draw the contact network: a segment between the centres of each pair in contact whose normal "
       "force is at least MIN newtons, width and colour growing with the force up to MAX (MIN or "
       "MIN:MAX; e.g. 2 or 2:30; MAX default 20)");
+  cmd.add_option(
+      "--chain-colormap", chain_colormap,
+      "the force chains' colour map: viridis, magma, inferno or cividis (default: the grains' map, "
+      "or magma when the grains are coloured on a viridis scale, so chains stand out)");
+  cmd.add_option("--arch-halo", arch_halo, "on or off: the halo and bonds that mark the blocking arch")
+      ->capture_default_str();
   cmd.add_option("--background", background, "white, or dark (light walls and text: projectors, dark slides)")
       ->capture_default_str();
   cmd.add_option("--font-scale", font_scale,
@@ -65,6 +71,10 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   if (background != "white" && background != "dark")
     throw core::InputError("--background " + background + ": expected white or dark");
   style.dark = background == "dark";
+  if (arch_halo != "on" && arch_halo != "off")
+    throw core::InputError("--arch-halo " + arch_halo + ": expected on or off");
+  style.show_arch = arch_halo == "on";
+  if (!chain_colormap.empty()) style.chain_colormap = render::parse_colormap(chain_colormap);
   if (transparent && style.dark)
     throw core::InputError(
         "--background dark and --transparent: choose one (a transparent frame has no background)");
@@ -137,7 +147,9 @@ io::Facts LookOptions::facts(const render::Style& style) const {
           {"trail_s", style.trail_s},
           {"force_chains", style.chains},
           {"force_chain_min_N", style.chain_min},
-          {"force_chain_max_N", style.chain_max}};
+          {"force_chain_max_N", style.chain_max},
+          {"force_chain_colormap", std::string(render::colormap_name(render::chain_colormap(style)))},
+          {"arch_halo", arch_halo}};
 }
 
 }  // namespace app

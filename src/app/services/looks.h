@@ -20,6 +20,8 @@ struct LookOptions {
   std::string background = "white";  // white | dark
   double font_scale = 1.0;
   std::string chains;              // "": off; "MIN" or "MIN:MAX" in N
+  std::string chain_colormap;      // "": render::chain_colormap's choice; else viridis|magma|inferno|cividis
+  std::string arch_halo = "on";    // on | off: the gold halo and bonds of the blocking arch
   std::vector<std::string> track;  // grain ids to follow
   std::string track_region;        // "X0,Y0,X1,Y1@T": the grains whose centres are in this box at T s
   int track_arch = 0;              // K >= 1: the members of the K-th long-lasting arch (the rule removed)
