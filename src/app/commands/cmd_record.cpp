@@ -575,7 +575,10 @@ void add_record_command(CLI::App& app, Action& action) {
   cmd->add_option("--displacement-from", o->displacement_from,
                   "--color displacement: from where each grain stood at this time, s (0: the outlet opens)")
       ->capture_default_str();
-  cmd->add_option("--overlay", o->overlay, "all, none, or a list of time,counts,rate,timer,arch,legend,scale")
+  cmd->add_option(
+         "--overlay", o->overlay,
+         "all, all+plot, none, or a list of time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,"
+         "colorbar,ids")
       ->capture_default_str();
   o->looks.add_to(*cmd);
   cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
