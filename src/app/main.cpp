@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   app::add_export_command(cli, action);
   app::add_scene_command(cli, action);
   app::add_gallery_command(cli, action);
+  app::add_timeline_command(cli, action);
   app::add_claims_command(cli, action);
   app::add_inspect_command(cli, action);
   // A misspelt command: name the nearest one (CLI11 says only that a subcommand is required).
@@ -53,11 +54,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr,
-                 "siloscope: %s\nusage: siloscope "
-                 "{run,record,inspect,live,sweep,analyze,figures,claims,gallery,export,scene,bench} ... (see "
-                 "siloscope --help)\n",
-                 e.what());
+    std::fprintf(
+        stderr,
+        "siloscope: %s\nusage: siloscope "
+        "{run,record,inspect,live,sweep,analyze,figures,claims,gallery,timeline,export,scene,bench} ... (see "
+        "siloscope --help)\n",
+        e.what());
     return 2;
   }
   try {

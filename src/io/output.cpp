@@ -78,8 +78,9 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
     case OutputKind::Sheet:
       if (fs::is_directory(st)) return "a directory, not a figure sheet";
       if (!fs::is_regular_file(st)) return "not a regular file";
-      if (!file_contains(path, "siloscope gallery", 32u << 20))
-        return "a file that is not a siloscope gallery sheet";
+      if (!file_contains(path, "siloscope gallery", 32u << 20) &&
+          !file_contains(path, "siloscope timeline", 32u << 20))
+        return "a file that is not a siloscope gallery sheet or timeline figure";
       return "";
     case OutputKind::Xyz:
       if (fs::is_directory(st)) return "a directory, not an XYZ file";

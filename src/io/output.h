@@ -20,7 +20,7 @@ enum class OutputKind {
   Movie,      // an MP4 whose comment tag holds siloscope's metadata
   Csv,        // a benchmark table or CSV export: its first line is the expected header
   Xyz,        // an extended XYZ export: its first comment line carries siloscope="VERSION"
-  Sheet,      // a figure sheet (PDF, SVG, PNG) whose metadata names "siloscope gallery"
+  Sheet,      // a figure (PDF, SVG, PNG) whose metadata names "siloscope gallery" or "siloscope timeline"
 };
 
 // Why --force may not replace `path`: empty when siloscope wrote it (as `kind`), otherwise what the path is

@@ -204,3 +204,46 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
   for (const auto& e : fs::directory_iterator(d))
     CHECK(e.path().filename().string().find(".tiles-") == std::string::npos);  // no temporary tiles left
 }
+
+TEST_CASE("timeline: the discharge staircase with clog bands in PDF, SVG and PNG, vector text, owned outputs",
+          "[export][app]") {
+  fs::path d = temp_dir("timeline");
+  REQUIRE(cli("run " + kScene + " --duration 10 --quiet --out " + (d / "r").string()).code == 0);
+  for (const char* ext : {".svg", ".pdf", ".png"}) {
+    const fs::path out = d / (std::string("t") + ext);
+    const auto r = cli("timeline " + (d / "r").string() + " --out " + out.string());
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.output, Catch::Matchers::Contains("clogs -> "));
+    const std::string body = slurp(out);
+    if (std::string(ext) == ".svg") {
+      // Text kept as text: the axis labels, the legend, the command that made it; no bitmap inside.
+      CHECK_THAT(body, Catch::Matchers::Contains("cumulative exits") &&
+                           Catch::Matchers::Contains("time since the outlet opened") &&
+                           Catch::Matchers::Contains("original: ") && Catch::Matchers::Contains("added: ") &&
+                           Catch::Matchers::Contains("clog ended by the rule") &&
+                           Catch::Matchers::Contains("siloscope timeline"));
+      CHECK(body.find("<image") == std::string::npos);
+    } else if (std::string(ext) == ".pdf") {
+      CHECK(body.rfind("%PDF", 0) == 0);
+      CHECK(body.find("/Subtype /Image") == std::string::npos);
+    } else {
+      CHECK(body.substr(1, 3) == "PNG");
+    }
+  }
+  // Not over an existing figure without --force; --force replaces its own figure, never the user's file.
+  CHECK(cli("timeline " + (d / "r").string() + " --out " + (d / "t.svg").string()).code == 2);
+  CHECK(cli("timeline " + (d / "r").string() + " --out " + (d / "t.svg").string() + " --force").code == 0);
+  std::ofstream(d / "mine.svg") << "<svg>my own drawing</svg>\n";
+  const auto refused =
+      cli("timeline " + (d / "r").string() + " --out " + (d / "mine.svg").string() + " --force");
+  CHECK(refused.code == 2);
+  CHECK(slurp(d / "mine.svg") == "<svg>my own drawing</svg>\n");
+  // Bad requests name what is allowed and write nothing.
+  CHECK_THAT(cli("timeline " + (d / "r").string() + " --out " + (d / "t.jpg").string()).output,
+             Catch::Matchers::Contains(".pdf, .svg or .png"));
+  CHECK_THAT(cli("timeline " + (d / "r").string() + " --to 50 --out " + (d / "u.svg").string()).output,
+             Catch::Matchers::Contains("the run's duration (10 s)"));
+  CHECK_FALSE(fs::exists(d / "u.svg"));
+  CHECK(cli("timeline " + d.string() + " --out " + (d / "v.svg").string()).code == 2);
+}
