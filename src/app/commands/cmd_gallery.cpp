@@ -108,6 +108,9 @@ int gallery(const GalleryOptions& o) {
   // paths in PDF and SVG alike), with the arch's descriptors (core::arch_descriptors) in the index.
   std::vector<long> at;
   for (size_t k = 0; k < n; ++k) at.push_back(std::lround(recorded.arches[k].t / scene.dt) - 1);
+  // The re-simulation takes as long as the run did: say how far it has got (on a terminal, as run does).
+  const double until = recorded.arches[n - 1].t + 0.5 * scene.dt;
+  Progress progress("gallery: re-simulating", until, true);
   Session session({model});
   std::string index =
       "tile,t_s,clog_s,members,added,species,method,span_m,rise_m,aspect,theta_max_deg,defects,angle_sd_deg,"
@@ -133,7 +136,10 @@ int gallery(const GalleryOptions& o) {
     index += tile_row(name, a, f, names, 2 * half);
     ++k;
   };
-  session.run(recorded.arches[n - 1].t + 0.5 * scene.dt, FrameClock::at_steps(at), {&tiles});
+  session.run(until, FrameClock::at_steps(at), {&tiles}, {}, [&](double t) {
+    progress.update(t, std::to_string(k) + " of " + std::to_string(n) + " arches");
+  });
+  progress.finish();
   // The re-simulation must give the recorded arches: the same physics, build and seed.
   const auto& again = session.world(0).events().arches;
   for (size_t i = 0; i < n; ++i)

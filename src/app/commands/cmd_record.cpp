@@ -243,7 +243,8 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.
     for (const auto& p : panels)
-      top = std::max(top, color_scale_from_data(p.model, plan.style.color == render::ColorMode::Force, 2.0));
+      top = std::max(
+          top, color_scale_from_data(p.model, plan.style.color == render::ColorMode::Force, 2.0, !o.quiet));
     if (!o.quiet)
       std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
                    num6(top).c_str(), plan.style.color == render::ColorMode::Force ? "N" : "m/s");

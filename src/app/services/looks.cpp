@@ -114,7 +114,7 @@ void LookOptions::resolve_tags(const core::Model& model, render::Style& style, b
     if (r.t > scene.duration)
       throw core::InputError("--track-region " + track_region + ": T is after the run's end (" +
                              core::format_g(scene.duration, 6) + " s)");
-    const std::vector<int> ids = grains_in_box(model, r.x0, r.y0, r.x1, r.y1, r.t);
+    const std::vector<int> ids = grains_in_box(model, r.x0, r.y0, r.x1, r.y1, r.t, !quiet);
     if (ids.empty())
       throw core::InputError("--track-region " + track_region + ": no grain's centre is in the box at " +
                              core::format_g(r.t, 6) + " s");
@@ -124,12 +124,12 @@ void LookOptions::resolve_tags(const core::Model& model, render::Style& style, b
     add(ids);
   }
   if (track_clog > 0) {
-    const std::vector<int> ids = clog_arch_members(model, track_clog);
+    const std::vector<int> ids = clog_arch_members(model, track_clog, !quiet);
     if (!quiet) std::fprintf(stderr, "siloscope: --track-clog %d: %zu grains\n", track_clog, ids.size());
     add(ids);
   }
   if (track_arch > 0) {
-    const std::vector<int> ids = long_arch_members(model, track_arch);
+    const std::vector<int> ids = long_arch_members(model, track_arch, !quiet);
     if (!quiet) std::fprintf(stderr, "siloscope: --track-arch %d: %zu grains\n", track_arch, ids.size());
     add(ids);
   }

@@ -1,4 +1,5 @@
 #include "app/services/recording.h"
+#include "app/services/terminal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +50,7 @@ void EventMarks::start(const std::string& caption, double t, bool keep_rings) {
   if (!keep_rings) rings_.clear();
 }
 
-double color_scale_from_data(const core::Model& model, bool forces, double seconds) {
+double color_scale_from_data(const core::Model& model, bool forces, double seconds, bool show) {
   // Frames every 0.1 s from 0.1 s to `seconds` (the end half a frame later so the last one is taken).
   const core::Scene& scene = model.scene;
   const double end = std::min(seconds, scene.duration);
@@ -62,15 +63,18 @@ double color_scale_from_data(const core::Model& model, bool forces, double secon
     for (const auto& p : tick.frames[0].particles)
       values.push_back(forces ? p.force : std::hypot(p.vx, p.vy));
   };
-  session.run(end + 0.05, FrameClock::every(scene.dt, 0.1, "--color-max auto"), {&probe});
+  Progress progress("--color-max auto: simulating ahead", end, show);
+  session.run(end + 0.05, FrameClock::every(scene.dt, 0.1, "--color-max auto"), {&probe}, {},
+              [&](double now) { progress.update(now); });
+  progress.finish();
   if (values.empty()) return 0;
   const size_t k = static_cast<size_t>(0.99 * static_cast<double>(values.size() - 1));
   std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
   return values[k];
 }
 
-std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, double x1, double y1,
-                               double t) {
+std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, double x1, double y1, double t,
+                               bool show) {
   const core::Scene& scene = model.scene;
   Session session({model});
   std::vector<int> ids;
@@ -91,11 +95,13 @@ std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, d
     take(h);
     return false;
   };
-  session.run(t + scene.dt, FrameClock::none(), {&probe});
+  Progress progress("--track-region: simulating ahead", t, show);
+  session.run(t + scene.dt, FrameClock::none(), {&probe}, {}, [&](double now) { progress.update(now); });
+  progress.finish();
   return ids;
 }
 
-std::vector<int> long_arch_members(const core::Model& model, int k) {
+std::vector<int> long_arch_members(const core::Model& model, int k, bool show) {
   const core::Scene& scene = model.scene;
   Session session({model});
   FunctionSink probe;
@@ -106,14 +112,16 @@ std::vector<int> long_arch_members(const core::Model& model, int k) {
       if (++removed == k) ids = a.ids;
     return removed < k;
   };
-  session.run(scene.duration, FrameClock::none(), {&probe});
+  Progress progress("--track-arch: simulating ahead", scene.duration, show);
+  session.run(scene.duration, FrameClock::none(), {&probe}, {}, [&](double now) { progress.update(now); });
+  progress.finish();
   if (removed < k)
     throw core::InputError("--track-arch " + std::to_string(k) + ": the run has " + std::to_string(removed) +
                            " long-lasting arches in its " + core::format_g(scene.duration, 6) + " s");
   return ids;
 }
 
-std::vector<int> clog_arch_members(const core::Model& model, int k) {
+std::vector<int> clog_arch_members(const core::Model& model, int k, bool show) {
   const core::Scene& scene = model.scene;
   Session session({model});
   FunctionSink probe;
@@ -127,7 +135,9 @@ std::vector<int> clog_arch_members(const core::Model& model, int k) {
     if (h.clog().open && h.clog().number == k) ids = h.clog().arch;
     return false;
   };
-  session.run(scene.duration, FrameClock::none(), {&probe});
+  Progress progress("--track-clog: simulating ahead", scene.duration, show);
+  session.run(scene.duration, FrameClock::none(), {&probe}, {}, [&](double now) { progress.update(now); });
+  progress.finish();
   if (opened < k)
     throw core::InputError("--track-clog " + std::to_string(k) + ": the run has " + std::to_string(opened) +
                            " clogs in its " + core::format_g(scene.duration, 6) + " s");

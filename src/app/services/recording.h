@@ -20,16 +20,17 @@ namespace app {
 // 99th percentile of every grain's value over frames every 0.1 s of the first `seconds` of discharge,
 // simulated ahead from the same scene and seed (a session of its own, one extra settling). 0 if everything
 // stayed at rest.
-double color_scale_from_data(const core::Model& model, bool forces, double seconds);
+double color_scale_from_data(const core::Model& model, bool forces, double seconds, bool progress = true);
 
 // Look-aheads for tagging grains (the run repeats exactly from its seed): the ids of the grains whose centres
 // are in the box at time t (the first frame at or after it, frames every dt), and the members of the k-th
-// long-lasting arch (k >= 1; throws core::InputError naming how many the run has).
-std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, double x1, double y1,
-                               double t);
-std::vector<int> long_arch_members(const core::Model& model, int k);
+// long-lasting arch (k >= 1; throws core::InputError naming how many the run has). `progress`: how far each
+// look-ahead has got, on a terminal (commands pass !--quiet).
+std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, double x1, double y1, double t,
+                               bool progress = true);
+std::vector<int> long_arch_members(const core::Model& model, int k, bool progress = true);
 // The members of the arch of the k-th clog as it opens (k >= 1; row k of clogs.csv).
-std::vector<int> clog_arch_members(const core::Model& model, int k);
+std::vector<int> clog_arch_members(const core::Model& model, int k, bool progress = true);
 
 // The annotations record puts on a panel's frames: the members of the last rule removal, ringed where they
 // stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames
