@@ -247,3 +247,38 @@ TEST_CASE("timeline: the discharge staircase with clog bands in PDF, SVG and PNG
   CHECK_FALSE(fs::exists(d / "u.svg"));
   CHECK(cli("timeline " + d.string() + " --out " + (d / "v.svg").string()).code == 2);
 }
+
+TEST_CASE("frame: one picture of a recording at a clog, a time or a frame, at any size, in PNG, SVG and PDF",
+          "[export][app]") {
+  const fs::path rec = recorded("frame");
+  const fs::path d = rec.parent_path();
+  auto r = cli("frame " + rec.string() + " --at clog:1 --size 640x360 --camera outlet --out " +
+               (d / "clog-{frame}.png").string());
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("clog:1 at frame "));
+  const std::string written =
+      r.output.substr(r.output.rfind("-> ") + 3, r.output.rfind('\n') - r.output.rfind("-> ") - 3);
+  const std::string png = slurp(written);
+  REQUIRE(png.size() > 24);
+  CHECK(png.substr(1, 3) == "PNG");
+  // The PNG header's width and height (big-endian at bytes 16 and 20).
+  auto be32 = [&](size_t at) {
+    return (static_cast<unsigned char>(png[at]) << 24) | (static_cast<unsigned char>(png[at + 1]) << 16) |
+           (static_cast<unsigned char>(png[at + 2]) << 8) | static_cast<unsigned char>(png[at + 3]);
+  };
+  CHECK(be32(16) == 640u);
+  CHECK(be32(20) == 360u);
+  // Vector: circles as shapes, no bitmap.
+  REQUIRE(cli("frame " + rec.string() + " --at t:1.0 --out " + (d / "t1.svg").string()).code == 0);
+  CHECK(slurp(d / "t1.svg").find("<image") == std::string::npos);
+  // Never over a file; bad requests name the option and what is allowed.
+  CHECK(cli("frame " + rec.string() + " --at t:1.0 --out " + (d / "t1.svg").string()).code == 2);
+  CHECK_THAT(cli("frame " + rec.string() + " --at soon --out " + (d / "x.png").string()).output,
+             Catch::Matchers::Contains("clog:K, rule:K, t:SECONDS or frame:N"));
+  CHECK_THAT(cli("frame " + rec.string() + " --at clog:99 --out " + (d / "x.png").string()).output,
+             Catch::Matchers::Contains("--at") && Catch::Matchers::Contains("clog 99 does not exist"));
+  CHECK_THAT(cli("frame " + rec.string() + " --at t:1 --color nope --out " + (d / "x.png").string()).output,
+             Catch::Matchers::Contains("--color"));
+  CHECK_FALSE(fs::exists(d / "x.png"));
+}

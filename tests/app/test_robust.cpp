@@ -105,9 +105,9 @@ TEST_CASE("SIGTERM during record also leaves a playable movie", "[robust][app]")
 
 TEST_CASE("every subcommand answers --help and --version, wrong arguments give usage and exit 2",
           "[robust][app]") {
-  for (const char* sub :
-       {"run", "record", "inspect", "live", "sweep", "analyze", "figures", "gallery", "timeline", "claims",
-        "export", "scene", "bench sim", "bench arch", "bench accuracy", "bench stability", "bench sweep"}) {
+  for (const char* sub : {"run", "record", "inspect", "live", "sweep", "analyze", "figures", "gallery",
+                          "timeline", "frame", "claims", "export", "scene", "bench sim", "bench arch",
+                          "bench accuracy", "bench stability", "bench sweep"}) {
     CAPTURE(sub);
     auto h = cli(std::string(sub) + " --help");
     CHECK(h.code == 0);

@@ -91,6 +91,63 @@ int inspect(const InspectOptions& o) {
   return 0;
 }
 
+struct FrameOptions {
+  std::string path, at, size = "3840x2160", out, camera = "split", color = "species", overlay = "all";
+};
+
+// siloscope frame RUN --at ...: one picture of a recorded run at an event, as the inspector's script makes it
+// (the same lines: zoom, color, overlay, goto, snapshot), so a figure for a talk is one command.
+int frame(const FrameOptions& o) {
+  io::Trajectory traj(trajectory_path(o.path));
+  const core::Model& model = run_model(traj, o.path);
+  std::unique_ptr<io::Contacts> contacts;
+  const fs::path contacts_path = trajectory_path(o.path).parent_path() / "contacts.sscon";
+  if (fs::exists(contacts_path))
+    contacts = std::make_unique<io::Contacts>(contacts_path, traj.info().n_particles);
+  const TrajectoryFrames frames(traj, contacts.get());
+  const RecordFiles files;
+  ui::Inspector insp(frames, model, &files);
+  // --at: clog:K (where clog K's final arch first stands), rule:K (the K-th long-lasting arch, the frame
+  // before the rule removed it), t:SECONDS or frame:N.
+  const size_t colon = o.at.find(':');
+  const std::string kind = o.at.substr(0, colon),
+                    value = colon == std::string::npos ? "" : o.at.substr(colon + 1);
+  std::string go;
+  if (kind == "clog" && !value.empty())
+    go = "goto clog " + value + " arch";
+  else if (kind == "rule" && !value.empty())
+    go = "goto arch " + value;
+  else if (kind == "t" && !value.empty())
+    go = "goto time " + value;
+  else if (kind == "frame" && !value.empty())
+    go = "goto frame " + value;
+  else
+    throw core::InputError("--at " + o.at + ": expected clog:K, rule:K, t:SECONDS or frame:N");
+  const std::string ext = fs::path(o.out).extension().string();
+  if (ext != ".png" && ext != ".svg" && ext != ".pdf")
+    throw core::InputError("--out " + o.out + ": the frame is .png, .svg or .pdf");
+  int w = 0, h = 0;
+  render::parse_size(o.size, "--size", w, h, 64, 64);
+  render::OffscreenContext ctx;
+  ui::Painter painter;
+  for (const std::string& line : {"zoom " + o.camera, "color " + o.color, "overlay " + o.overlay, go}) {
+    try {
+      insp.execute(line, &painter);
+    } catch (const core::InputError& e) {
+      // Name the option the line came from, not the script line.
+      const std::string opt = line.rfind("zoom", 0) == 0      ? "--camera"
+                              : line.rfind("color", 0) == 0   ? "--color"
+                              : line.rfind("overlay", 0) == 0 ? "--overlay"
+                                                              : "--at";
+      throw core::InputError(opt + ": " + e.what());
+    }
+  }
+  const std::string written = insp.snapshot(o.out, w, h, &painter);
+  std::printf("%s at frame %ld (t = %.3f s) -> %s\n", o.at.c_str(), insp.frame_index(),
+              insp.trajectory().time(insp.frame_index()), written.c_str());
+  return 0;
+}
+
 int live(const LiveOptions& o) {
   const core::Model model = o.scene.compile();
   ui::WindowOptions w;
@@ -121,6 +178,26 @@ void add_inspect_command(CLI::App& app, Action& action) {
       ->check(whole_number(0, 100000000));
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return inspect(*o); }; });
+
+  auto fo = std::make_shared<FrameOptions>();
+  auto* fc = app.add_subcommand(
+      "frame",
+      "one high-resolution picture of a recorded run at a clog, a rule removal or a time (PNG, SVG, PDF)");
+  fc->set_version_flag("--version", io::version_string());
+  fc->add_option("run", fo->path, "a recording (or a run written with --trajectory-fps)")->required();
+  fc->add_option("--at", fo->at,
+                 "clog:K (where clog K's final arch first stands), rule:K (the K-th long-lasting arch just "
+                 "before the rule removed it), t:SECONDS or frame:N")
+      ->required();
+  fc->add_option("--out", fo->out, "F.png, F.svg or F.pdf ({frame} and {t} are filled in; never over a file)")
+      ->required();
+  fc->add_option("--size", fo->size, "picture size")->capture_default_str();
+  fc->add_option("--camera", fo->camera, "split, outlet, hopper or window:X0,Y0,X1,Y1")
+      ->capture_default_str();
+  fc->add_option("--color", fo->color, "species, speed, force, displacement, coordination or id [range]")
+      ->capture_default_str();
+  fc->add_option("--overlay", fo->overlay, "as record's --overlay")->capture_default_str();
+  fc->callback([fo, &action] { action = [fo] { return frame(*fo); }; });
 
   auto l = std::make_shared<LiveOptions>();
   auto* lc = app.add_subcommand(
