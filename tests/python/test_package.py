@@ -93,3 +93,49 @@ def test_bad_files_give_one_line_naming_file_field_and_value(recording, root, tm
     with pytest.raises(siloscope.SiloscopeError, match="not a siloscope trajectory"):
         (tmp_path / "t.sstraj").write_bytes(b"NOTATRAJ" + bytes(100))
         siloscope.read_trajectory(str(tmp_path / "t.sstraj"))
+
+
+def test_corrupt_trajectory_frames_are_refused_by_python_and_by_inspect(recording, binary, tmp_path):
+    """The same corrupted files to both readers: time running backwards, a grain 1e30 m away, a NaN speed, a
+    negative exit count. The Python reader raises naming the file and frame, `siloscope inspect` exits 2."""
+    import shutil
+    import subprocess
+    import numpy as np
+    src = os.path.join(recording, "trajectory.sstraj")
+    tr = siloscope.read_trajectory(src)
+    assert len(tr) > 20
+    cases = {"time": lambda m: m["t"].__setitem__(12, m["t"][3]),
+             "x": lambda m: m["x"].__setitem__((15, 2), 1e30),
+             "vy": lambda m: m["vy"].__setitem__((16, 5), np.nan),
+             "exits": lambda m: m["exits"].__setitem__((17, 0), -2)}
+    for name, corrupt in cases.items():
+        path = tmp_path / f"{name}.sstraj"
+        shutil.copy(src, path)
+        m = np.memmap(path, dtype=tr.frames.dtype, mode="r+", offset=tr.header_bytes, shape=(len(tr),))
+        corrupt(m)
+        m.flush()
+        del m
+        with pytest.raises(siloscope.SiloscopeError, match=rf"{name}.sstraj: frame 1[2-7] is corrupted"):
+            siloscope.read_trajectory(path)
+        script = tmp_path / "print.txt"
+        script.write_text("print\n")
+        done = subprocess.run([binary, "inspect", str(path), "--script", str(script), "--quiet"],
+                              capture_output=True, text=True)
+        assert done.returncode == 2, (name, done.stderr)
+        assert "is corrupted" in done.stderr
+
+
+def test_campaign_values_out_of_range_are_refused(root, tmp_path):
+    import shutil
+    analysis = tmp_path / "analysis"
+    shutil.copytree(os.path.join(root, "docs/campaigns/harmonic/analysis"), analysis)
+    siloscope.read_campaign(analysis)  # as committed: accepted
+    text = (analysis / "points.csv").read_text().split("\n")
+    header = text[0].split(",")
+    for column, value, allowed in (("q_tilde_per_s", "-3", ">= 0"), ("chi_eff", "1.5", "from 0 to 1"),
+                                   ("q_per_s", "lots", ">= 0")):
+        row = text[1].split(",")
+        row[header.index(column)] = value
+        (analysis / "points.csv").write_text("\n".join([text[0], ",".join(row)] + text[2:]))
+        with pytest.raises(siloscope.SiloscopeError, match=rf"points.csv:2: {column} = .* {allowed}"):
+            siloscope.read_campaign(analysis)

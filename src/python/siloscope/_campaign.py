@@ -32,8 +32,13 @@ class Campaign:
         # n_runs is required; the other counts are checked where present (a hand-made table may leave them out).
         counts = ("clogs", "clogs_vibration", "clogs_rule", "clogs_spontaneous", "ballistic_runs", "n_refused")
         header = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS).columns
+        # Rates, sizes and their intervals are >= 0, shares are fractions (NaN: not measured at that point).
+        rates = ("q_per_s", "q_tilde_per_s", "q_p_per_s", "long_arches_per_min", "added_per_long_arch",
+                 "avalanche_mean", "q_tilde_over_qp")
+        shares = ("chi_eff", "fraction_broken_by_vibration", "airborne_fraction")
         self.points = read_table(os.path.join(analysis, "points.csv"), POINT_KEYS,
-                                 counts=("n_runs",) + tuple(c for c in counts if c in header))
+                                 counts=("n_runs",) + tuple(c for c in counts if c in header),
+                                 nonnegative=rates + tuple(c + "_ci95" for c in rates + shares), fractions=shares)
         if len(self.points) == 0:
             raise SiloscopeError(f"{analysis}/points.csv has no points")
         bad = self.points["n_runs"] < 1

@@ -153,6 +153,55 @@ class Trajectory:
         self.truncated = (frames_end - self.header_bytes) % dtype.itemsize != 0
         self.frames = np.memmap(real, dtype=dtype, mode="r", offset=self.header_bytes, shape=(count,)) if count else \
             np.zeros(0, dtype=dtype)
+        self._check_frames(path)
+
+    def _check_frames(self, path):
+        """The frames' values, checked as `siloscope inspect` checks them (io/trajectory.cpp): time finite and
+        running forwards, exit counts never negative nor falling, the clog timer not negative, clog state in
+        range, every grain value finite and no grain farther from the container than ten times its size."""
+        f = self.frames
+        if not len(f):
+            return
+
+        def refuse(k, what):
+            raise SiloscopeError(f"{path}: frame {int(k)} is corrupted: {what}")
+
+        t = f["t"]
+        bad = np.flatnonzero(~np.isfinite(t))
+        if len(bad):
+            refuse(bad[0], "its time is not a finite number")
+        back = np.flatnonzero(np.diff(t) <= 0)
+        if len(back):
+            k = back[0] + 1
+            refuse(k, f"its time {t[k]!r} s does not come after the previous frame's {t[k - 1]!r} s")
+        exits = np.asarray(self.exits, dtype=np.int64).reshape(len(f), -1)
+        low = np.flatnonzero((exits < 0).any(axis=1) | np.r_[False, (np.diff(exits, axis=0) < 0).any(axis=1)])
+        if len(low):
+            refuse(low[0], "an exit count is negative or lower than the previous frame's")
+        since = f["since_last_exit"]
+        bad = np.flatnonzero(~np.isfinite(since) | (since < 0))
+        if len(bad):
+            refuse(bad[0], "its time since the last exit is negative or not a finite number")
+        if self.version >= 2:
+            bad = np.flatnonzero(~np.isfinite(f["clog_start"]) | np.isnan(f["rule_due_in"]) |
+                                 (f["clog_number"] < 0) | (f["clog_flags"] > 3))
+            if len(bad):
+                refuse(bad[0], "its clog state (start, rule time, number or flags) is out of range")
+        scene = self.metadata.get("scene", {}) if isinstance(self.metadata, dict) else {}
+        size = max(float(scene.get("silo_height", 0)) + float(scene.get("hopper_height", 0)),
+                   float(scene.get("silo_width", 0)))
+        reach = 10.0 * size + 1.0 if size > 0 else 1e3
+        for name in ("x", "y", "angle", "vx", "vy", "force"):
+            v = f[name]
+            bad = np.argwhere(~np.isfinite(v))
+            if len(bad):
+                refuse(bad[0][0], f"{name} of particle {int(bad[0][1])} is not a finite number")
+            if name in ("x", "y"):
+                far = np.argwhere(np.abs(v) > reach)
+                if len(far):
+                    k, i = far[0]
+                    refuse(k, f"{name} of particle {int(i)} is {float(v[k, i]):.7g} m, far outside the container "
+                              f"(allowed: within {reach:g} m)")
 
     def __len__(self):
         return len(self.frames)
