@@ -384,11 +384,13 @@ Claim c7(const Data& d) {
   }
   const bool pinned0 = pin_long_arches(d, nonmag, c.parts[0]);
   const bool pinned1 = c.parts[1].verdict != Verdict::NotTested && pin_long_arches(d, every, c.parts[1]);
+  const bool pinned2 =
+      c.parts[2].verdict != Verdict::NotTested && pin_long_arches(d, every, c.parts[2], true);
   conclude(c);
   if (!pinned0)
     c.parts[0].verdict = c.parts[0].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[0]);
   if (!pinned1 && c.parts[1].verdict != Verdict::NotTested) c.parts[1].verdict = by_pool(c.parts[1]);
-  if (c.parts[2].verdict != Verdict::NotTested) c.parts[2].verdict = by_pool(c.parts[2]);
+  if (!pinned2 && c.parts[2].verdict != Verdict::NotTested) c.parts[2].verdict = by_pool(c.parts[2]);
   return c;
 }
 

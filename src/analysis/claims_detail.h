@@ -116,7 +116,10 @@ Verdict claim_verdict(const std::vector<Part>& parts);
 // Long arches per minute are pinned when vibration breaks fewer than kPinnedVibration of the clogs at `pts`:
 // marks `part` so and says why (false: not pinned, or the table lacks the counts).
 Broken broken_by_vibration(const Data& d, const std::vector<const Point*>& pts);
-bool pin_long_arches(const Data& d, const std::vector<const Point*>& pts, Part& part);
+// `composition`: the part is about what long-lasting arches are made of (not how many there are): with every
+// clog lasting to the rule, "long-lasting" arches are all arches, and the part says that instead.
+bool pin_long_arches(const Data& d, const std::vector<const Point*>& pts, Part& part,
+                     bool composition = false);
 // Q~/Q_p at (r, F/W) against 1; a column at F/W against F/W = 0, same r.
 Comparison ratio_vs_one(const Data& d, double r, double fr, int expected);
 Comparison with_mu(const Data& d, double r, double fr, const std::string& col, const std::string& name,

@@ -236,15 +236,21 @@ Broken broken_by_vibration(const Data& d, const std::vector<const Point*>& pts) 
   return b;
 }
 // Long arches per minute are pinned by the 5 s rule when vibration breaks (almost) no clog.
-bool pin_long_arches(const Data& d, const std::vector<const Point*>& pts, Part& part) {
+bool pin_long_arches(const Data& d, const std::vector<const Point*>& pts, Part& part, bool composition) {
   const Broken b = broken_by_vibration(d, pts);
   if (!(b.fraction < kPinnedVibration)) return false;
   part.verdict = Verdict::Pinned;
   part.why = "vibration broke " + std::to_string(b.broken) + " of " + std::to_string(b.decided) + " clogs (" +
              core::format_g(100 * b.fraction, 2) +
-             "%) at these points; every other clog lasted to the 5 s rule, so the long arches per minute are "
-             "60 / (5 s + the mean flowing time between clogs): they measure the flow between clogs, not how "
-             "long arches last, and no number of realizations changes that";
+             "%) at these points; every other clog lasted to the 5 s rule, ";
+  part.why +=
+      composition
+          ? "so every arch is a long-lasting one: the added disks per long-lasting arch describe what "
+            "arches are made of, not what makes them last, and the protocol, not the physics, decides "
+            "(the change is shown above; no number of realizations changes that)"
+          : "so the long arches per minute are 60 / (5 s + the mean flowing time between clogs): they "
+            "measure the flow between clogs, not how long arches last, and no number of realizations "
+            "changes that";
   return true;
 }
 
