@@ -56,10 +56,19 @@ void interval(Located& l, const std::vector<double>& rounds) {
 Claim c1(const Data& d) {
   Claim c{"C1", "Non-magnetic additive (F/W = 0)"};
   const auto sizes = d.sizes();
-  c.parts.push_back(range_part("Q~ < Q_p for r > 0.7", sizes, 0.7, 10, "Q~/Q_p - 1, pooled over r > 0.7", -1,
-                               [&](double r) { return ratio_vs_one(d, r, 0, -1); }));
-  c.parts.push_back(range_part("Q~ > Q_p for r < 0.7", sizes, 0, 0.7, "Q~/Q_p - 1, pooled over r < 0.7", 1,
-                               [&](double r) { return ratio_vs_one(d, r, 0, 1); }));
+  // Pooled as (mean Q~ over r) / Q_p - 1: every r shares the one pure point (pooled_ratio).
+  c.parts.push_back(range_part(
+      "Q~ < Q_p for r > 0.7", sizes, 0.7, 10, "Q~/Q_p - 1, pooled over r > 0.7", -1,
+      [&](double r) { return ratio_vs_one(d, r, 0, -1); },
+      [&](const std::vector<double>& used) {
+        return pooled_ratio(d, used, 0, "mean Q~ over r > 0.7, over the shared Q_p, - 1", -1);
+      }));
+  c.parts.push_back(range_part(
+      "Q~ > Q_p for r < 0.7", sizes, 0, 0.7, "Q~/Q_p - 1, pooled over r < 0.7", 1,
+      [&](double r) { return ratio_vs_one(d, r, 0, 1); },
+      [&](const std::vector<double>& used) {
+        return pooled_ratio(d, used, 0, "mean Q~ over r < 0.7, over the shared Q_p, - 1", 1);
+      }));
   const Curve curve = nonmagnetic_curve(d);
   const auto pure = d.samples(d.pure(), "q_per_s");
   Part cross{"Q~ crosses Q_p at r = 0.7 (located, bootstrap)"};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -130,9 +131,16 @@ std::string list(const std::vector<double>& v, const std::string& sep = ", ");
 std::string text(const Est& e);
 
 // A part over the sizes in (lo, hi): per-r comparisons and their pool.
+// Q~/Q_p - 1 pooled over the non-magnetic points at `sizes`: the mean of Q~ over r (independent points) over
+// the one Q_p they all share, so that Q_p's uncertainty counts once for the whole pool, not as if each r had
+// its own (the mean of the per-r ratios' intervals taken as independent was too narrow).
+Comparison pooled_ratio(const Data& d, const std::vector<double>& sizes, double fr, const std::string& label,
+                        int expected);
+
 template <class PerR>
 Part range_part(const std::string& words, const std::vector<double>& sizes, double lo, double hi,
-                const std::string& pool_label, int expected, PerR per_r) {
+                const std::string& pool_label, int expected, PerR per_r,
+                const std::function<Comparison(const std::vector<double>&)>& pool = {}) {
   Part part{words};
   std::vector<Comparison> rs;
   std::vector<double> used;
@@ -148,7 +156,7 @@ Part range_part(const std::string& words, const std::vector<double>& sizes, doub
   }
   part.comparisons = rs;
   if (rs.size() >= 2) {  // a pool of one r would only repeat it
-    Comparison p = pooled(pool_label, rs, expected);
+    Comparison p = pool ? pool(used) : pooled(pool_label, rs, expected);
     p.note = "mean over r = " + list(used);
     part.comparisons.push_back(p);
   }

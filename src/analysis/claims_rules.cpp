@@ -123,6 +123,31 @@ Comparison pooled(const std::string& label, const std::vector<Comparison>& per_r
   return c;
 }
 
+Comparison pooled_ratio(const Data& d, const std::vector<double>& sizes, double fr, const std::string& label,
+                        int expected) {
+  Comparison c{label, Est::none(), Est::none(), expected};
+  c.pooled = true;
+  if (sizes.empty()) return c;
+  double sum = 0, h2 = 0;
+  long n = std::numeric_limits<long>::max();
+  for (double r : sizes) {
+    const Est q = d.est(d.at(r, fr), "q_tilde_per_s");
+    sum += q.m, h2 += q.h * q.h, n = std::min(n, q.n);
+  }
+  const double m = static_cast<double>(sizes.size());
+  Est qp = d.est(d.at(sizes.front(), fr), "q_p_per_s");
+  if (!qp.finite()) qp = d.est(d.pure(), "q_per_s");  // an analysis without the column: the pure point itself
+  const double mean = sum / m, half_mean = std::sqrt(h2) / m;
+  const double ratio = mean / qp.m;
+  c.diff = ratio - 1;
+  c.half = std::abs(ratio) * std::hypot(half_mean / mean, qp.h / qp.m);
+  if (!std::isfinite(c.half) || !(qp.m > 0)) c.half = std::numeric_limits<double>::infinity();
+  c.a = {c.diff, c.half, n};
+  c.b = Est::exact(0);
+  c.p = two_sided_p(c.diff, c.half);
+  return c;
+}
+
 // Holm over every p-valued comparison of the claim; equality comparisons (expected 0) are judged by
 // interval, Bonferroni-widened over the part's equality comparisons.
 void holm_signs(const std::vector<Comparison*>& fam) {

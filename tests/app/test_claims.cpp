@@ -386,3 +386,50 @@ TEST_CASE("claims: C6 reads the survival of lapses at 1 s, bootstrapped over rea
   CHECK_THAT(md, Catch::Matchers::Contains("P(lapse >= 1 s), pure against r = 0.4 non-magnetic: 0.08 +- ") &&
                      Catch::Matchers::Contains("bootstrap"));
 }
+
+TEST_CASE("claims: C1.1 and C1.2 pool Q~/Q_p over r with the one Q_p they share, not as independent ratios",
+          "[claims][app]") {
+  fs::path d = temp_dir("claims-shared-qp");
+  Model m;
+  m.q_tilde = [](double r, double) { return c1_shape(r, 0.4); };
+  write_campaign(d / "a" / "analysis", m);
+  REQUIRE(cli("claims a=" + (d / "a").string() + " --out " + (d / "claims.md").string()).code == 0);
+  // From claims.csv: the per-r half-widths of C1.2 and its pooled one.
+  std::istringstream table(slurp(d / "claims.csv"));
+  std::vector<double> per_r;
+  double pooled = -1, pooled_diff = 0;
+  for (std::string line; std::getline(table, line);) {
+    std::vector<std::string> cells(1);
+    bool quoted = false;
+    for (char ch : line) {
+      if (ch == '"')
+        quoted = !quoted;
+      else if (ch == ',' && !quoted)
+        cells.emplace_back();
+      else
+        cells.back() += ch;
+    }
+    if (cells.size() < 15 || cells[3] != "C1.2") continue;
+    if (cells[6] == "pooled" && cells[7].find("shared Q_p") != std::string::npos)
+      pooled = std::stod(cells[14]), pooled_diff = std::stod(cells[13]);
+    else if (cells[6] == "comparison")
+      per_r.push_back(std::stod(cells[14]));
+  }
+  REQUIRE(per_r.size() == 6);
+  REQUIRE(pooled > 0);
+  double h2 = 0;
+  for (double h : per_r) h2 += h * h;
+  const double independent = std::sqrt(h2) / 6;
+  // Q_p's relative error counts once for the whole pool: at least (1 + diff) times it, which the mean of
+  // independent ratios shrinks by sqrt(6).
+  const double qp_rel = analysis::estimate([&] {
+                          std::vector<double> q;
+                          for (int i = 0; i < m.n; ++i)
+                            q.push_back(m.qp * (1 + m.spread * analysis::normal_quantile((i + 0.5) / m.n)));
+                          return q;
+                        }())
+                            .half_width /
+                        m.qp;
+  CHECK(pooled > independent);
+  CHECK(pooled >= (1 + pooled_diff) * qp_rel * 0.999);
+}
