@@ -104,17 +104,48 @@ Claim c1(const Data& d) {
   }
   c.parts.push_back(cross);
   c.parts.push_back(peak);
+  // The fall is from the maximum the measurements show (the largest measured Q~ below r = 0.7), to the
+  // smallest r: comparing with r = 0.4 missed a fall from a maximum elsewhere.
   Part back{"Q~ falling back towards Q_p as r drops below 0.4"};
-  if (!sizes.empty() && sizes.front() < 0.4 - 1e-9 && d.at(0.4, 0))
-    back.comparisons.push_back(compare("Q~ at r = " + g3(sizes.front()) + " against r = 0.4",
-                                       d.est(d.at(sizes.front(), 0), "q_tilde_per_s"),
-                                       d.est(d.at(0.4, 0), "q_tilde_per_s"), -1));
+  double top = std::nan(""), top_q = -1;
+  for (double r : sizes)
+    if (r < 0.7 - 1e-9 && d.at(r, 0)) {
+      const double q = d.est(d.at(r, 0), "q_tilde_per_s").m;
+      if (q > top_q) top_q = q, top = r;
+    }
+  std::string no_fall;
+  bool rising = false;  // the largest Q~ at the grid's smallest r: compared with r = 0.4, a rise contradicts
+  if (std::isnan(top)) {
+    no_fall = "the grid has no non-magnetic point below r = 0.7";
+  } else if (top <= sizes.front() + 1e-9) {
+    no_fall =
+        "the largest measured Q~ is at the grid's smallest r (" + g3(top) +
+        "): there is no r below it to fall to, so the grid, not the number of realizations, is the limit "
+        "(C1.4 locates the maximum)";
+    if (top < 0.4 - 1e-9 && d.at(0.4, 0)) {
+      rising = true;
+      back.comparisons.push_back(compare("Q~ at r = " + g3(top) + " (the measured maximum) against r = 0.4",
+                                         d.est(d.at(top, 0), "q_tilde_per_s"),
+                                         d.est(d.at(0.4, 0), "q_tilde_per_s"), -1));
+    }
+  } else
+    back.comparisons.push_back(
+        compare("Q~ at r = " + g3(sizes.front()) + " against the measured maximum at r = " + g3(top),
+                d.est(d.at(sizes.front(), 0), "q_tilde_per_s"), d.est(d.at(top, 0), "q_tilde_per_s"), -1));
   c.parts.push_back(back);
   conclude(c);
   for (int i : {0, 1})
     c.parts[i].verdict = c.parts[i].comparisons.empty() ? c.parts[i].verdict : by_pool(c.parts[i]);
   c.parts[4].verdict = c.parts[4].comparisons.empty() ? Verdict::NotTested : by_each(c.parts[4]);
-  if (c.parts[4].comparisons.empty()) c.parts[4].why = "the grid has no r below 0.4";
+  if (c.parts[4].comparisons.empty()) c.parts[4].why = no_fall;
+  if (rising) {
+    // Q~ keeps rising as r drops to the grid's end: resolved, that contradicts a fall below 0.4 within the
+    // grid (a fall below the smallest r is not excluded); unresolved, the grid decides nothing.
+    if (c.parts[4].verdict != Verdict::Contradicted) c.parts[4].verdict = Verdict::NotTested;
+    c.parts[4].why = c.parts[4].verdict == Verdict::Contradicted
+                         ? "Q~ rises all the way to the grid's smallest r; a fall below it is not excluded"
+                         : no_fall;
+  }
   return c;
 }
 
