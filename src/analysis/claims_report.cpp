@@ -114,10 +114,17 @@ std::string gap(const Comparison& c) {
   if (c.sign == -c.expected)
     return head + " (" + p_text(c.p) + "), resolved against the claim (n = " + std::to_string(n) + ")";
   if (c.diff == 0) return c.label + ": no difference at all (n = " + std::to_string(n) + ")";
-  return head + " (" + p_text(c.p) + "), " +
-         (c.diff * c.expected > 0 ? "in the claim's direction" : "against the claim") +
-         ", not resolved among the claim's " + std::to_string(c.k) +
-         " comparisons; a difference this size would be resolved at about n = " +
+  // An estimate of the n that would resolve the difference only where more realizations could move the
+  // verdict towards the paper (the estimate points the claim's way); against the claim, more runs could only
+  // resolve it against, and the note says so.
+  if (c.diff * c.expected < 0)
+    return head + " (" + p_text(c.p) + "), against the claim, not resolved among the claim's " +
+           std::to_string(c.k) +
+           " comparisons; more realizations could only resolve it against the claim (n = " +
+           std::to_string(n) + ")";
+  return head + " (" + p_text(c.p) + "), in the claim's direction, not resolved among the claim's " +
+         std::to_string(c.k) +
+         " comparisons; a difference this size would be resolved for the claim at about n = " +
          std::to_string(static_cast<long>(std::ceil(n * (h / c.diff) * (h / c.diff)))) + " per point (now " +
          std::to_string(n) + ")";
 }

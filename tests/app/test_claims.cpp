@@ -433,3 +433,24 @@ TEST_CASE("claims: C1.1 and C1.2 pool Q~/Q_p over r with the one Q_p they share,
   CHECK(pooled > independent);
   CHECK(pooled >= (1 + pooled_diff) * qp_rel * 0.999);
 }
+
+TEST_CASE("claims: 'n would resolve it' only where the estimate points the claim's way", "[claims][app]") {
+  fs::path d = temp_dir("claims-n");
+  Model m;
+  // Small effects of mu, unresolved at n = 20: the paper's way for r > 0.6 (Q~ grows), against it for r < 0.6
+  // (Q~ grows instead of falling).
+  m.q_tilde = [](double, double fr) { return 2.0 + 0.004 * fr; };
+  write_campaign(d / "a" / "analysis", m);
+  REQUIRE(cli("claims a=" + (d / "a").string() + " --out " + (d / "claims.md").string()).code == 0);
+  const std::string md = slurp(d / "claims.md");
+  INFO(md);
+  auto line_of = [&](const std::string& part) {
+    const size_t at = md.find("- **" + part + " (");
+    REQUIRE(at != std::string::npos);
+    return md.substr(at, md.find('\n', at) - at);
+  };
+  const std::string with = line_of("C2.1"), against = line_of("C2.2");
+  CHECK_THAT(with, Catch::Matchers::Contains("would be resolved for the claim at about n = "));
+  CHECK_THAT(against, Catch::Matchers::Contains("more realizations could only resolve it against the claim"));
+  CHECK(against.find("would be resolved") == std::string::npos);
+}
