@@ -42,7 +42,11 @@ std::string comparison_text(const Comparison& c) {
 }
 
 std::string located_text(const Located& l) {
-  std::string s = l.what + ": " + g(l.value) + ", 95% interval " + g(l.lo) + " to " + g(l.hi) +
+  // A location on the grid's points can have every resample at one point: said so, not as an interval of
+  // zero width.
+  const std::string where = l.lo == l.hi ? " (both ends of the 95% interval at this grid point)"
+                                         : ", 95% interval " + g(l.lo) + " to " + g(l.hi);
+  std::string s = l.what + ": " + g(l.value) + where +
                   " (bootstrap over realizations); the paper: " + g(l.paper) + " +- " + g(l.tolerance, 2);
   if (l.missing > 0) s += "; not located in " + g(100 * l.missing, 2) + "% of the resamples";
   return s;
