@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""The arch gallery sheet of `siloscope gallery`: tiles (each a draw list as a table, render/draw_list.h) and
+"""The arch gallery sheet of `siloscope gallery` (and the row of `siloscope filmstrip`): tiles (each a draw list as a table, render/draw_list.h) and
 their index.csv -> one PDF, SVG or PNG. Grains are drawn as circles and regular polygons, walls, bonds and
 halos as paths: the PDF and SVG are vector throughout (no bitmap), text stays text in the SVG.
 
-    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX]
+    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX] [FOOTER]
 """
 import math
 import os
@@ -82,6 +82,8 @@ def draw_tile(ax, table, window, height=None, width_in=TILE_IN):
 
 
 def label(k, r):
+    if isinstance(r.get("label"), str) and r["label"]:  # a filmstrip's own caption (siloscope filmstrip)
+        return r["label"].replace("\\n", "\n")
     shorthand = set(str(r["species"]).split(";")) <= {"original", "added"}
     who = f"{r['members']} disks ({r['added']} added)" if shorthand else f"{r['members']} grains"
     aspect = float(r["aspect"])
@@ -92,7 +94,7 @@ def label(k, r):
             f"{int(float(r['defects']))} defect{'s' if int(float(r['defects'])) != 1 else ''}")
 
 
-def main(tiles, out, title, version, columns=0, tile_px=480):
+def main(tiles, out, title, version, columns=0, tile_px=480, footer=None):
     try:
         rows = read_table(os.path.join(tiles, "index.csv"), ("tile", "t_s")).to_dict("records")
         tables = [read_table(os.path.join(tiles, r["tile"]), ("kind", "x", "y")) for r in rows]
@@ -113,9 +115,10 @@ def main(tiles, out, title, version, columns=0, tile_px=480):
     # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer.
     chars = max(30, int(width * 72 / (9 * 0.55)))
     fig.suptitle("\n".join(textwrap.wrap(title, chars)), fontsize=9)
-    footer = (f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
-              f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
-              f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
+    footer = f"siloscope {version}; {footer}" if footer else (
+        f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
+        f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
+        f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
     fig.text(0.01, 0.003, "\n".join(textwrap.wrap(footer, int(width * 72 / (6 * 0.55)))), ha="left",
              va="bottom", fontsize=6, color="#444444")
     fig.tight_layout(rect=(0, 0.04 + 0.02 / nrows, 1, 0.97))
@@ -135,4 +138,4 @@ if __name__ == "__main__":
     if len(sys.argv) < 5:
         sys.exit(__doc__)
     main(sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0,
-         int(sys.argv[6]) if len(sys.argv) > 6 else 480)
+         int(sys.argv[6]) if len(sys.argv) > 6 else 480, sys.argv[7] if len(sys.argv) > 7 else None)

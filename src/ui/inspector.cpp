@@ -104,14 +104,14 @@ void Inspector::goto_frame(long k) {
 
 void Inspector::goto_time(double t) {
   if (t < traj_.time(0) - 1e-9 || t > traj_.time(traj_.size() - 1) + 1e-9)
-    throw core::InputError("time " + std::to_string(t) + " s is outside the trajectory (" +
-                           std::to_string(traj_.time(0)) + " to " +
-                           std::to_string(traj_.time(traj_.size() - 1)) + " s)");
+    throw core::InputError("time " + core::format_g(t, 6) + " s is outside the trajectory (" +
+                           core::format_g(traj_.time(0), 6) + " to " +
+                           core::format_g(traj_.time(traj_.size() - 1), 6) + " s)");
   long best = 0;
   for (long k = 0; k < traj_.size(); ++k)
     if (std::abs(traj_.time(k) - t) < std::abs(traj_.time(best) - t)) best = k;
   frame_ = best;
-  log("goto time " + std::to_string(t));
+  log("goto time " + core::format_shortest(t));
 }
 
 long Inspector::clog_at(long k) const {
@@ -333,40 +333,51 @@ std::string Inspector::print_clogs() {
   return all;
 }
 
+std::string Inspector::vector_table(int w, int h, double& width_m, double& height_m,
+                                    std::string& caption) const {
+  // Vector: the main view (the most magnified: the outlet in split) as circles, polygons and paths.
+  const std::vector<render::View> vs = views(w, h);
+  const render::View* v = &vs.front();
+  for (const auto& c : vs)
+    if (c.px_per_m() > v->px_per_m()) v = &c;
+  const core::Frame f = current();
+  render::Style st = style;
+  st.species_colors = overlay_data.species_colors;
+  const double half_h = 0.5 * v->cam.height, half_w = half_h * v->rect.w / std::max(1, v->rect.h);
+  // The grains' values as the pictures colour them (displacement from the reference frame, coordination).
+  render::GrainValues gv;
+  const core::Frame ref = reference_frame();
+  const std::vector<float>& values = gv.update(f, st, ref.particles.empty() ? nullptr : &ref);
+  gv.settle_scale(st);
+  const std::string table =
+      render::draw_list_csv(render::build_draw_list(f, geo_, st, {}, &values, render::color_scale_max(st)),
+                            v->cam.cx, v->cam.cy, v->cam.angle, half_w, half_h);
+  char head[160];
+  std::snprintf(head, sizeof head, "t = %.3f s (frame %ld), clog timer %.2f s, arch: %zu grains", f.t, frame_,
+                f.since_last_exit, f.arch.size());
+  std::string text = head;
+  const std::string scale = render::color_scale_label(st);
+  if (!scale.empty()) {
+    char range[96];
+    std::snprintf(range, sizeof range, " from %.3g to %.3g (%s)", st.color_min, render::color_scale_max(st),
+                  render::colormap_name(st.colormap));
+    text += "\ncolour: " + scale + range;
+  }
+  width_m = 2 * half_w;
+  height_m = 2 * half_h;
+  caption = text;
+  return table;
+}
+
 std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
   if (!painter || !files_) throw core::InputError("snapshot needs a renderer and files");
   const std::string path = output_name(pattern, "snapshot " + pattern);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".svg" || ext == ".pdf") {
-    // Vector: the main view (the most magnified: the outlet in split) as circles, polygons and paths.
-    const std::vector<render::View> vs = views(w, h);
-    const render::View* v = &vs.front();
-    for (const auto& c : vs)
-      if (c.px_per_m() > v->px_per_m()) v = &c;
-    const core::Frame f = current();
-    render::Style st = style;
-    st.species_colors = overlay_data.species_colors;
-    const double half_h = 0.5 * v->cam.height, half_w = half_h * v->rect.w / std::max(1, v->rect.h);
-    // The grains' values as the pictures colour them (displacement from the reference frame, coordination).
-    render::GrainValues gv;
-    const core::Frame ref = reference_frame();
-    const std::vector<float>& values = gv.update(f, st, ref.particles.empty() ? nullptr : &ref);
-    gv.settle_scale(st);
-    const std::string table =
-        render::draw_list_csv(render::build_draw_list(f, geo_, st, {}, &values, render::color_scale_max(st)),
-                              v->cam.cx, v->cam.cy, v->cam.angle, half_w, half_h);
-    char caption[160];
-    std::snprintf(caption, sizeof caption, "t = %.3f s (frame %ld), clog timer %.2f s, arch: %zu grains", f.t,
-                  frame_, f.since_last_exit, f.arch.size());
-    std::string text = caption;
-    const std::string scale = render::color_scale_label(st);
-    if (!scale.empty()) {
-      char range[96];
-      std::snprintf(range, sizeof range, " from %.3g to %.3g (%s)", st.color_min, render::color_scale_max(st),
-                    render::colormap_name(st.colormap));
-      text += "\ncolour: " + scale + range;
-    }
-    files_->write_vector(path, table, 2 * half_w, 2 * half_h, text);
+    double width_m = 0, height_m = 0;
+    std::string text;
+    const std::string table = vector_table(w, h, width_m, height_m, text);
+    files_->write_vector(path, table, width_m, height_m, text);
   } else {
     painter->start_afresh();  // the picture of this state alone, as a replayed script makes it
     files_->write_png(path, render_current(*painter, w, h));

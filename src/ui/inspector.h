@@ -107,6 +107,10 @@ class Inspector {
   // Every clog of the run as the inspector holds it (the recording's own events: the rows of clogs.csv), one
   // line each: "clog K START END ENDED_BY arrested|not-arrested frames FIRST-LAST".
   std::string print_clogs();
+  // The current frame's main view (the most magnified) for a w x h picture as a vector draw table
+  // (render::draw_list_csv), the window's size in metres and a caption (time, clog timer, arch, colour
+  // scale).
+  std::string vector_table(int w, int h, double& width_m, double& height_m, std::string& caption) const;
   // Files are never written over; patterns may hold {frame} and {t}. Return the path written.
   std::string snapshot(const std::string& pattern, int w, int h, Painter* painter);
   std::string export_frames(const std::string& pattern, long from, long to, int w, int h, int fps,

@@ -282,3 +282,34 @@ TEST_CASE("frame: one picture of a recording at a clog, a time or a frame, at an
              Catch::Matchers::Contains("--color"));
   CHECK_FALSE(fs::exists(d / "x.png"));
 }
+
+TEST_CASE("filmstrip: one clog at several times in one row, vector with its text, every tile captioned",
+          "[export][app]") {
+  const fs::path rec = recorded("filmstrip");
+  const fs::path d = rec.parent_path();
+  for (const char* ext : {".svg", ".pdf", ".png"}) {
+    const fs::path out = d / (std::string("strip") + ext);
+    const auto r = cli("filmstrip " + rec.string() + " --clog 1 --times=-1,0,1 --out " + out.string());
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.output, Catch::Matchers::Contains("clog 1 at 3 times"));
+    const std::string body = slurp(out);
+    if (std::string(ext) == ".svg") {
+      CHECK_THAT(body, Catch::Matchers::Contains("-1 s (t = ") && Catch::Matchers::Contains("+0 s (t = ") &&
+                           Catch::Matchers::Contains("+1 s (t = ") && Catch::Matchers::Contains("clog 1 of"));
+      CHECK(body.find("<image") == std::string::npos);
+    } else if (std::string(ext) == ".pdf") {
+      CHECK(body.find("/Subtype /Image") == std::string::npos);
+    } else {
+      CHECK(body.substr(1, 3) == "PNG");
+    }
+  }
+  CHECK_THAT(cli("filmstrip " + rec.string() + " --clog 7 --out " + (d / "x.svg").string()).output,
+             Catch::Matchers::Contains("--clog 7: the recording has 1 clogs"));
+  CHECK_THAT(cli("filmstrip " + rec.string() + " --times=-1,soon --out " + (d / "x.svg").string()).output,
+             Catch::Matchers::Contains("'soon' is not a number of seconds"));
+  CHECK_THAT(cli("filmstrip " + rec.string() + " --times=-30 --out " + (d / "x.svg").string()).output,
+             Catch::Matchers::Contains("--times: -30 s from clog 1's start"));
+  CHECK_FALSE(fs::exists(d / "x.svg"));
+  CHECK(cli("filmstrip " + rec.string() + " --times=0 --out " + (d / "strip.svg").string()).code == 2);
+}

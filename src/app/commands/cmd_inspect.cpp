@@ -1,9 +1,12 @@
 // siloscope inspect DIR: step through a recorded run frame by frame, in a window or from a script off-screen.
 // siloscope live SCENE: the simulation running in a window, with a panel to change the scene and restart.
+#include <unistd.h>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "app/services/cli.h"
 #include "app/services/inspect_files.h"
@@ -13,8 +16,10 @@
 #include "app/services/session.h"
 #include "app/services/terminal.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/physics.h"
 #include "io/metadata.h"
+#include "io/output.h"
 #include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/context.h"
@@ -148,6 +153,114 @@ int frame(const FrameOptions& o) {
   return 0;
 }
 
+struct FilmstripOptions {
+  std::string path, out, times = "-1,-0.5,0,2", camera = "outlet", color = "species";
+  long clog = 1;
+  bool force = false;
+};
+
+// siloscope filmstrip RECORDING --clog K --times ...: clog K at several times from its start (s), one row of
+// vector tiles on one colour scale, each captioned with its time; drawn by the gallery's sheet script.
+int filmstrip(const FilmstripOptions& o) {
+  io::Trajectory traj(trajectory_path(o.path));
+  const core::Model& model = run_model(traj, o.path);
+  const TrajectoryFrames frames(traj);
+  const RecordFiles files;
+  ui::Inspector insp(frames, model, &files);
+  if (o.clog < 1 || o.clog > static_cast<long>(insp.clogs().size()))
+    throw core::InputError("--clog " + std::to_string(o.clog) + ": the recording has " +
+                           std::to_string(insp.clogs().size()) + " clogs (numbered from 1)");
+  std::vector<double> dts;
+  {
+    std::stringstream ss(o.times);
+    for (std::string item; std::getline(ss, item, ',');) {
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (item.empty() || *end || !std::isfinite(v))
+        throw core::InputError("--times " + o.times + ": '" + item +
+                               "' is not a number of seconds from the clog's start (e.g. -1,-0.5,0,+2)");
+      dts.push_back(v);
+    }
+  }
+  if (dts.empty() || dts.size() > 12) throw core::InputError("--times " + o.times + ": give 1 to 12 times");
+  const fs::path out = io::output_path(o.out);
+  const std::string ext = out.extension().string();
+  if (ext != ".pdf" && ext != ".svg" && ext != ".png")
+    throw core::InputError("--out " + o.out + ": the filmstrip is .pdf, .svg or .png");
+  for (const std::string line : {"zoom " + o.camera, "color " + o.color}) {
+    try {
+      insp.execute(line);
+    } catch (const core::InputError& e) {
+      throw core::InputError((line[0] == 'z' ? std::string("--camera: ") : std::string("--color: ")) +
+                             e.what());
+    }
+  }
+  const double start = insp.clogs()[static_cast<size_t>(o.clog - 1)].event.start;
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "filmstrip", io::OutputKind::Sheet);
+  fs::path tmp = out;
+  tmp += ".tiles-" + std::to_string(::getpid());
+  fs::create_directories(tmp);
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } cleanup{tmp};
+  std::string index = "tile,t_s,window_m,label\n";
+  std::string scale;
+  for (size_t k = 0; k < dts.size(); ++k) {
+    const double t = start + dts[k];
+    try {
+      insp.goto_time(t);
+    } catch (const core::InputError& e) {
+      throw core::InputError("--times: " + core::format_g(dts[k], 6) + " s from clog " +
+                             std::to_string(o.clog) + "'s start: " + e.what());
+    }
+    double w = 0, h = 0;
+    std::string caption;
+    const std::string table = insp.vector_table(1000, 1000, w, h, caption);
+    const std::string name = "tile_" + std::to_string(k) + ".csv";
+    io::write_file_atomic(tmp / name, table);
+    const core::Frame f = insp.current();
+    // Before the clog: flowing; from its start (its last exit) on: the time without an exit, and the arch
+    // once the clog is open.
+    char label[200];
+    const std::string clog_no = f.clog_number > 0 ? " (clog " + std::to_string(f.clog_number) + ")" : "";
+    const std::string state =
+        f.clog_open
+            ? (f.arch.empty() ? "clogged" + clog_no + ", no arch found yet"
+                              : "clogged" + clog_no + ": a " + std::to_string(f.arch.size()) + "-grain arch")
+        : t < start - 1e-9 ? "flowing"
+                           : "no exit for " + core::format_g(f.since_last_exit, 2) + " s";
+    std::snprintf(label, sizeof label, "%+g s (t = %.2f s)\\n%s", dts[k], f.t, state.c_str());
+    index += name + "," + core::format_g(f.t, 9) + "," + core::format_g(w, 9) + ",\"" + label + "\"\n";
+    const size_t nl = caption.find("\ncolour: ");
+    if (nl != std::string::npos) scale = caption.substr(nl + 1);
+  }
+  io::write_file_atomic(tmp / "index.csv", index);
+  const std::string title = "clog " + std::to_string(o.clog) + " of " +
+                            fs::absolute(o.path).filename().string() + ", starting at " +
+                            core::format_g(start, 6) + " s" + (scale.empty() ? "" : "; " + scale);
+  fs::path partial = out;
+  partial += ".partial" + ext;
+  const int status = run_python(
+      script_path("gallery.py"),
+      {tmp.string(), partial.string(), title, io::version_string(), std::to_string(dts.size()), "480",
+       "each tile the view at its time from the clog's start (clogs.csv's start_s, its last exit); a "
+       "clog is open once no grain has left for clog_min_gap; arches ringed, bonds dark; one colour "
+       "scale for every tile"});
+  if (status != 0) {
+    std::error_code ec;
+    fs::remove(partial, ec);
+    throw core::RuntimeFault("filmstrip: the matplotlib script gallery.py failed");
+  }
+  io::rename_into_place(partial, out);
+  std::printf("clog %ld at %zu times -> %s\n", o.clog, dts.size(), out.c_str());
+  return 0;
+}
+
 int live(const LiveOptions& o) {
   const core::Model model = o.scene.compile();
   ui::WindowOptions w;
@@ -198,6 +311,23 @@ void add_inspect_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   fc->add_option("--overlay", fo->overlay, "as record's --overlay")->capture_default_str();
   fc->callback([fo, &action] { action = [fo] { return frame(*fo); }; });
+
+  auto fs_o = std::make_shared<FilmstripOptions>();
+  auto* fsc =
+      app.add_subcommand("filmstrip",
+                         "one clog of a recording at several times, one row of tiles on one colour scale "
+                         "(PDF, SVG: vector; PNG)");
+  fsc->set_version_flag("--version", io::version_string());
+  fsc->add_option("run", fs_o->path, "a recording (or a run written with --trajectory-fps)")->required();
+  fsc->add_option("--clog", fs_o->clog, "which clog (clogs.csv's row K)")->capture_default_str();
+  fsc->add_option("--times", fs_o->times, "seconds from the clog's start, comma-separated")
+      ->capture_default_str();
+  fsc->add_option("--out", fs_o->out, "F.pdf, F.svg or F.png")->required();
+  fsc->add_option("--camera", fs_o->camera, "outlet, hopper or window:X0,Y0,X1,Y1")->capture_default_str();
+  fsc->add_option("--color", fs_o->color, "species, speed, force, displacement, coordination or id [range]")
+      ->capture_default_str();
+  fsc->add_flag("--force", fs_o->force, "replace an earlier filmstrip or gallery sheet");
+  fsc->callback([fs_o, &action] { action = [fs_o] { return filmstrip(*fs_o); }; });
 
   auto l = std::make_shared<LiveOptions>();
   auto* lc = app.add_subcommand(
