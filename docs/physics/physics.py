@@ -490,6 +490,7 @@ def transition(results, out, lines):
         lo, hi = (np.quantile(boot, [0.025, 0.975]) if len(boot) > 20 else (math.nan, math.nan))
         qf = ci95([p[3] for p in per_run])
         qa = ci95([p[4] for p in per_run])
+        # The overall rate's interval can reach below 0 where clogs last most of the run: clipped on a log axis.
         rows.append(dict(g=g, n=len(rs), clogs=len(t) + never, arrested=len(t), ended=int(e.sum()), never=never,
                          tmin=tmin, alpha=alpha, lo=lo, hi=hi, n_tail=n_tail, d_tail=d_tail, llr=llr, vuong=vuong,
                          qf=qf, qa=qa, censored=int(len(t) - e.sum())))
@@ -509,9 +510,13 @@ def transition(results, out, lines):
     bx.text(bx.get_xlim()[0], 2.03, "alpha = 2: mean arrest time diverges below", fontsize=7, va="bottom")
     bx.set_xlabel(r"$\Gamma = A (2\pi f)^2 / g$")
     bx.set_ylabel(r"tail exponent $\alpha$ (MLE, 95% bootstrap)")
+    ns = [r["n"] for r in rows]
+    bx.set_title(f"n = {min(ns)}-{max(ns)} realizations per Gamma" if min(ns) != max(ns)
+                 else f"n = {ns[0]} realizations per Gamma", fontsize=8)
     cx.errorbar([r["g"] for r in rows], [r["qf"][0] for r in rows], yerr=[r["qf"][1] for r in rows], fmt="o-",
                 capsize=3, label="while flowing")
-    cx.errorbar([r["g"] for r in rows], [r["qa"][0] for r in rows], yerr=[r["qa"][1] for r in rows], fmt="s--",
+    cx.errorbar([r["g"] for r in rows], [r["qa"][0] for r in rows],
+                yerr=[[min(r["qa"][1], 0.95 * r["qa"][0]) for r in rows], [r["qa"][1] for r in rows]], fmt="s--",
                 capsize=3, label="overall (clogged time included)")
     cx.set_xlabel(r"$\Gamma$")
     cx.set_ylabel("flow rate [grains/s]")
