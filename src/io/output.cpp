@@ -142,10 +142,12 @@ fs::path output_path(const std::string& path, const std::string& option) {
                            "inside it, e.g. " +
                            option + " " + (fs::path(path) / "out").string());
   std::error_code ec;
-  fs::path abs = fs::absolute(p, ec).lexically_normal();
+  // As the kernel resolves it: symbolic links in the existing part first, then "..", so "d/lnk/../x" with
+  // d/lnk -> sub/deep is d/sub/x (a lexical "d/x" first would replace the wrong file).
+  fs::path abs = fs::absolute(p, ec);
   if (!abs.has_filename()) abs = abs.parent_path();
   const fs::path parent = fs::weakly_canonical(abs.parent_path(), ec);
-  return (ec ? abs.parent_path() : parent) / abs.filename();
+  return (ec ? abs.parent_path().lexically_normal() : parent) / abs.filename();
 }
 
 void check_not_input(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& what) {

@@ -273,3 +273,16 @@ TEST_CASE("keys that do nothing in this scene and species rounded to no grains a
     CHECK(r.output.find("warning") == std::string::npos);
   }
 }
+
+TEST_CASE("an output path is resolved as the kernel resolves it: links first, then '..'", "[trust][app]") {
+  fs::path d = temp_dir("kernel_paths");
+  fs::create_directories(d / "sub" / "deep");
+  fs::create_symlink("sub/deep", d / "lnk");
+  // d/x is a siloscope run of its own: a lexical reading of d/lnk/../x would replace it with --force.
+  REQUIRE(cli("run " + kScene + kShort + " --out " + (d / "x").string()).code == 0);
+  const std::string before = slurp(d / "x" / "exits.csv");
+  REQUIRE(cli("run " + kScene + kShort + " --seed 9 --out " + (d / "lnk" / ".." / "x").string() + " --force")
+              .code == 0);
+  CHECK(fs::exists(d / "sub" / "x" / "exits.csv"));  // where the kernel puts d/lnk/../x
+  CHECK(slurp(d / "x" / "exits.csv") == before);     // untouched
+}
