@@ -313,3 +313,17 @@ TEST_CASE("filmstrip: one clog at several times in one row, vector with its text
   CHECK_FALSE(fs::exists(d / "x.svg"));
   CHECK(cli("filmstrip " + rec.string() + " --times=0 --out " + (d / "strip.svg").string()).code == 2);
 }
+
+TEST_CASE("gallery and timeline refuse a run whose metadata.toml was cut or edited, naming the file",
+          "[export][app]") {
+  fs::path d = temp_dir("gallery_cut");
+  REQUIRE(cli("run " + kScene + " --duration 12 --quiet --out " + (d / "r").string()).code == 0);
+  const std::string meta = slurp(d / "r" / "metadata.toml");
+  std::ofstream(d / "r" / "metadata.toml") << meta.substr(0, meta.size() / 2);
+  for (const std::string& cmd : {std::string("gallery"), std::string("timeline")}) {
+    const auto r = cli(cmd + " " + (d / "r").string() + " --out " + (d / (cmd + ".svg")).string());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Matchers::Contains("metadata.toml") && Catch::Matchers::Contains("manifest"));
+    CHECK_FALSE(fs::exists(d / (cmd + ".svg")));
+  }
+}

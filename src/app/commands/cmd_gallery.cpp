@@ -18,6 +18,7 @@
 #include "core/format.h"
 #include "core/setup.h"
 #include "io/events_csv.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 #include "render/camera.h"
@@ -71,6 +72,10 @@ int gallery(const GalleryOptions& o) {
   if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
     throw core::InputError("--tile " + std::to_string(o.tile) +
                            ": allowed are even sizes from 120 to 2000 pixels");
+  // What the run's manifest lists must be as written (a cut or edited metadata.toml would re-simulate
+  // another run).
+  for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
+    if (fs::exists(run / f)) io::verify_listed(run / f, "gallery: run");
   // The run's scene compiled once: the re-simulation, the pictures and the species' names share it.
   const core::Model model = core::compile(core::load_scene((run / "metadata.toml").string()));
   const core::Scene& scene = model.scene;

@@ -11,6 +11,7 @@
 #include "core/format.h"
 #include "core/model.h"
 #include "io/events_csv.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
