@@ -30,4 +30,7 @@ done
 # No path of this machine in the pack: realizations are named relative to the pack (runs/p000/r000).
 abs=$(cd "$src" && pwd)
 sed -i "s#,$abs/runs/#,runs/#" "$dest/analysis/realizations.csv"
+# ... and the analysis' own command line names the program and a results folder, not this machine's paths.
+sed -i -E "s#^command = \"[^\" ]*/(siloscope[^\" ]*) #command = \"siloscope #; s#$abs#results/$(basename "$dest")#g" \
+  "$dest/analysis/metadata.toml"
 echo "packed $(tar -tJf "$dest/runs/runs.tar.xz" | grep -c metadata.toml) realizations into $dest ($(du -sh "$dest" | cut -f1))"
