@@ -194,7 +194,9 @@ def obstacle(results, out, lines):
     ax.axhline(none["avalanche_mean"], color="k", ls="--", lw=0.8, label="no obstacle")
     ax.set_xlabel("obstacle centre height h / outlet D")
     ax.set_ylabel(r"mean avalanche size $\langle s \rangle$ [grains]")
-    ax.set_title(f"flat silo, D = {D / 0.1:g} d, n = {int(p['n_runs'].min())} per point")
+    end = str(p["avalanche_end"].iloc[0]) if "avalanche_end" in p else "gaps"
+    ax.set_title(f"flat silo, D = {D / 0.1:g} d, n = {int(p['n_runs'].min())} per point; avalanches end at "
+                 f"{'held clogs' if end == 'held' else 'every clog'}", fontsize=8)
     ax.legend(fontsize=7)
     av = c.avalanches
     for _, row in [(None, none)] + list(with_ob.iterrows()):
@@ -214,7 +216,6 @@ def obstacle(results, out, lines):
     runs = per_run_avalanches(results, ("obstacle", "obstacle_height"))
     base = runs[runs["obstacle"] == "none"]
     per_run_mean = lambda r: float(np.nanmean(r["mean"].to_numpy(float)))  # noqa: E731
-    end = str(p["avalanche_end"].iloc[0]) if "avalanche_end" in p else "gaps"
     lines += ["## An obstacle above the outlet", "",
               f"`assets/campaigns/obstacle.toml` (`silo-obstacle.toml`): outlet D = {D:g} m = {D / 0.1:g} mean grain "
               "diameters, no drive, a disk obstacle of diameter D with its centre at h = 1, 1.5, 2 and 3 D above "
@@ -270,6 +271,23 @@ def baseline_families(results, base, lines):
         lo, hi = boot_stat(r, pooled_mean)
         rows.append((name, n, int(r["avalanches"].sum()), int(r["spontaneous"].sum()), m, h, pooled_mean(r), lo, hi,
                      float(np.std(r["mean"], ddof=1))))
+    # The spread of a run's mean that independent avalanches would give: each run's own sizes (held clogs end
+    # avalanches, as analyze counts them), sd(s) / sqrt(n_i), averaged in quadrature over the runs.
+    def expected_sd(results_dir, keep):
+        parts = []
+        for r in runs_of(results_dir):
+            if not keep(r.scene):
+                continue
+            t = np.sort(r.exits["t_s"].to_numpy(float))
+            ends = [float(c["start_s"]) for _, c in r.clogs.iterrows() if c["ended_by"] != "spontaneous"]
+            edges = np.searchsorted(t, np.asarray(ends) + 0.25, side="right")
+            sizes = np.diff(np.r_[0, edges])
+            sizes = sizes[sizes > 0]
+            if len(sizes) > 1:
+                parts.append((float(np.var(sizes, ddof=1)), len(sizes)))
+        return math.sqrt(np.mean([v / n for v, n in parts])) if parts else math.nan
+
+    expect = [expected_sd(results, lambda sc: sc["obstacle"] == "none"), expected_sd(other, lambda sc: True)]
     from statistics import NormalDist
     (_, na, *_a), (_, nb, *_b) = rows
     va, vb = rows[0][9] ** 2 / na, rows[1][9] ** 2 / nb
@@ -280,12 +298,23 @@ def baseline_families(results, base, lines):
     lines += ["**The baseline, twice.** The no-obstacle point of the campaign and the same point with an "
               "independent seed family (another campaign seed: every realization's seed differs):", "",
               "| family | realizations | avalanches | transient stops | <s> per run (95%) | <s> pooled (95%) | sd of the "
-              "runs' means |", "|---|---|---|---|---|---|---|"]
-    for name, n, av, sp, m, h, pm, lo, hi, sd in rows:
-        lines.append(f"| {name} | {n} | {av} | {sp} | {m:.1f} +- {h:.1f} | {pm:.1f} ({lo:.1f}-{hi:.1f}) | {sd:.1f} |")
+              "runs' means | sd independent avalanches would give | P(a spread this small) |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    from scipy.stats import chi2  # Debian's python3-scipy
+    for (name, n, av, sp, m, h, pm, lo, hi, sd), e in zip(rows, expect):
+        # (n - 1) s^2 / sigma^2 is chi-square with n - 1 degrees of freedom for independent, normal run means.
+        p_small = float(chi2.cdf((n - 1) * sd * sd / (e * e), n - 1))
+        lines.append(f"| {name} | {n} | {av} | {sp} | {m:.1f} +- {h:.1f} | {pm:.1f} ({lo:.1f}-{hi:.1f}) | {sd:.1f} | "
+                     f"{e:.1f} | {p_small:.2g} |")
     verdict = ("agree within chance" if p_value > 0.05 else
                "differ beyond chance (p < 0.05): see the reading below")
-    lines += ["", f"The two families' per-run means {verdict} (Welch z = {z:.2f}, p = {p_value:.2g}).", ""]
+    lines += ["", f"The two families' per-run means {verdict} (Welch z = {z:.2f}, p = {p_value:.2g}). The spread of "
+              "the runs' means beside the spread that independent avalanches of each run's own sizes would give "
+              "(sd(s) / sqrt(n) per run): a spread well below it would mean realizations that are not independent "
+              "(shared seeds or packings); one near it, independent runs. P(a spread this small) is the chi-square "
+              "probability of a spread at most the one observed among independent runs; one family's alone, below "
+              "0.05, with the other family near its expectation and the two means agreeing, reads as chance rather "
+              "than seeding or packing.", ""]
     return p_value
 
 
@@ -577,8 +606,8 @@ def main(src, out):
     figs = os.path.join(out, "figures")
     os.makedirs(figs, exist_ok=True)
     lines = ["# Physics of the general scenes, measured", "",
-             "Generated by `docs/physics/physics.py` from the committed campaigns (docs/campaigns/{beverloo,obstacle,"
-             "polygons,harmonic}); every interval is 95% over realizations unless said. Measured against the "
+             "Generated by `docs/physics/physics.py` from the committed campaigns (docs/campaigns/{beverloo,obstacle,obstacle-baseline,"
+             "polygons,harmonic,vibration-transition}); every interval is 95% over realizations unless said. Measured against the "
              "literature, never tuned to it (../shared/model.md, 'Beyond the paper').", ""]
     for name, fn in (("beverloo", beverloo), ("obstacle", obstacle), ("polygons", polygons), ("harmonic", harmonic),
                      ("vibration-transition", transition)):
