@@ -395,3 +395,16 @@ TEST_CASE("emit-jobs groups realizations into array tasks of --task-minutes and 
   CHECK(sh(kBin + " sweep " + c.string() + " --max-array 5 --results " + (d / "x").string() +
            " 2> /dev/null") == 2);
 }
+
+TEST_CASE("the committed paper figures are what the current figure script draws from the committed analysis",
+          "[campaign][app]") {
+  // One of each kind the figure script draws from the tidy tables: a curve over r, a curve over mu, a
+  // survival; byte for byte (matplotlib's PNG output is deterministic here, and no version is drawn in).
+  fs::path d = temp_dir("figures_again");
+  const std::string pack = std::string(SILOSCOPE_SOURCE_DIR) + "/docs/campaigns/paper";
+  REQUIRE(sh(kBin + " figures " + pack + "/analysis --out " + (d / "f").string() + " > /dev/null") == 0);
+  for (const char* f : {"qtilde_vs_r.png", "qtilde_vs_mu.png", "survival.png", "avalanches.png"}) {
+    INFO(f);
+    CHECK(slurp(d / "f" / f) == slurp(fs::path(pack) / "figures" / f));
+  }
+}
