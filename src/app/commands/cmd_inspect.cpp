@@ -187,7 +187,7 @@ int filmstrip(const FilmstripOptions& o) {
   const std::string ext = out.extension().string();
   if (ext != ".pdf" && ext != ".svg" && ext != ".png")
     throw core::InputError("--out " + o.out + ": the filmstrip is .pdf, .svg or .png");
-  for (const std::string line : {"zoom " + o.camera, "color " + o.color}) {
+  for (const std::string& line : {"zoom " + o.camera, "color " + o.color}) {
     try {
       insp.execute(line);
     } catch (const core::InputError& e) {
