@@ -546,8 +546,6 @@ void add_record_command(CLI::App& app, Action& action) {
   auto* camera =
       cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
           ->capture_default_str();
-  // A camera move decides the view at every frame: a fixed camera beside it would be ignored, so the two are
-  // refused together (CLI11 names both).
   cmd->add_option(
          "--camera-path", o->camera_path,
          "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet or window:X0,Y0,X1,Y1), "

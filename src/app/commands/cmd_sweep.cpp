@@ -330,9 +330,7 @@ int print_status(const Campaign& c, const fs::path& dir, int up_to, int workers)
     std::printf("  time      no finished realization records its wall time yet; no estimate\n");
     return 0;
   }
-  std::sort(walls.begin(), walls.end());
-  const double median = walls.size() % 2 ? walls[walls.size() / 2]
-                                         : 0.5 * (walls[walls.size() / 2 - 1] + walls[walls.size() / 2]);
+  const double median = core::median(walls);
   const double core_s = static_cast<double>(left) * median;
   std::printf("  time      median %.1f s wall per realization (settling + discharge; %zu finished runs)\n",
               median, walls.size());
