@@ -54,12 +54,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr,
-                 "siloscope: %s\nusage: siloscope "
-                 "{run,record,inspect,live,frame,sweep,analyze,figures,claims,gallery,timeline,export,scene,"
-                 "bench} ... (see "
-                 "siloscope --help)\n",
-                 e.what());
+    std::fprintf(
+        stderr,
+        "siloscope: %s\nusage: siloscope "
+        "{run,record,inspect,live,frame,filmstrip,sweep,analyze,figures,claims,gallery,timeline,export,scene,"
+        "bench} ... (see "
+        "siloscope --help)\n",
+        e.what());
     return 2;
   }
   try {
