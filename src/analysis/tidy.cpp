@@ -120,8 +120,9 @@ std::string summary_text(const Measurements& m, const std::vector<std::string>& 
   char h[256];
   std::snprintf(h, sizeof h, "health      %s: %.2f%% of grains in flight on average, %ld warnings\n",
                 m.health_warnings > 0 ? "UNHEALTHY (--unsafe warnings)"
-                : m.ballistic         ? "WARNING ballistic (the kicks throw grains above the column)"
-                                      : "ok",
+                : m.ballistic
+                    ? "WARNING ballistic (grains thrown clear of the free surface: the drive is too strong)"
+                    : "ok",
                 100.0 * m.airborne_fraction, m.health_warnings);
   return out + h;
 }

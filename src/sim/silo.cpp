@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/physics.h"
+#include "core/portable_math.h"
 #include "sim/dipole.h"
 #include "sim/kicks.h"
 #include "sim/silo_internal.h"
@@ -68,6 +69,7 @@ Silo::Silo(const core::Model& model)
   kick_every_ = static_cast<std::uint64_t>(std::llround(scene_.kick_period / scene_.dt));
   open_step_ = static_cast<std::uint64_t>(std::llround(scene_.settle_time / scene_.dt));
   hold_steps_ = static_cast<std::uint64_t>(std::llround(scene_.arrest_hold / scene_.dt));
+  if (setup_.tilt != 0) core::portable::sincos(setup_.tilt, up_.x, up_.y);  // gravity along -up_
 
   world_ = std::make_unique<b2World>(
       b2Vec2(static_cast<float>(setup_.gravity.x * L_), static_cast<float>(setup_.gravity.y * L_)));
@@ -382,6 +384,7 @@ void Silo::apply_clog_rule() {
 }
 
 void Silo::reinject(int id) {
+  if (setup_.tilt != 0) return reinject_tilted(id);
   const double r = extent_[id];
   // Just above the packed column (disks in flight do not raise it; the free-space test below avoids them).
   const double top = column_top(id);
@@ -397,22 +400,35 @@ void Silo::reinject(int id) {
     if (hi <= lo) continue;
     for (int attempt = 0; attempt < 40; ++attempt) {
       core::Vec2 p{rng_reinject_.uniform(lo, hi), y};
-      bool free = !geo_.obstacle.present() || geo_.obstacle.gap(p) >= r;
-      for (int j = 0; j < particle_count() && free; ++j) {
-        if (j == id) continue;
-        core::Vec2 d = p - pos(j);
-        double rr = r + extent_[j];
-        free = core::dot(d, d) >= rr * rr;
-      }
-      if (!free) continue;
-      place(id, p);
-      // A polygon comes back at a random orientation (its own stream: disks draw nothing).
-      if (sides_[id] > 0)
-        bodies_[id]->SetTransform(bodies_[id]->GetPosition(),
-                                  static_cast<float>(rng_orient_.uniform(0.0, 2.0 * core::kPi)));
+      if (!free_at(p, id)) continue;
+      put_back(id, p);
       return;
     }
   }
+  no_room_to_reinject(id);
+}
+
+bool Silo::free_at(core::Vec2 p, int id) const {
+  const double r = extent_[id];
+  bool free = !geo_.obstacle.present() || geo_.obstacle.gap(p) >= r;
+  for (int j = 0; j < particle_count() && free; ++j) {
+    if (j == id) continue;
+    core::Vec2 d = p - pos(j);
+    double rr = r + extent_[j];
+    free = core::dot(d, d) >= rr * rr;
+  }
+  return free;
+}
+
+void Silo::put_back(int id, core::Vec2 p) {
+  place(id, p);
+  // A polygon comes back at a random orientation (its own stream: disks draw nothing).
+  if (sides_[id] > 0)
+    bodies_[id]->SetTransform(bodies_[id]->GetPosition(),
+                              static_cast<float>(rng_orient_.uniform(0.0, 2.0 * core::kPi)));
+}
+
+void Silo::no_room_to_reinject(int id) const {
   throw core::RuntimeFault("no free space to re-inject particle " + std::to_string(id) +
                            " at t = " + fmt4(t_) +
                            " s: the top of the container is full (the outlet passes grains faster than they "

@@ -123,8 +123,11 @@ class Silo {
   const Airborne& airborne() const { return airborne_; }
   bool ballistic() const { return airborne_.mean() > kBallisticFraction; }
   // The top of the packed column, m: the top edge of the highest horizontal slab (one original diameter
-  // thick) that disks cover by at least 35%; disks in flight above it do not count.
+  // thick) that disks cover by at least 35%; disks in flight above it do not count. In a tilted container
+  // the slabs lie across gravity and the height is up_height's.
   double column_top(int except = -1) const;
+  // Height along gravity's up direction in the container's frame, m (y when the container stands upright).
+  double up_height(core::Vec2 p) const;
   // With scene.unsafe, health problems are warned about (the first few printed) and counted instead of
   // stopping.
   long health_warnings() const { return health_warnings_; }
@@ -176,6 +179,21 @@ class Silo {
   void skipped_step(bool kick_due);
   void sample_airborne();
   void reinject(int id);
+  void reinject_tilted(int id);
+  bool free_at(core::Vec2 p,
+               int id) const;           // grain id fits at p (clear of the obstacle and every other grain)
+  void put_back(int id, core::Vec2 p);  // re-injected at p, at rest (a polygon at a random orientation)
+  [[noreturn]] void no_room_to_reinject(int id) const;
+  // A tilted container cut across gravity into slabs one diameter thick: the height h (up_height) of each
+  // slab's bottom, and where a line across gravity through its middle enters and leaves the container
+  // (coordinates along the across direction (up.y, -up.x)).
+  struct Level {
+    double h, s_min, s_max;
+  };
+  const std::vector<Level>& levels() const;
+  double column_top_tilted(int except) const;
+  // Settling in a tilted container: filled upright, then turned to its tilt with the outlet closed.
+  void settle_tilted();
   core::Vec2 pos(int id) const;
   core::Vec2 vel(int id) const;
 
@@ -200,7 +218,9 @@ class Silo {
   DipoleCells dipole_cells_;
   core::Rng rng_deposit_, rng_kick_, rng_reinject_, rng_shape_, rng_orient_;
   std::vector<core::Vec2> scratch_pos_, scratch_force_, scratch_kick_;
-  core::Vec2 offset_;  // the container's displacement, m
+  core::Vec2 offset_;    // the container's displacement, m
+  core::Vec2 up_{0, 1};  // against gravity, in the container's frame (unit)
+  mutable std::vector<Level> levels_;
 
   double t_ = 0;
   std::uint64_t step_ = 0;

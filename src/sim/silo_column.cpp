@@ -27,6 +27,7 @@ bool Silo::outlet_arrested(const std::vector<int>& arch) const {
 }
 
 double Silo::column_top(int except) const {
+  if (setup_.tilt != 0) return column_top_tilted(except);
   const double slab = geo_.grain_diameter;  // the largest species' mean diameter (the shorthand: 2 r_o)
   const int n_slabs = static_cast<int>(std::ceil(geo_.total_height / slab)) + 1;
   std::vector<double> covered(static_cast<size_t>(n_slabs), 0.0), top_edge(static_cast<size_t>(n_slabs), 0.0);
@@ -48,10 +49,11 @@ double Silo::column_top(int except) const {
 }
 
 void Silo::sample_airborne() {
+  // Heights along gravity (in a tilted container the free surface is level in the laboratory).
   const double top = column_top() + 2.0 * geo_.grain_diameter;
   int n = 0;
   for (int i = 0; i < particle_count(); ++i)
-    if (pos(i).y - extent_[i] > top) ++n;
+    if (up_height(pos(i)) - extent_[i] > top) ++n;
   const double f = static_cast<double>(n) / std::max(1, particle_count());
   airborne_.sum += f;
   airborne_.max = std::max(airborne_.max, f);

@@ -198,7 +198,10 @@ void Silo::add_grain(int id, core::Vec2 p, double angle) {
 }
 
 void Silo::settle() {
-  while (step_ < open_step_) step();
+  if (setup_.tilt != 0)
+    settle_tilted();
+  else
+    while (step_ < open_step_) step();
   double vmax = 0;
   for (int i = 0; i < particle_count(); ++i) vmax = std::max(vmax, core::length(vel(i)));
   settle_max_speed_ = vmax;
