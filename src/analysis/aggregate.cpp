@@ -329,4 +329,42 @@ std::string clog_survival_csv(const std::vector<Point>& points) {
   return s;
 }
 
+std::string drain_csv(const std::vector<Point>& points) {
+  bool any = false;
+  for (const auto& p : points)
+    for (const Run* r : p.runs) any = any || !r->m.drain_outcome.empty();
+  if (!any) return "";
+  std::string s = key_header(points);
+  s += "n_runs,n_emptied,n_jammed,n_draining,jam_probability,jam_probability_lo95,jam_probability_hi95,"
+       "exits_before_jam_mean,exits_before_jam_ci95,jam_time_s_mean,jam_time_s_ci95\n";
+  for (const auto& p : points) {
+    long emptied = 0, jammed = 0, draining = 0;
+    std::vector<double> exits, times;
+    for (const Run* r : p.runs) {
+      if (r->m.drain_outcome == "emptied") ++emptied;
+      if (r->m.drain_outcome == "draining") ++draining;
+      if (r->m.drain_outcome != "jammed") continue;
+      ++jammed;
+      exits.push_back(static_cast<double>(r->m.exits));
+      times.push_back(r->m.drain_end_s);
+    }
+    // Wilson's score interval (95%): never zero width, never outside [0, 1].
+    const double n = static_cast<double>(emptied + jammed), z = 1.959963984540054;
+    double j = NAN, lo = NAN, hi = NAN;
+    if (n > 0) {
+      j = jammed / n;
+      const double c = (j + z * z / (2 * n)) / (1 + z * z / n),
+                   h = z / (1 + z * z / n) * std::sqrt(j * (1 - j) / n + z * z / (4 * n * n));
+      lo = std::max(0.0, c - h), hi = std::min(1.0, c + h);
+    }
+    const Estimate e = estimate(exits), t = estimate(times);
+    auto g = [](double v) { return core::format_g(v); };
+    s += key_values(p) + std::to_string(p.runs.size()) + "," + std::to_string(emptied) + "," +
+         std::to_string(jammed) + "," + std::to_string(draining) + "," + g(j) + "," + g(lo) + "," + g(hi) +
+         "," + g(jammed ? e.mean : NAN) + "," + g(jammed > 1 ? e.half_width : NAN) + "," +
+         g(jammed ? t.mean : NAN) + "," + g(jammed > 1 ? t.half_width : NAN) + "\n";
+  }
+  return s;
+}
+
 }  // namespace analysis

@@ -67,6 +67,10 @@ std::string points_csv(const std::vector<Point>& points);
 std::string pooled_survival_csv(const std::vector<Point>& points);
 // Per point and species: exits per second and share of the exits, with 95% intervals.
 std::string species_points_csv(const std::vector<Point>& points);
+// The drain protocol (scene drain = true), per point: realizations emptied, jammed and still draining at the
+// end; the jamming probability J = jammed / (jammed + emptied) with its Wilson 95% interval (the unit: one
+// realization); the mean number of grains out before the jam. Empty when no run drained.
+std::string drain_csv(const std::vector<Point>& points);
 // Per point, the Kaplan-Meier survival S(t) of the clogs' durations with its 95% band; clogs the rule removed
 // or the run's end cut short are censored (clog_survival.csv). With the rule on, S stops at clog_timeout.
 std::string clog_survival_csv(const std::vector<Point>& points);

@@ -46,6 +46,11 @@ struct Measurements {
   long health_warnings = 0;      // --unsafe warnings
   double airborne_fraction = 0;  // mean fraction of disks in flight above the column
   bool ballistic = false;        // airborne_fraction above the ballistic threshold
+  // The drain protocol (scene drain = true): "draining", "emptied" or "jammed" (empty: not a drain), when it
+  // ended (s) and the grains left in the container.
+  std::string drain_outcome;
+  double drain_end_s = 0;
+  int drain_remaining = 0;
 };
 
 // `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches;

@@ -117,6 +117,15 @@ std::string summary_text(const Measurements& m, const std::vector<std::string>& 
          " >= clog_min_gap: " + std::to_string(m.clogs_spontaneous) + " spontaneous, " +
          std::to_string(m.clogs_vibration) + " broken by vibration, " + std::to_string(m.clogs_rule) +
          " by the rule, " + std::to_string(m.clogs_run_end) + " open at the end\n";
+  if (!m.drain_outcome.empty())
+    out += "drain       " +
+           (m.drain_outcome == "emptied" ? "emptied at " + num(m.drain_end_s, "%.2f") + " s"
+            : m.drain_outcome == "jammed"
+                ? "jammed at " + num(m.drain_end_s, "%.2f") + " s with " + std::to_string(m.drain_remaining) +
+                      " grains left"
+                : "still draining at the end: " + std::to_string(m.drain_remaining) +
+                      " grains left (a longer duration, or clog_timeout > 0 to declare a jam)") +
+           "\n";
   char h[256];
   std::snprintf(h, sizeof h, "health      %s: %.2f%% of grains in flight on average, %ld warnings\n",
                 m.health_warnings > 0 ? "UNHEALTHY (--unsafe warnings)"

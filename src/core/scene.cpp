@@ -304,6 +304,13 @@ std::vector<std::string> ineffective_keys(const Model& m) {
     for (const char* k : {"vibration_frequency", "vibration_direction"})
       given(k, "the container does not vibrate (vibration_amplitude = vibration_gamma = 0)");
   if (!(s.clog_timeout > 0)) given("arrest_hold", "clog_timeout = 0 (the clog rule is off)");
+  if (s.drain) {
+    given("reinject_gap", "drain = true (exits are not re-injected)");
+    if (!(s.clog_timeout > 0))
+      out.push_back(
+          "drain = true with clog_timeout = 0: a jam is never declared, so every drain that does "
+          "not empty ends \"draining\" (set clog_timeout, e.g. 1 s)");
+  }
   // Grains lost to rounding: a species asked for by a fraction (or the shorthand's chi) that has none.
   for (const auto& sp : m.setup.species)
     if (sp.count == 0) {

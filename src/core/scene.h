@@ -97,6 +97,9 @@ struct Scene {
   double arch_wall_reach = 1.36;  // m; wall contacts below this height anchor arches (default: the hopper)
   std::string arch_method = "contact_path";  // contact_path | visible; how the 5 s rule picks the arch
   double reinject_gap = 0.05;                // m, clearance between a re-injected grain and the column top
+  // Drain a fixed number of grains (To, Lai and Pak's protocol): exits leave for good, and the run's outcome
+  // is "emptied" (every grain out) or "jammed" (a clog lasted clog_timeout; its arch is not removed).
+  bool drain = false;
 
   // --- numerics (not in the paper; chosen by the speed-versus-accuracy study) ---
   double dt = 1e-3;                      // s, fixed time step

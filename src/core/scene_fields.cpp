@@ -87,6 +87,8 @@ const std::vector<Field>& scene_fields() {
        "which grains the clog rule removes", "protocol"},
       {"reinject_gap", &Scene::reinject_gap, "m", 0.0, 10.0, nullptr,
        "clearance above the column, re-injection", "protocol"},
+      {"drain", &Scene::drain, "", 0, 0, nullptr,
+       "exits leave for good: emptied, or jammed when a clog lasts clog_timeout", "protocol"},
       {"dt", &Scene::dt, "s", 1e-6, 0.02, nullptr, "fixed time step", "numerics"},
       {"velocity_iterations", &Scene::velocity_iterations, "1", 1, 500, nullptr, "Box2D velocity iterations",
        "numerics"},

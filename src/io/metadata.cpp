@@ -136,6 +136,16 @@ RunRecord read_run_record(const std::string& path) {
   r.airborne_fraction = t["health"]["airborne_fraction_mean"].value_or(0.0);
   r.interrupted = t["run"]["interrupted"].value_or(false);
   if (r.interrupted) r.covered_s = t["run"]["simulated_s"].value_or(-1.0);
+  if (t["scene"]["drain"].value_or(false)) {
+    r.drain_outcome = t["run"]["drain_outcome"].value_or(std::string());
+    if (r.drain_outcome != "draining" && r.drain_outcome != "emptied" && r.drain_outcome != "jammed")
+      throw core::InputError(path + ": run.drain_outcome = \"" + r.drain_outcome +
+                             "\": a drain's outcome is draining, emptied or jammed (cut or edited by hand?)");
+    r.drain_end_s = t["run"]["drain_end_s"].value_or(NAN);
+    r.drain_remaining = t["run"]["drain_remaining"].value_or<std::int64_t>(-1);
+    if (r.drain_remaining < 0)
+      throw core::InputError(path + ": run.drain_remaining missing or negative (a drain's metadata has it)");
+  }
   return r;
 }
 

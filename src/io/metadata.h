@@ -45,6 +45,10 @@ struct RunRecord {
   double airborne_fraction = 0;  // mean fraction of disks in flight
   bool interrupted = false;      // stopped before its planned duration
   double covered_s = -1;         // s of discharge the run covered (-1: the planned duration)
+  // The drain protocol's outcome ("draining", "emptied", "jammed"; empty: not a drain), when, grains left.
+  std::string drain_outcome;
+  double drain_end_s = 0;
+  long drain_remaining = 0;
 };
 // Throws core::InputError naming the file when it is not valid TOML.
 RunRecord read_run_record(const std::string& metadata_path);

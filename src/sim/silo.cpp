@@ -77,6 +77,7 @@ Silo::Silo(const core::Model& model)
   world_->SetContinuousPhysics(scene_.continuous);
   exits_by_species_.assign(setup_.species.size(), 0);
   make_grains();
+  if (scene_.drain) parked_.assign(static_cast<size_t>(setup_.n_total), 0), drain_.remaining = setup_.n_total;
   deposit_height_ = deposit_height();
   build_walls();
   deposit();
@@ -177,6 +178,7 @@ void Silo::apply_kicks() {
   draw_kicks(rng_kick_, setup_.drive.kick_impulse_max, setup_.drive.global_kick, particle_count(),
              scratch_kick_);
   for (int i = 0; i < particle_count(); ++i) {
+    if (!parked_.empty() && parked_[static_cast<size_t>(i)]) continue;
     const core::Vec2& j = scratch_kick_[i];
     bodies_[i]->ApplyLinearImpulseToCenter(b2Vec2(static_cast<float>(j.x * L_), static_cast<float>(j.y * L_)),
                                            true);
@@ -234,6 +236,12 @@ void Silo::integrate_step() {
       (((static_cast<std::int64_t>(step_) - static_cast<std::int64_t>(open_step_)) % every) + every) % every;
   const bool kick_due = phase == 0;
   if (skip_until_ > step_) return skipped_step(kick_due);
+  if (drained_out()) {
+    // The drain is over (emptied or jammed): time runs on to the run's end, nothing moves.
+    ++step_;
+    t_ = (static_cast<double>(step_) - static_cast<double>(open_step_)) * scene_.dt;
+    return;
+  }
   if (open_ && phase == every - static_cast<std::int64_t>(hold_steps_)) hold_pos_ = positions();
   if (kick_due) {
     if (open_) {
@@ -337,6 +345,7 @@ void Silo::advance_to(double t) {
 
 void Silo::handle_exits() {
   for (int i = 0; i < particle_count(); ++i) {
+    if (!parked_.empty() && parked_[static_cast<size_t>(i)]) continue;
     core::Vec2 p = pos(i);
     check_health_fast(i, p, vel(i));
     // A disk wholly below the aperture line has fallen clear of it: one exit, then back to the top.
@@ -345,13 +354,34 @@ void Silo::handle_exits() {
       ++exits_by_species_[static_cast<size_t>(core::species_index(species_[i]))];
       last_.exits.push_back(events_.exits.back());
       clogs_.on_exit(t_, last_);
-      reinject(i);
+      if (scene_.drain)
+        park(i);
+      else
+        reinject(i);
     }
   }
 }
 
+void Silo::park(int id) {
+  parked_[static_cast<size_t>(id)] = 1;
+  place(id, {0.0, -100.0 - 10.0 * geo_.total_height});
+  bodies_[id]->SetEnabled(false);
+  // Its dipole leaves with it.
+  const auto k = std::find(dipole_ids_.begin(), dipole_ids_.end(), id);
+  if (k != dipole_ids_.end()) {
+    dipole_moment_.erase(dipole_moment_.begin() + (k - dipole_ids_.begin()));
+    dipole_ids_.erase(k);
+  }
+  if (--drain_.remaining == 0) drain_.outcome = "emptied", drain_.end_s = t_;
+}
+
 void Silo::apply_clog_rule() {
   if (!clogs_.rule_due(t_)) return;
+  if (scene_.drain) {
+    // Drained grains are not re-injected and the arch is not removed: a clog this long is the jam.
+    drain_.outcome = "jammed", drain_.end_s = t_;
+    return;
+  }
   const std::vector<core::Vec2> p = positions();
   // The visible set is looked for from the disk nearest the outlet up to one aperture width farther.
   double nearest = INFINITY;

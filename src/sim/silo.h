@@ -96,6 +96,17 @@ class Silo {
   long arrest_skips() const { return arrest_skips_; }
   double skipped_seconds() const { return skipped_s_; }
 
+  // The drain protocol (scene.drain): grains still in the container, and how the drain ended: "draining"
+  // (neither yet), "emptied" (the last grain left at end_s) or "jammed" (at end_s a clog had lasted
+  // clog_timeout; from then on nothing moves and the steps integrate nothing).
+  struct Drain {
+    int remaining = 0;
+    std::string outcome = "draining";
+    double end_s = NAN;
+  };
+  const Drain& drain() const { return drain_; }
+  bool drained_out() const { return drain_.outcome != "draining"; }
+
   // Number of arch fallbacks (the primary arch method found nothing when the rule fired).
   long arch_fallbacks() const { return arch_fallbacks_; }
   // Settling outcome: the largest disk speed (m/s) when the aperture opened.
@@ -179,6 +190,7 @@ class Silo {
   void skipped_step(bool kick_due);
   void sample_airborne();
   void reinject(int id);
+  void park(int id);  // drain: an exit leaves the world (disabled, far below the outlet)
   void reinject_tilted(int id);
   bool free_at(core::Vec2 p,
                int id) const;           // grain id fits at p (clear of the obstacle and every other grain)
@@ -241,8 +253,10 @@ class Silo {
   std::uint64_t hold_steps_ = 1;      // arrest_hold in steps
   std::vector<core::Vec2> hold_pos_;  // positions arrest_hold before the coming kick
   std::vector<core::Vec2> kick_pos_;  // positions at the last kick (the shortcut's stillness test)
-  std::uint64_t skip_until_ = 0;      // the shortcut: steps before this one are not integrated
-  long still_kicks_ = 0;              // consecutive kicks at which the outlet was arrested and all was still
+  Drain drain_;
+  std::vector<char> parked_;      // drain: grains that left (empty otherwise)
+  std::uint64_t skip_until_ = 0;  // the shortcut: steps before this one are not integrated
+  long still_kicks_ = 0;          // consecutive kicks at which the outlet was arrested and all was still
   long arrest_skips_ = 0;
   double skipped_s_ = 0;
   mutable long health_warnings_ = 0;

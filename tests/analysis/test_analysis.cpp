@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "analysis/aggregate.h"
 #include "analysis/measure.h"
@@ -249,6 +250,34 @@ TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes
   mixed[3].scene.dt = 5e-4;
   CHECK_THROWS_WITH(analysis::aggregate(mixed), Catch::Matchers::Contains("dt = 0.0005"));
   CHECK_THROWS_AS(analysis::aggregate({}), core::InputError);
+}
+
+TEST_CASE("drain.csv: the jamming probability with Wilson's interval, by hand", "[analysis]") {
+  // Four drains of one point: three jammed (after 10, 20 and 30 exits), one emptied; and a point of two
+  // emptied drains. Wilson's 95% interval for 3 of 4 is [0.3006, 0.9544]; for 0 of 2 [0, 0.6576].
+  std::vector<analysis::Run> runs;
+  const char* outcome[] = {"jammed", "jammed", "emptied", "jammed", "emptied", "emptied"};
+  for (int k = 0; k < 6; ++k) {
+    runs.push_back(synthetic_run(k < 4 ? 0.0 : 0.4, static_cast<std::uint64_t>(k + 1), 2.0));
+    runs.back().m.drain_outcome = outcome[k];
+    runs.back().m.exits = 10 * (k + 1);
+    runs.back().m.drain_end_s = k + 1.0;
+  }
+  CHECK(analysis::drain_csv(analysis::aggregate(runs)) != "");
+  const std::string csv = analysis::drain_csv(analysis::aggregate(runs));
+  CAPTURE(csv);
+  std::istringstream in(csv);
+  std::string header, a, b;
+  std::getline(in, header), std::getline(in, a), std::getline(in, b);
+  CHECK(header.find("n_runs,n_emptied,n_jammed,n_draining,jam_probability,jam_probability_lo95") !=
+        std::string::npos);
+  CHECK(a.find(",4,1,3,0,0.75,0.300") != std::string::npos);
+  CHECK(a.find(",0.954") != std::string::npos);
+  CHECK(a.find(",0.75,0.300") != std::string::npos);
+  CHECK(a.find(",23.3333333,") != std::string::npos);  // exits before the jam: 10, 20, 40
+  CHECK(b.find(",2,2,0,0,0,0,0.657") != std::string::npos);
+  for (auto& r : runs) r.m.drain_outcome.clear();
+  CHECK(analysis::drain_csv(analysis::aggregate(runs)).empty());  // no drain: no file
 }
 
 TEST_CASE("with several kick strengths, Q~/Q_p compares each point with the pure system at its own kick",

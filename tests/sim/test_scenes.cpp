@@ -149,6 +149,42 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("the drain protocol: exits leave for good, and a drain ends emptied or jammed", "[sim][scenes]") {
+  auto drain = [](double aperture) {
+    core::Scene s = core::load_scene(std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/hopper-drain.toml");
+    core::apply_overrides(
+        s, {"species.disks.count=120", "silo_height=1.5", "aperture=" + core::format_shortest(aperture)});
+    return s;
+  };
+  {
+    // A wide outlet: every grain leaves once, and none comes back.
+    sim::Silo h(core::compile(drain(0.6)));
+    h.advance_to(20.0);
+    CHECK(h.drain().outcome == "emptied");
+    CHECK(h.drain().remaining == 0);
+    CHECK(h.drain().end_s > 0);
+    CHECK(h.drain().end_s < 20);
+    std::vector<int> ids;
+    for (const auto& e : h.events().exits) ids.push_back(e.id);
+    std::sort(ids.begin(), ids.end());
+    CHECK(ids.size() == 120);
+    CHECK(std::unique(ids.begin(), ids.end()) == ids.end());
+  }
+  {
+    // An outlet of two grains: a clog that lasts clog_timeout is the jam; its arch stays and nothing moves.
+    sim::Silo h(core::compile(drain(0.2)));
+    h.advance_to(5.0);
+    REQUIRE(h.drain().outcome == "jammed");
+    CHECK(h.drain().remaining + static_cast<int>(h.events().exits.size()) == 120);
+    CHECK(h.events().arches.empty());  // the rule removed nothing
+    const auto before = h.positions();
+    h.advance_to(6.0);
+    const auto after = h.positions();
+    for (size_t i = 0; i < before.size(); ++i) CHECK(core::length(after[i] - before[i]) == 0.0);
+    CHECK(h.time() == Approx(6.0).margin(1e-3));
+  }
+}
+
 TEST_CASE("size distributions: radii within their law, reproducible by seed", "[sim][scenes]") {
   core::Scene s = core::parse_scene(
       "[[species]]\nname = \"u\"\ncount = 100\nsize = \"uniform\"\nradius_min = 0.02\nradius_max = 0.03\n"

@@ -116,6 +116,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     r.m.health_warnings = rec.health_warnings;
     r.m.ballistic = rec.ballistic;
     r.m.airborne_fraction = rec.airborne_fraction;
+    r.m.drain_outcome = rec.drain_outcome;
+    r.m.drain_end_s = rec.drain_end_s;
+    r.m.drain_remaining = static_cast<int>(rec.drain_remaining);
     runs.push_back(std::move(r));
   }
   for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
@@ -142,6 +145,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("avalanches.csv"), analysis::pooled_avalanches_csv(points));
   io::write_file_atomic(out.file("species.csv"), analysis::species_points_csv(points));
   io::write_file_atomic(out.file("clog_survival.csv"), analysis::clog_survival_csv(points));
+  const std::string drain = analysis::drain_csv(points);
+  if (!drain.empty()) io::write_file_atomic(out.file("drain.csv"), drain);
   io::RunInfo info{command_line(),
                    {{"runs", runs.size()},
                     {"by", o.by},
@@ -182,6 +187,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
       std::printf("%-32s %4zu %s   %s\n", label.c_str(), p.runs.size(), pm(p.q, "no flow").c_str(),
                   per.c_str());
     }
+    if (!drain.empty())
+      std::printf("drain outcomes and the jamming probability J: %s/drain.csv\n", o.out.c_str());
     return 0;
   }
   std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",

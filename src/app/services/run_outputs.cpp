@@ -19,6 +19,11 @@ analysis::Measurements measure_run(const sim::Silo& h, double duration) {
   m.health_warnings = h.health_warnings();
   m.airborne_fraction = h.airborne().mean();
   m.ballistic = h.ballistic();
+  if (h.scene().drain) {
+    m.drain_outcome = h.drain().outcome;
+    m.drain_end_s = h.drain().end_s;
+    m.drain_remaining = h.drain().remaining;
+  }
   return m;
 }
 
@@ -59,6 +64,11 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
   io::write_file_atomic(dir / "survival.csv", analysis::survival_csv(scene, h.events().exits));
   info.health = health_facts(h);
   // The shortcut's work, only where it was on (metadata of ordinary runs stays as it was).
+  if (scene.drain) {
+    info.facts.push_back({"drain_outcome", m.drain_outcome});
+    info.facts.push_back({"drain_end_s", m.drain_end_s});
+    info.facts.push_back({"drain_remaining", static_cast<long>(m.drain_remaining)});
+  }
   if (scene.arrest_skip > 0) {
     info.facts.push_back({"arrest_skips", h.arrest_skips()});
     info.facts.push_back({"arrest_skipped_s", h.skipped_seconds()});
