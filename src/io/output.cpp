@@ -164,19 +164,68 @@ void check_not_input(const fs::path& out, const std::vector<fs::path>& inputs, c
   }
 }
 
+fs::path output_record_path(const fs::path& path) {
+  return path.parent_path() / ("." + path.filename().string() + ".siloscope");
+}
+
+void record_output(const fs::path& path) {
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw core::RuntimeFault("cannot read back " + path.string() + ": " + ec.message());
+  write_file_atomic(output_record_path(path),
+                    "# siloscope wrote " + path.filename().string() +
+                        "; --force replaces it only while it still has this size and hash\nfile = \"" +
+                        path.filename().string() + "\"\nsize = " + std::to_string(size) + "\nhash = \"" +
+                        file_hash(path) + "\"\n",
+                    false);
+}
+
+std::string changed_since_written(const fs::path& path) {
+  const fs::path rec = output_record_path(path);
+  std::error_code ec;
+  const std::string none = "a file with no record that siloscope wrote it (" + rec.filename().string() +
+                           ", kept beside every single-file output: missing, or the file predates it)";
+  if (!fs::is_regular_file(fs::symlink_status(rec, ec)) || fs::file_size(rec, ec) > 4096) return none;
+  std::ifstream in(rec);
+  std::string line, size, hash, name;
+  while (std::getline(in, line)) {
+    auto value = [&](const std::string& key) {
+      const std::string head = key + " = ";
+      if (line.compare(0, head.size(), head) != 0) return std::string();
+      std::string v = line.substr(head.size());
+      if (v.size() >= 2 && v.front() == '"') v = v.substr(1, v.size() - 2);
+      return v;
+    };
+    if (line.rfind("size = ", 0) == 0) size = value("size");
+    if (line.rfind("hash = ", 0) == 0) hash = value("hash");
+    if (line.rfind("file = ", 0) == 0) name = value("file");
+  }
+  if (size.empty() || hash.empty() || name != path.filename().string()) return none;
+  const auto now = fs::file_size(path, ec);
+  if (ec) return "unreadable (" + ec.message() + ")";
+  if (std::to_string(now) != size)
+    return "changed since siloscope wrote it (" + std::to_string(now) + " bytes where siloscope wrote " +
+           size + ")";
+  if (file_hash(path) != hash) return "changed since siloscope wrote it (same size, other contents)";
+  return "";
+}
+
 void check_destination(const fs::path& path, bool force, const std::string& what, OutputKind kind,
-                       const std::string& csv_header) {
+                       const std::string& csv_header, bool unchanged_only) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(path, ec))) {
-    const std::string why = foreign_output(path, kind, csv_header);
+    std::string why = foreign_output(path, kind, csv_header);
+    if (why.empty() && kind != OutputKind::Directory && unchanged_only) why = changed_since_written(path);
     if (!force && !why.empty())
       throw core::InputError(what + " " + path.string() + " already exists: it is " + why +
                              "; choose another path");
     if (!force)
       throw core::InputError(what + " " + path.string() + " already exists; pass --force to replace it");
     if (!why.empty())
-      throw core::InputError(what + " " + path.string() + " is " + why +
-                             "; --force replaces only what siloscope wrote, so choose another path");
+      throw core::InputError(
+          what + " " + path.string() + " is " + why +
+          "; --force replaces only what siloscope wrote and nobody changed since, so choose another path "
+          "(or move it away yourself)");
   }
   ensure_parent(path, what);
 }

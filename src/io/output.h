@@ -28,9 +28,22 @@ enum class OutputKind {
 std::string foreign_output(const fs::path& path, OutputKind kind, const std::string& csv_header = "");
 
 // Throws core::InputError if `path` exists and !force, or exists and is not siloscope's own output of `kind`
-// (nothing a user made is ever replaced), or its parent directory cannot be created or written.
+// (nothing a user made is ever replaced), or its parent directory cannot be created or written. A single
+// file (every kind but Directory) is replaced only while it is what siloscope wrote: its record
+// (record_output) must be there and match its size and hash, unless `unchanged_only` is false (a benchmark's
+// table, which every run of the benchmark rewrites).
 void check_destination(const fs::path& path, bool force, const std::string& what,
-                       OutputKind kind = OutputKind::Directory, const std::string& csv_header = "");
+                       OutputKind kind = OutputKind::Directory, const std::string& csv_header = "",
+                       bool unchanged_only = true);
+// Single-file outputs (a movie, a figure, an export, claims.md) carry a record beside them,
+// DIR/.NAME.siloscope: the size and hash of what siloscope wrote, so that --force can tell them from a file a
+// user edited, re-encoded or appended notes to. Call once the file is complete under its final name. Throws
+// core::RuntimeFault when the record cannot be written.
+void record_output(const fs::path& path);
+fs::path output_record_path(const fs::path& path);
+// Why `path` is not (any longer) what siloscope wrote: empty when its record matches; otherwise "a file with
+// no record that siloscope wrote it (...)" or "changed since siloscope wrote it (...)".
+std::string changed_since_written(const fs::path& path);
 
 // Why --force may not replace the directory `dir` with a new output of `kind`: empty when it is siloscope's
 // own output of that kind holding exactly what its manifest lists. Otherwise what it is: a campaign's results

@@ -182,6 +182,7 @@ void Mp4Writer::finish() {
   m.encode_s += std::chrono::duration<double>(Clock::now() - t0).count();
   m.release();
   io::rename_into_place(m.partial_path, m.final_path);
+  io::record_output(m.final_path);  // what --force may replace later (io/output.h)
   m.finished = true;
 }
 

@@ -161,6 +161,12 @@ TEST_CASE("claims: verdicts follow the intervals (reproduced, contradicted, not 
   // Its own table is replaced with --force, a user's file is not; a missing analysis is named.
   CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "claims.md").string()).code ==
         0);
+  // ... but not once the user wrote in it: the line survives.
+  std::ofstream(d / "claims.md", std::ios::app) << "my reading of C7\n";
+  r = cli("claims good=" + (d / "good").string() + " --force --out " + (d / "claims.md").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("changed since siloscope wrote it"));
+  CHECK_THAT(slurp(d / "claims.md"), Catch::Matchers::EndsWith("my reading of C7\n"));
   std::ofstream(d / "notes.md") << "# my notes\n";
   CHECK(cli("claims good=" + (d / "good").string() + " --force --out " + (d / "notes.md").string()).code ==
         2);

@@ -120,7 +120,7 @@ TEST_CASE("record makes NAME.mp4 and NAME/ with frames, events and metadata", "[
                " --duration 1 --set settle_time=2 --size 320x240 --fps 10 --png-every 5 --quiet --out " +
                (d / "demo").string());
   REQUIRE(r.code == 0);
-  CHECK(only(d, {"demo", "demo.mp4"}));
+  CHECK(only(d, {"demo", "demo.mp4", ".demo.mp4.siloscope"}));  // the movie's record (io/output.h)
   CHECK(fs::file_size(d / "demo.mp4") > 1000);
   CHECK(only(d / "demo" / "frames", {"frame_000000.png", "frame_000005.png"}));
   const std::string meta = slurp(d / "demo" / "metadata.toml");

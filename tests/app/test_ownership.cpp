@@ -252,3 +252,48 @@ TEST_CASE("claims and figures refuse a points.csv with impossible counts", "[tru
   CHECK_THAT(r.output, Catch::Matchers::Contains("points.csv:2: n_runs = -3 is not a whole number from 1"));
   CHECK_FALSE(fs::exists(d / "claims.md"));
 }
+
+TEST_CASE("every single-file writer: --force replaces its own untouched file, never one a user changed",
+          "[trust][app]") {
+  // Each writer's file gets a record beside it (.NAME.siloscope: size and hash); a line added to the file, or
+  // a movie re-encoded, no longer matches it.
+  const fs::path d = temp_dir("single_files");
+  const std::string rec =
+      "record " + kScene + " --duration 3 --size 64x48 --quiet --out " + (d / "r").string();
+  REQUIRE(cli(rec).code == 0);
+  const fs::path r = d / "r";
+  struct Writer {
+    std::string name, command;  // the command writes d/name
+  };
+  const std::vector<Writer> writers = {
+      {"r.mp4", rec},
+      {"e.xyz", "export " + r.string() + " --format xyz --out " + (d / "e.xyz").string()},
+      {"e.csv", "export " + r.string() + " --format csv --out " + (d / "e.csv").string()},
+      {"t.svg", "timeline " + r.string() + " --out " + (d / "t.svg").string()},
+      {"f.svg", "filmstrip " + r.string() + " --clog 1 --times -0.5,0 --out " + (d / "f.svg").string()},
+  };
+  for (const auto& w : writers) {
+    CAPTURE(w.command);
+    const fs::path f = d / w.name;
+    if (w.name != "r.mp4") REQUIRE(cli(w.command).code == 0);
+    REQUIRE(fs::exists(f));
+    CHECK(fs::exists(d / ("." + w.name + ".siloscope")));
+    // Untouched: replaced.
+    auto out = cli(w.command + " --force");
+    CHECK(out.code == 0);
+    // A line of the user's: refused, named, kept.
+    std::ofstream(f, std::ios::app | std::ios::binary) << "\nmy note\n";
+    const std::string mine = slurp(f);
+    out = cli(w.command + " --force");
+    CHECK(out.code == 2);
+    CHECK_THAT(out.output, Catch::Matchers::Contains(w.name) &&
+                               Catch::Matchers::Contains("changed since siloscope wrote it"));
+    CHECK(slurp(f) == mine);
+    // A file siloscope never recorded (written by an older version, or copied without its record).
+    fs::remove(d / ("." + w.name + ".siloscope"));
+    out = cli(w.command + " --force");
+    CHECK(out.code == 2);
+    CHECK_THAT(out.output, Catch::Matchers::Contains("no record that siloscope wrote it"));
+    CHECK(slurp(f) == mine);
+  }
+}

@@ -124,7 +124,7 @@ int bench_accuracy(const AccuracyOptions& o) {
   const double duration = o.quick ? 15 : o.scene.duration.value_or(60.0);
   if (realizations < 2 || !(duration > 0))
     throw core::InputError("--realizations must be >= 2 and --duration > 0");
-  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
+  io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader, false);
   base.duration = duration;
   const std::vector<NumericSetting> grid = chosen_settings(o.settings);
   const std::vector<SceneCase> scenes = scene_cases(o.scenes, base);

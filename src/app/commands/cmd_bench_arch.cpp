@@ -33,7 +33,7 @@ int bench_arch(const ArchBenchOptions& o) {
   if (o.repeats < 1 || !(o.seconds > 0) || !(o.fps > 0))
     throw core::InputError("--repeats, --seconds and --fps must be > 0");
   if (!o.csv.empty())
-    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit");
+    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "metric,value,unit", false);
   const FrameClock clock = FrameClock::every(scene.dt, 1.0 / o.fps, "--fps");
   std::printf("siloscope %s, bench arch: %g s simulated per repeat, detection every %ld steps (%g fps)\n",
               io::version_string().c_str(), o.seconds, clock.steps, o.fps);

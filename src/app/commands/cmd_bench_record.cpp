@@ -44,7 +44,7 @@ struct Case {
 };
 
 int bench_record(const RecordBenchOptions& o) {
-  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader);
+  if (!o.csv.empty()) io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, kHeader, false);
   const double duration = o.scene.duration.value_or(20.0);
   if (!(duration > 0 && duration <= 600)) throw core::InputError("--duration must be in (0, 600] s");
   const std::string scene =

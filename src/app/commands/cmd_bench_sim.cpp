@@ -145,7 +145,7 @@ int bench_sim(const BenchOptions& o) {
   if (o.repeats < 1 || o.steps < 1) throw core::InputError("--repeats and --steps must be >= 1");
   if (!o.csv.empty())
     io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv,
-                          o.scaling ? kScalingHeader : "metric,value,unit");
+                          o.scaling ? kScalingHeader : "metric,value,unit", false);
   if (o.scaling) return bench_scaling(o, scene.seed);
   const core::Setup& setup = model.setup;
   std::printf(

@@ -39,7 +39,7 @@ struct Cell {
 
 int bench_stability(const StabilityOptions& o) {
   io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv,
-                        "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome");
+                        "size_ratio,dt_s,dipole_force_ratio,mu,safe_dt_s,refused,broke,outcome", false);
   std::vector<Cell> cells;
   for (double r : {0.2, 0.4})
     for (double dt : {2.5e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2})

@@ -28,7 +28,7 @@ struct SweepBenchOptions {
 int bench_sweep(const SweepBenchOptions& o) {
   if (o.workers < 2) throw core::InputError("--workers must be >= 2 (compared with 1)");
   if (!o.csv.empty())
-    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "workers,realizations,wall_s");
+    io::check_destination(o.csv, true, "CSV file", io::OutputKind::Csv, "workers,realizations,wall_s", false);
   std::error_code ec;
   const fs::path tmp = fs::temp_directory_path() / ("siloscope_bench_sweep_" + std::to_string(::getpid()));
   double wall[2] = {0, 0};

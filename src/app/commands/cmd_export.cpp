@@ -176,6 +176,7 @@ int export_run(const ExportOptions& o) {
     }
   }
   io::write_file_atomic(out, text);
+  io::record_output(out);
   std::printf("%ld frames of %zu grains -> %s\n", last - first + 1, n, out.c_str());
   return 0;
 }

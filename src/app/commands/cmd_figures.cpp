@@ -97,7 +97,9 @@ int claims(const ClaimsOptions& o) {
   io::check_destination(table, o.force, "claims table (CSV)", io::OutputKind::Csv,
                         analysis::claims::kCsvHeader);
   io::write_file_atomic(table, analysis::claims::csv(presets));
+  io::record_output(table);
   io::write_file_atomic(out, analysis::claims::markdown(presets, io::version_string()));
+  io::record_output(out);
   for (const auto& p : presets) std::printf("%s\n", analysis::claims::summary_line(p).c_str());
   std::printf("claims per comparison in %s\n", table.c_str());
   std::printf("claims table in %s\n", out.c_str());

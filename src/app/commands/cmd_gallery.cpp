@@ -175,6 +175,7 @@ int gallery(const GalleryOptions& o) {
     throw core::RuntimeFault("gallery: the matplotlib script gallery.py failed");
   }
   io::rename_into_place(partial, out);
+  io::record_output(out);
   std::printf("%zu arches -> %s\n", n, out.c_str());
   return 0;
 }

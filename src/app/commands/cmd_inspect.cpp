@@ -257,6 +257,7 @@ int filmstrip(const FilmstripOptions& o) {
     throw core::RuntimeFault("filmstrip: the matplotlib script gallery.py failed");
   }
   io::rename_into_place(partial, out);
+  io::record_output(out);
   std::printf("clog %ld at %zu times -> %s\n", o.clog, dts.size(), out.c_str());
   return 0;
 }

@@ -60,6 +60,7 @@ int timeline(const TimelineOptions& o) {
     throw core::RuntimeFault("timeline: the matplotlib script timeline.py failed");
   }
   io::rename_into_place(partial, out);
+  io::record_output(out);
   std::printf("%zu exits, %zu clogs -> %s\n", ev.exits.size(), ev.clogs.size(), out.c_str());
   return 0;
 }
