@@ -170,13 +170,14 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
   io.DeltaTime = 1.0f / 30.0f;
   ImGui_ImplOpenGL3_NewFrame();
-  // Auto-sized windows learn their size in their first frame: lay the first one out once without drawing it.
-  if (!laid_out_) {
-    ImGui::NewFrame();
-    build(f, d, o, views, style, w, h, geo, marks);
-    ImGui::EndFrame();
-    laid_out_ = true;
-  }
+  // Auto-sized windows learn their size from what they held in the previous ImGui frame: lay every picture
+  // out once without drawing it, so the boxes are sized and placed for this picture's own contents (sized
+  // from the previous picture, a legend that grew by a row lost it, and a snapshot after a shorter one lost
+  // its colour bar).
+  ImGui::NewFrame();
+  build(f, d, o, views, style, w, h, geo, marks);
+  ImGui::EndFrame();
+  laid_out_ = true;
   ImGui::NewFrame();
   build(f, d, o, views, style, w, h, geo, marks);
   ImGui::Render();

@@ -64,7 +64,9 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   // The discharge staircase: cumulative exits of each species against time, clogs shaded. Bottom-right of the
   // most zoomed view, below the outlet where there are no disks.
   if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
-  history_.push_back({f.t, f.exits, f.clog_open, f.clog_start});
+  // One sample per picture (each is laid out, then drawn; a window redraws a still frame many times).
+  if (history_.empty() || f.t != history_.back().t)
+    history_.push_back({f.t, f.exits, f.clog_open, f.clog_start});
   const float em = static_cast<float>(font_px_);
   const View& v = most_zoomed(views);
   const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;

@@ -280,6 +280,44 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   }
 }
 
+TEST_CASE("the boxes are sized for the picture being drawn, not the one before it", "[render]") {
+  // A movie's frame whose box grows a row (a clog opens: the timer and the arch) was drawn with the previous
+  // frame's size, and lost its last row (1.3% of frames); so was an inspector snapshot after a shorter one.
+  auto& fx = fixture();
+  core::Frame a;
+  a.t = 2.0;
+  a.exits = {10, 4};
+  a.particles = {disk(-0.15f, 0.1f, 0.065f, core::Species::Original),
+                 disk(0.0f, 0.12f, 0.065f, core::Species::Original),
+                 disk(0.15f, 0.1f, 0.065f, core::Species::Original)};
+  core::Frame b = a;
+  b.t = 2.1;
+  b.clog_open = true;
+  b.clog_start = 1.5;
+  b.arch = {0, 1, 2};
+  render::Style style;
+  const render::OverlayOptions o = render::parse_overlay("all");
+  constexpr int w = 1280, h = 720;
+  const auto views = render::layout_views(render::parse_camera("split"), fx.geo, w, h);
+  render::Target target(w, h);
+  auto rect_of = [&](render::Overlay& overlay, const core::Frame& f) {
+    target.bind();
+    fx.renderer.draw(f, fx.geo, views, style, w, h);
+    overlay.draw(f, {}, o, views, style, w, h);
+    return overlay.info_rect();
+  };
+  render::Overlay fresh, after;
+  const auto alone = rect_of(fresh, b);
+  const auto before = rect_of(after, a);
+  REQUIRE(alone[3] - alone[1] > before[3] - before[1]);  // b's box is taller: the case is real
+  const auto grown = rect_of(after, b);
+  CHECK(grown[3] - grown[1] == alone[3] - alone[1]);
+  CHECK(grown[2] - grown[0] == alone[2] - alone[0]);
+  // And back: the shorter box is not drawn at the taller one's size.
+  const auto shrunk = rect_of(after, a);
+  CHECK(shrunk[3] - shrunk[1] == before[3] - before[1]);
+}
+
 TEST_CASE("in a window the information box never covers the container: a clear corner or beside the picture",
           "[render]") {
   auto& fx = fixture();
