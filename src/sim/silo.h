@@ -160,6 +160,11 @@ class Silo {
     model_.setup.drive.kick_impulse_max = j;
     clogs_.set_driven(j > 0 || model_.setup.drive.vibrating());
   }
+  // Close the outlet (the lid the deposition stood on, back across the aperture) or open it again, from the
+  // next step; for protocols of one's own (the Python bindings). While it is closed no grain exits, so the
+  // clog tracker sees a gap like any other.
+  void set_outlet_open(bool open);
+  bool outlet_open() const { return lid_ == nullptr; }
   // Run every health check now (they also run on their own: per disk every step, overlaps at every kick).
   void check_health();
 

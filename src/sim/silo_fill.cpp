@@ -227,4 +227,13 @@ void Silo::open_aperture() {
   t_ = 0;
 }
 
+void Silo::set_outlet_open(bool open) {
+  if (open && lid_) {
+    walls_->DestroyFixture(lid_);
+    lid_ = nullptr;
+  } else if (!open && !lid_) {
+    add_wall(static_cast<int>(core::Wall::Lid));
+  }
+}
+
 }  // namespace sim

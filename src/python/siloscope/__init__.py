@@ -14,6 +14,8 @@ arrays, metadata as dicts. Pure Python on numpy and pandas (Debian's python3-num
     >>> c = siloscope.read_campaign("docs/campaigns/paper")   # a sweep's results, or an analysis directory
     >>> c.points[["size_ratio", "q_tilde_per_s", "n_runs"]]
     >>> r = siloscope.run("assets/scenes/pure.toml", "runs/quick", duration=10, seed=3)   # the binary, then read_run
+    >>> s = siloscope.Simulation("assets/scenes/paper.toml", seed=7)   # in process (the compiled module)
+    >>> s.step(20000); s.exits.tail()                                  # 20 s; exits as exits.csv has them
 
 Every reader checks what it reads: a missing file, a wrong header, a value out of its range (a negative count,
 time running backwards) raises siloscope.SiloscopeError with one line naming the file, the field and the value.
@@ -22,6 +24,8 @@ from ._errors import SiloscopeError
 from ._trajectory import Trajectory, read_trajectory
 from ._run import Run, read_run, run
 from ._campaign import Campaign, read_campaign
+from ._simulation import Simulation
 
-__all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "read_run", "run", "Campaign", "read_campaign"]
+__all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "read_run", "run", "Campaign", "read_campaign",
+           "Simulation"]
 __version__ = "0.1.0"

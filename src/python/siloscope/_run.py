@@ -79,8 +79,12 @@ def binary():
     if env:
         return env
     here = os.path.dirname(os.path.abspath(__file__))
+    # From a clone (src/python/siloscope), from the build's staged copy (build/share/siloscope/python/siloscope)
+    # and from an installed one (PREFIX/share/siloscope/python/siloscope: the binary is PREFIX/bin/siloscope).
     for candidate in (os.path.join(here, "..", "..", "..", "build", "siloscope"),
-                      os.path.join(here, "..", "..", "..", "bin", "siloscope")):
+                      os.path.join(here, "..", "..", "..", "..", "siloscope"),
+                      os.path.join(here, "..", "..", "..", "..", "bin", "siloscope"),
+                      os.path.join(here, "bin", "siloscope")):
         if os.access(candidate, os.X_OK):
             return os.path.normpath(candidate)
     found = shutil.which("siloscope")

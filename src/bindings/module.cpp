@@ -1,0 +1,235 @@
+// siloscope inside Python (pybind11, Debian's pybind11-dev): a scene stepped in process, its grains,
+// contacts, arches and events read as numpy arrays between steps, and the keys that may change during a run
+// set between them. The same scene and seed stepped here give the events `siloscope run` writes, byte for
+// byte (the same sim::Silo, the same event writers). The Python side (siloscope/_simulation.py) wraps this
+// module.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "core/model.h"
+#include "core/scene.h"
+#include "io/events_csv.h"
+#include "io/metadata.h"
+#include "sim/silo.h"
+
+namespace py = pybind11;
+
+namespace {
+
+// The keys set() takes, with what each changes.
+const char* kSettable =
+    "kick_impulse_max (N*s: the random kicks from the next kick on; 0: none), outlet_open (true/false: the "
+    "lid back across the outlet, or away)";
+
+class Simulation {
+ public:
+  // `scene`: a scene file (or a run's metadata.toml), or "" for the built-in default scene; `keys`:
+  // "key=value" overrides as `--set` takes them; `seed` < 0: the scene's own.
+  Simulation(const std::string& scene, long long seed, const std::vector<std::string>& keys) {
+    core::Scene s = scene.empty() ? core::Scene{} : core::load_scene(scene);
+    core::apply_overrides(s, keys);
+    if (seed >= 0) s.seed = static_cast<std::uint64_t>(seed), s.origin["seed"] = "seed=";
+    silo_ = std::make_unique<sim::Silo>(core::compile(s));
+  }
+
+  // Step n time steps; returns the events of those steps (also kept for events()).
+  py::dict step(long n) {
+    if (n < 0) throw core::InputError("step(n): n = " + std::to_string(n) + " must be >= 0");
+    {
+      py::gil_scoped_release free;
+      for (long k = 0; k < n; ++k) silo_->step();
+    }
+    last_ = silo_->take_events();
+    return events_dict(last_);
+  }
+  // Step until time() >= t (s since the outlet opened).
+  py::dict advance_to(double t) {
+    {
+      py::gil_scoped_release free;
+      silo_->advance_to(t);
+    }
+    last_ = silo_->take_events();
+    return events_dict(last_);
+  }
+  double time() const { return silo_->time(); }
+  double dt() const { return silo_->scene().dt; }
+  int n() const { return silo_->particle_count(); }
+
+  // Grains now: (n, 2) arrays in the container's frame (m, m/s), angles (rad), radii (m), species index.
+  py::array_t<double> positions() const {
+    const auto p = silo_->positions();
+    py::array_t<double> out({static_cast<py::ssize_t>(p.size()), py::ssize_t{2}});
+    auto a = out.mutable_unchecked<2>();
+    for (size_t i = 0; i < p.size(); ++i) a(i, 0) = p[i].x, a(i, 1) = p[i].y;
+    return out;
+  }
+  py::dict grains() const {
+    const core::Frame f = silo_->frame(false);
+    const auto n = static_cast<py::ssize_t>(f.particles.size());
+    py::array_t<double> v({n, py::ssize_t{2}}), angle(n), radius(n);
+    py::array_t<int> species(n), sides(n);
+    auto va = v.mutable_unchecked<2>();
+    auto an = angle.mutable_unchecked<1>(), ra = radius.mutable_unchecked<1>();
+    auto sp = species.mutable_unchecked<1>(), si = sides.mutable_unchecked<1>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const auto& q = f.particles[static_cast<size_t>(i)];
+      va(i, 0) = q.vx, va(i, 1) = q.vy;
+      an(i) = q.angle, ra(i) = silo_->radii()[static_cast<size_t>(i)];
+      sp(i) = static_cast<int>(q.species), si(i) = q.sides;
+    }
+    py::dict d;
+    d["position"] = positions();
+    d["velocity"] = v;
+    d["angle"] = angle;
+    d["radius"] = radius;
+    d["species"] = species;
+    d["sides"] = sides;
+    return d;
+  }
+  std::vector<std::string> species_names() const { return silo_->setup().species_names(); }
+
+  // Grain-grain contacts now, with their normal force over the last step (N).
+  py::dict contacts() const {
+    const core::Frame f = silo_->frame(true);
+    const auto n = static_cast<py::ssize_t>(f.contacts.size());
+    py::array_t<int> a(n), b(n);
+    py::array_t<double> force(n);
+    auto aa = a.mutable_unchecked<1>(), bb = b.mutable_unchecked<1>();
+    auto ff = force.mutable_unchecked<1>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const auto& c = f.contacts[static_cast<size_t>(i)];
+      aa(i) = c.a, bb(i) = c.b, ff(i) = c.force;
+    }
+    py::dict d;
+    d["a"] = a;
+    d["b"] = b;
+    d["force"] = force;
+    return d;
+  }
+  // The open clog (None when flowing) and the arch standing over the outlet now.
+  py::object clog() const {
+    const core::ClogState& c = silo_->clog();
+    if (!c.open) return py::none();
+    py::dict d;
+    d["number"] = c.number;
+    d["start_s"] = c.start;
+    d["arrested"] = c.arrested;
+    d["arch"] = c.arch;
+    return d;
+  }
+  std::vector<int> arch() const { return silo_->current_arch(); }
+
+  // Every exit so far: the columns of exits.csv.
+  py::dict exits() const {
+    const auto& e = silo_->events().exits;
+    const auto n = static_cast<py::ssize_t>(e.size());
+    py::array_t<double> t(n);
+    py::array_t<int> id(n), sp(n);
+    auto tt = t.mutable_unchecked<1>();
+    auto ii = id.mutable_unchecked<1>(), ss = sp.mutable_unchecked<1>();
+    for (py::ssize_t k = 0; k < n; ++k) {
+      const auto& x = e[static_cast<size_t>(k)];
+      tt(k) = x.t, ii(k) = x.id, ss(k) = static_cast<int>(core::species_index(x.species));
+    }
+    py::dict d;
+    d["t_s"] = t;
+    d["id"] = id;
+    d["species"] = sp;
+    return d;
+  }
+  // The event files `run` writes, as their text: exits.csv, clogs.csv, arches.csv.
+  py::dict event_files() const {
+    const auto names = silo_->setup().species_names();
+    py::dict d;
+    d["exits.csv"] = io::exits_csv(silo_->events(), names);
+    d["clogs.csv"] = io::clogs_csv(silo_->events());
+    d["arches.csv"] = io::arches_csv(silo_->events(), names);
+    return d;
+  }
+  // Close the open clog as censored, as a run's end does (once, at the end).
+  void finish() {
+    if (finished_) throw core::InputError("finish(): already finished");
+    silo_->finish();
+    last_ = silo_->take_events();
+    finished_ = true;
+  }
+  py::dict last_events() const { return events_dict(last_); }
+
+  void set(const std::string& key, py::object value) {
+    if (key == "kick_impulse_max") {
+      const double j = value.cast<double>();
+      if (!(j >= 0) || !std::isfinite(j))
+        throw core::InputError("set(\"kick_impulse_max\", " + core::format_shortest(j) +
+                               "): expected a finite impulse >= 0 N*s");
+      silo_->set_kick_impulse_max(j);
+    } else if (key == "outlet_open") {
+      if (!py::isinstance<py::bool_>(value))
+        throw core::InputError("set(\"outlet_open\", ...): expected True or False");
+      silo_->set_outlet_open(value.cast<bool>());
+    } else {
+      throw core::InputError("set(\"" + key + "\"): not a key that may change during a run; those are " +
+                             kSettable + ". Other keys: a new Simulation(..., " + key + "=...)");
+    }
+  }
+  bool outlet_open() const { return silo_->outlet_open(); }
+  std::string scene_toml() const { return core::scene_toml(silo_->scene()); }
+  std::uint64_t seed() const { return silo_->scene().seed; }
+
+ private:
+  py::dict events_dict(const core::StepEvents& e) const {
+    py::dict d;
+    py::list exits, opened, closed, removed;
+    for (const auto& x : e.exits) exits.append(py::make_tuple(x.t, x.id, core::species_index(x.species)));
+    for (int number : e.clogs_opened) opened.append(number);
+    for (const auto& c : e.clogs_closed) closed.append(py::make_tuple(c.start, c.end, c.arrested));
+    for (const auto& a : e.rule_removed) removed.append(py::make_tuple(a.t, a.ids));
+    d["exits"] = exits;
+    d["clogs_opened"] = opened;
+    d["clogs_closed"] = closed;
+    d["rule_removed"] = removed;
+    return d;
+  }
+  std::unique_ptr<sim::Silo> silo_;
+  core::StepEvents last_;
+  bool finished_ = false;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_siloscope, m) {
+  m.doc() = "siloscope's simulation in process (wrapped by siloscope.Simulation)";
+  m.attr("version") = io::version_string();
+  m.attr("settable_keys") = kSettable;
+  py::register_exception<core::InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<core::Unstable>(m, "Unstable", PyExc_RuntimeError);
+  py::register_exception<core::RuntimeFault>(m, "RuntimeFault", PyExc_RuntimeError);
+  py::class_<Simulation>(m, "Simulation")
+      .def(py::init<const std::string&, long long, const std::vector<std::string>&>())
+      .def("step", &Simulation::step)
+      .def("advance_to", &Simulation::advance_to)
+      .def_property_readonly("time", &Simulation::time)
+      .def_property_readonly("dt", &Simulation::dt)
+      .def_property_readonly("n", &Simulation::n)
+      .def_property_readonly("seed", &Simulation::seed)
+      .def("positions", &Simulation::positions)
+      .def("grains", &Simulation::grains)
+      .def("species_names", &Simulation::species_names)
+      .def("contacts", &Simulation::contacts)
+      .def("clog", &Simulation::clog)
+      .def("arch", &Simulation::arch)
+      .def("exits", &Simulation::exits)
+      .def("event_files", &Simulation::event_files)
+      .def("finish", &Simulation::finish)
+      .def("last_events", &Simulation::last_events)
+      .def("set", &Simulation::set)
+      .def_property_readonly("outlet_open", &Simulation::outlet_open)
+      .def("scene_toml", &Simulation::scene_toml);
+}

@@ -1,0 +1,186 @@
+"""A scene stepped in process (the compiled module _siloscope, pybind11): grains, contacts, arches and events
+between steps, and the keys that may change during a run set between them.
+
+    >>> import siloscope
+    >>> s = siloscope.Simulation("assets/scenes/paper.toml", seed=7)    # deposited, settled, the outlet open
+    >>> s.step(20000)                  # 20000 time steps (20 s at dt = 1 ms); returns what they did
+    >>> s.time                         # s since the outlet opened, as --duration counts
+    >>> s.positions, s.velocities      # (n, 2) numpy arrays, m and m/s, the container's frame
+    >>> s.exits                        # DataFrame: t_s, id, species (the columns of exits.csv)
+    >>> s.contacts                     # DataFrame: a, b, force (N), grain pairs in contact now
+    >>> s.clog, s.arch                 # the open clog (None when flowing), the arch over the outlet now
+    >>> s.set("outlet_open", False)    # keys that may change during a run: siloscope.Simulation.SETTABLE
+"""
+import glob
+import importlib.util
+import numbers
+import os
+
+import numpy as np
+
+from ._errors import SiloscopeError
+
+
+def _module():
+    """The compiled module: installed beside this file, else the one a build of this clone staged."""
+    try:
+        from . import _siloscope
+        return _siloscope
+    except ImportError:
+        pass
+    here = os.path.dirname(os.path.abspath(__file__))
+    staged = os.path.join(here, "..", "..", "..", "build", "share", "siloscope", "python", "siloscope")
+    found = sorted(glob.glob(os.path.join(staged, "_siloscope*.so")))
+    if not found:
+        raise SiloscopeError("siloscope.Simulation needs the compiled module _siloscope: build the project "
+                             "(bash .ci/bootstrap) or install the package (pip install ./)")
+    spec = importlib.util.spec_from_file_location("siloscope._siloscope", found[0])
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _toml(value):
+    """A Python value as --set takes it (TOML)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    raise SiloscopeError(f"{value!r}: a scene key takes a number, a boolean or a string")
+
+
+class Simulation:
+    """One simulation, stepped from Python. `scene`: a scene file (or a run's metadata.toml), None for the
+    built-in default; `seed`: a whole number (the scene's own when None); every other keyword is a scene key
+    (`aperture=0.35`), and `keys` takes those a keyword cannot spell (`{"species.beads.count": 200}`).
+
+    The same scene and seed stepped here give the events `siloscope run` writes, byte for byte
+    (`event_files()`)."""
+
+    SETTABLE = ("kick_impulse_max", "outlet_open")
+
+    def __init__(self, scene=None, seed=None, keys=None, **more):
+        m = _module()
+        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0
+                                 or seed > 2**63 - 1):
+            raise SiloscopeError(f"seed = {seed!r}: expected a whole number from 0 to 2^63 - 1")
+        assignments = [f"{k}={_toml(v)}" for k, v in {**(keys or {}), **more}.items()]
+        try:
+            self._s = m.Simulation("" if scene is None else os.fspath(scene), -1 if seed is None else int(seed),
+                                   assignments)
+        except (m.InputError, m.Unstable, m.RuntimeFault) as e:
+            raise SiloscopeError(str(e)) from None
+        self._m = m
+        self.species_names = list(self._s.species_names())
+
+    def _call(self, f, *args):
+        try:
+            return f(*args)
+        except (self._m.InputError, self._m.Unstable, self._m.RuntimeFault) as e:
+            raise SiloscopeError(str(e)) from None
+
+    def step(self, n=1):
+        """Step n time steps; returns the events of those steps: exits [(t_s, id, species index)],
+        clogs_opened [clog number], clogs_closed [(start_s, end_s, arrested)], rule_removed [(t_s, ids)]."""
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 0:
+            raise SiloscopeError(f"step(n): n = {n!r} must be a whole number >= 0")
+        return self._call(self._s.step, int(n))
+
+    def advance_to(self, t):
+        """Step until time >= t (s since the outlet opened)."""
+        return self._call(self._s.advance_to, float(t))
+
+    @property
+    def time(self):
+        """Seconds since the outlet opened (as --duration counts)."""
+        return self._s.time
+
+    @property
+    def dt(self):
+        return self._s.dt
+
+    @property
+    def n(self):
+        return self._s.n
+
+    @property
+    def seed(self):
+        return self._s.seed
+
+    @property
+    def positions(self):
+        """(n, 2) array of the grains' centres, m, in the container's frame."""
+        return self._s.positions()
+
+    def grains(self):
+        """Every grain now: position (n, 2) m, velocity (n, 2) m/s, angle rad, radius m (of the disk of equal
+        area), species (index into species_names), sides (0: a disk)."""
+        return self._s.grains()
+
+    @property
+    def velocities(self):
+        return self._s.grains()["velocity"]
+
+    @property
+    def angles(self):
+        return self._s.grains()["angle"]
+
+    @property
+    def radii(self):
+        return self._s.grains()["radius"]
+
+    @property
+    def species(self):
+        return self._s.grains()["species"]
+
+    @property
+    def contacts(self):
+        """Grain pairs in contact now, with the normal force over the last step: DataFrame a, b, force (N)."""
+        import pandas as pd
+        return pd.DataFrame(self._s.contacts())
+
+    @property
+    def clog(self):
+        """The open clog as a dict (number, start_s, arrested, arch: its members), or None while flowing."""
+        return self._s.clog()
+
+    @property
+    def arch(self):
+        """The arch standing over the outlet now (Box2D's contacts), member ids left to right; [] if none."""
+        return self._s.arch()
+
+    @property
+    def exits(self):
+        """Every exit so far: DataFrame t_s, id, species (the species' name), the columns of exits.csv."""
+        import pandas as pd
+        e = self._s.exits()
+        names = np.array(self.species_names, dtype=object)
+        return pd.DataFrame({"t_s": e["t_s"], "id": e["id"], "species": names[e["species"]] if len(e["id"])
+                             else np.array([], dtype=object)})
+
+    def event_files(self):
+        """exits.csv, clogs.csv and arches.csv as `siloscope run` would write them now (text)."""
+        return self._s.event_files()
+
+    def finish(self):
+        """Close an open clog as censored, as the end of a run does (once, at the end)."""
+        self._call(self._s.finish)
+
+    def set(self, key, value):
+        """Change a key from the next step on: kick_impulse_max (N*s), outlet_open (True/False)."""
+        self._call(self._s.set, str(key), value)
+
+    @property
+    def outlet_open(self):
+        return self._s.outlet_open
+
+    def scene_toml(self):
+        """The scene as a scene file (TOML), seed included: what reproduces this simulation."""
+        return self._s.scene_toml()
+
+    def __repr__(self):
+        return f"Simulation({self.n} grains, t = {self.time:.3f} s, seed {self.seed})"
