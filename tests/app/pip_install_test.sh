@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# pip installs the package with the binary and the in-process module into a fresh virtual environment, with
+# Debian's build tools and no network (pip install --no-build-isolation --no-index), from a copy of the clone;
+# from another directory the installed package steps a scene and its exits equal the installed command's run,
+# byte for byte. The two targets come from the suite's own build (SILOSCOPE_BUILD_DIR): a plain `pip install ./`
+# builds them itself (build-pip/), which the README's set-up was tried with by hand.
+set -euo pipefail
+build=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$tmp/clone"
+(cd "$src" && git ls-files -z | xargs -0 cp --parents -t "$tmp/clone")  # the clone's files, no build trees
+/usr/bin/python3 -m venv --system-site-packages "$tmp/env"
+SILOSCOPE_BUILD_DIR="$build" "$tmp/env/bin/pip" install -q --no-build-isolation --no-index "$tmp/clone" \
+  > "$tmp/pip.log" 2>&1 || { cat "$tmp/pip.log"; exit 1; }
+cd "$tmp"
+scene="$tmp/clone/assets/scenes/paper.toml"
+env -u SILOSCOPE_BINARY "$tmp/env/bin/python3" -c "
+import siloscope
+assert siloscope.__file__.startswith('$tmp/env/'), siloscope.__file__
+s = siloscope.Simulation('$scene', seed=7)
+s.step(20000)
+s.finish()
+open('py-exits.csv', 'w').write(s.event_files()['exits.csv'])
+"
+env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run "$scene" --seed 7 --duration 20 --quiet --out run
+cmp py-exits.csv run/exits.csv
+echo "pip-installed siloscope: Simulation and the siloscope command agree ($(wc -l < run/exits.csv) lines)"
