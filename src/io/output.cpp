@@ -82,6 +82,12 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
           !file_contains(path, "siloscope timeline", 32u << 20))
         return "a file that is not a siloscope gallery sheet or timeline figure";
       return "";
+    case OutputKind::Gsd:
+      if (fs::is_directory(st)) return "a directory, not a GSD file";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      if (!file_starts_with(path, std::string("\xDF\x65\xDF\x65\xDF\x65\xDF\x65", 8)))
+        return "a file that is not a GSD file (no GSD magic number)";
+      return "";
     case OutputKind::Xyz:
       if (fs::is_directory(st)) return "a directory, not an XYZ file";
       if (!fs::is_regular_file(st)) return "not a regular file";

@@ -21,6 +21,7 @@ enum class OutputKind {
   Csv,        // a benchmark table or CSV export: its first line is the expected header
   Xyz,        // an extended XYZ export: its first comment line carries siloscope="VERSION"
   Sheet,      // a figure (PDF, SVG, PNG) whose metadata names "siloscope gallery" or "siloscope timeline"
+  Gsd,        // a GSD export: a GSD file (its magic number) with siloscope's record beside it
 };
 
 // Why --force may not replace `path`: empty when siloscope wrote it (as `kind`), otherwise what the path is

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include "app/services/cli.h"
 #include "app/services/inspect_files.h"
 #include "app/services/process.h"
@@ -106,6 +108,30 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   return 0;
 }
 
+// GSD (HOOMD-blue; OVITO reads it): each species a type with its shape, orientations as quaternions. Written
+// by the package's writer (src/python/siloscope/_gsd.py, python3-gsd) under a temporary name.
+int export_gsd(const ExportOptions& o, const fs::path& traj, long first, long last,
+               const core::Geometry& geo) {
+  const fs::path out = o.out.empty() ? traj.parent_path() / "trajectory.gsd" : fs::path(o.out);
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "export file", io::OutputKind::Gsd);
+  const fs::path partial = out.string() + ".partial-" + std::to_string(::getpid()) + ".gsd";
+  const int status =
+      run_python(script_path("export_gsd.py"),
+                 {traj.string(), partial.string(), std::to_string(first), std::to_string(last),
+                  num(geo.x_left), num(-0.05 * geo.total_height), num(geo.x_right), num(geo.total_height)});
+  std::error_code ec;
+  if (status != 0) {
+    fs::remove(partial, ec);
+    throw core::RuntimeFault("export: the GSD writer (export_gsd.py, python3-gsd) failed");
+  }
+  io::rename_into_place(partial, out);
+  io::record_output(out);
+  std::printf("%ld frames -> %s (GSD: a type per species with its shape, orientations as quaternions)\n",
+              last - first + 1, out.c_str());
+  return 0;
+}
+
 // Each species' exits so far as XYZ comment keys: " exits_original=40 exits_added=12" (the scene's names).
 std::string exit_counts(const core::Frame& f, const std::vector<std::string>& names) {
   std::string out;
@@ -115,8 +141,8 @@ std::string exit_counts(const core::Frame& f, const std::vector<std::string>& na
 }
 
 int export_run(const ExportOptions& o) {
-  if (o.format != "xyz" && o.format != "csv" && o.format != "vtu")
-    throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu");
+  if (o.format != "xyz" && o.format != "csv" && o.format != "vtu" && o.format != "gsd")
+    throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu, gsd");
   fs::path traj = o.run;
   if (fs::is_directory(traj)) traj /= "trajectory.sstraj";
   if (!fs::exists(traj))
@@ -133,6 +159,7 @@ int export_run(const ExportOptions& o) {
   for (const auto& nm : names) names_text += (names_text.empty() ? "" : " ") + nm;
 
   if (o.format == "vtu") return export_vtu(o, traj, t, first, last, model);
+  if (o.format == "gsd") return export_gsd(o, traj, first, last, geo);
   fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "export file",
@@ -154,7 +181,7 @@ int export_run(const ExportOptions& o) {
       text +=
           "Lattice=\"" + num(w) + " 0 0 0 " + num(h) + " 0 0 0 1\" Origin=\"" + num(geo.x_left) + " 0 0\" " +
           "Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:force:R:1:arch:I:1:id:I:1:angle:R:1:sides:I:1:"
-          "kind:S:1 Time=" +
+          "kind:S:1:orientation:R:4 Time=" +
           num(f.t) + " frame=" + std::to_string(k) + exit_counts(f, names) + " species_names=\"" +
           names_text + "\" container=\"" + num(f.container_x) + " " + num(f.container_y) +
           "\" units=SI pbc=\"F F F\" siloscope=\"" + io::version_string() + "\"\n";
@@ -167,7 +194,7 @@ int export_run(const ExportOptions& o) {
         text += std::string(kSymbols[sp % 16]) + " " + num(p.x) + " " + num(p.y) + " 0 " + num(p.radius) +
                 " " + num(p.vx) + " " + num(p.vy) + " 0 " + num(p.force) + " " + (in_arch[i] ? "1" : "0") +
                 " " + std::to_string(i) + " " + num(p.angle) + " " + std::to_string(p.sides) + " " + name +
-                "\n";
+                " 0 0 " + num(std::sin(0.5 * p.angle)) + " " + num(std::cos(0.5 * p.angle)) + "\n";
       else
         text += std::to_string(k) + "," + num(f.t) + "," + std::to_string(i) + "," + name + "," + num(p.x) +
                 "," + num(p.y) + "," + num(p.radius) + "," + num(p.vx) + "," + num(p.vy) + "," +
@@ -189,12 +216,14 @@ void add_export_command(CLI::App& app, Action& action) {
   cmd->add_option("run", o->run,
                   "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
       ->required();
-  cmd->add_option("--format", o->format,
-                  "xyz (extended XYZ: OVITO, ASE), csv, or vtu (ParaView: a directory)")
+  cmd->add_option(
+         "--format", o->format,
+         "xyz (extended XYZ: OVITO, ASE; orientation as a quaternion x y z w), csv, vtu (ParaView: a "
+         "directory) or gsd (HOOMD, OVITO: a type per species with its shape)")
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "K or A:B (inclusive; default: every frame)");
   cmd->add_option("--out", o->out,
-                  "output file (default: RUN/trajectory.xyz or .csv; vtu: the directory RUN/vtu)");
+                  "output file (default: RUN/trajectory.xyz, .csv or .gsd; vtu: the directory RUN/vtu)");
   cmd->add_flag("--force", o->force, "replace an earlier export");
   cmd->callback([o, &action] { action = [o] { return export_run(*o); }; });
 }
