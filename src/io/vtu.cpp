@@ -1,8 +1,13 @@
 #include "io/vtu.h"
 
-#include <cmath>
-#include <cstdio>
+#include <zlib.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <type_traits>
+
+#include "core/error.h"
 #include "core/format.h"
 
 namespace io {
@@ -12,66 +17,133 @@ std::string num(double v) {
   return core::format_g(v, 8);
 }
 
-// An ASCII data array: `values` already formatted, separated by blanks. Field data (tuples > 0) must say how
-// many tuples it holds.
-std::string array(const char* type, const char* name, int components, const std::string& values,
-                  int tuples = 0) {
-  std::string s = "        <DataArray type=\"" + std::string(type) + "\"";
-  if (name) s += " Name=\"" + std::string(name) + "\"";
-  if (components > 1) s += " NumberOfComponents=\"" + std::to_string(components) + "\"";
-  if (tuples > 0) s += " NumberOfTuples=\"" + std::to_string(tuples) + "\"";
-  return s + " format=\"ascii\">\n" + values + "\n        </DataArray>\n";
-}
+// The arrays of one file, written as ASCII (`values` formatted, separated by blanks) or, by default, as VTK's
+// appended raw binary, each array zlib-compressed (header UInt64: blocks, block size, last block size, then
+// each block's compressed size; one block per array).
+class Arrays {
+ public:
+  explicit Arrays(VtuEncoding enc) : enc_(enc) {}
+  // One array; `raw` its little-endian binary values (binary files), `ascii` their text (ASCII files). Field
+  // data (tuples > 0) says how many tuples it holds.
+  std::string array(const char* type, const char* name, int components, const std::string& ascii,
+                    const std::string& raw, int tuples = 0) {
+    std::string s = "        <DataArray type=\"" + std::string(type) + "\"";
+    if (name) s += " Name=\"" + std::string(name) + "\"";
+    if (components > 1) s += " NumberOfComponents=\"" + std::to_string(components) + "\"";
+    if (tuples > 0) s += " NumberOfTuples=\"" + std::to_string(tuples) + "\"";
+    if (enc_ == VtuEncoding::Ascii) return s + " format=\"ascii\">\n" + ascii + "\n        </DataArray>\n";
+    s += " format=\"appended\" offset=\"" + std::to_string(appended_.size()) + "\"/>\n";
+    uLongf bound = compressBound(static_cast<uLong>(raw.size()));
+    std::string packed(bound, '\0');
+    if (compress2(reinterpret_cast<Bytef*>(&packed[0]), &bound, reinterpret_cast<const Bytef*>(raw.data()),
+                  static_cast<uLong>(raw.size()), 6) != Z_OK)
+      throw core::RuntimeFault("VTU export: zlib could not compress an array");
+    packed.resize(bound);
+    const std::uint64_t header[4] = {raw.empty() ? 0u : 1u, raw.size(), raw.size(), packed.size()};
+    appended_.append(reinterpret_cast<const char*>(header), raw.empty() ? 3 * 8 : 4 * 8);
+    if (!raw.empty()) appended_ += packed;
+    return s;
+  }
+  // The file around `body` (which holds "<!--piece-->" where the piece begins).
+  std::string file(size_t points, size_t cells, const std::string& body) const {
+    std::string head =
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+        "byte_order=\"LittleEndian\" header_type=\"UInt64\"";
+    if (enc_ == VtuEncoding::Binary) head += " compressor=\"vtkZLibDataCompressor\"";
+    std::string s = head + ">\n  <UnstructuredGrid>\n" + body.substr(0, body.find("<!--piece-->")) +
+                    "    <Piece NumberOfPoints=\"" + std::to_string(points) + "\" NumberOfCells=\"" +
+                    std::to_string(cells) + "\">\n" + body.substr(body.find("<!--piece-->") + 12) +
+                    "    </Piece>\n  </UnstructuredGrid>\n";
+    if (enc_ == VtuEncoding::Binary)
+      s += "  <AppendedData encoding=\"raw\">\n   _" + appended_ + "\n  </AppendedData>\n";
+    return s + "</VTKFile>\n";
+  }
+  bool ascii() const { return enc_ == VtuEncoding::Ascii; }
 
-std::string grid(size_t points, size_t cells, const std::string& body) {
-  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-         "byte_order=\"LittleEndian\">\n"
-         "  <UnstructuredGrid>\n" +
-         body.substr(0, body.find("<!--piece-->")) + "    <Piece NumberOfPoints=\"" + std::to_string(points) +
-         "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n" +
-         body.substr(body.find("<!--piece-->") + 12) + "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-}
+ private:
+  VtuEncoding enc_;
+  std::string appended_;
+};
+
+// Values collected both ways (the text only for ASCII files, the bytes only for binary ones).
+template <typename T>
+struct Column {
+  explicit Column(bool as_text) : ascii(as_text) {}
+  bool ascii;
+  std::string text, raw;
+  void add(T v) {
+    if (ascii) {
+      if constexpr (std::is_floating_point_v<T>)
+        text += num(v) + " ";
+      else
+        text += std::to_string(v) + " ";
+    } else {
+      raw.append(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+  }
+};
 }  // namespace
 
-std::string vtu_grains(const core::Frame& f) {
+std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& species_names, VtuEncoding enc) {
   const size_t n = f.particles.size();
+  Arrays out(enc);
+  const bool a = out.ascii();
   std::vector<char> in_arch(n, 0);
   for (int id : f.arch)
     if (id >= 0 && static_cast<size_t>(id) < n) in_arch[static_cast<size_t>(id)] = 1;
-  std::string pts, radius, extent, vel, force, species, arch, id, angle, sides, conn, offsets, types;
+  Column<float> pts{a}, radius{a}, extent{a}, vel{a}, force{a}, angle{a};
+  Column<std::int32_t> species{a}, arch{a}, id{a}, sides{a};
+  Column<std::int64_t> conn{a}, offsets{a};
+  Column<std::uint8_t> types{a};
   for (size_t i = 0; i < n; ++i) {
     const core::Particle& p = f.particles[i];
-    pts += num(p.x) + " " + num(p.y) + " 0 ";
-    radius += num(p.radius) + " ";
-    extent += num(p.radius * core::polygon_extent(p.sides)) + " ";
-    vel += num(p.vx) + " " + num(p.vy) + " 0 ";
-    force += num(p.force) + " ";
-    species += std::to_string(core::species_index(p.species)) + " ";
-    arch += in_arch[i] ? "1 " : "0 ";
-    id += std::to_string(i) + " ";
-    angle += num(p.angle) + " ";
-    sides += std::to_string(p.sides) + " ";
-    conn += std::to_string(i) + " ";
-    offsets += std::to_string(i + 1) + " ";
-    types += "1 ";  // VTK_VERTEX
+    pts.add(p.x), pts.add(p.y), pts.add(0.0f);
+    radius.add(p.radius);
+    extent.add(static_cast<float>(p.radius * core::polygon_extent(p.sides)));
+    vel.add(p.vx), vel.add(p.vy), vel.add(0.0f);
+    force.add(p.force);
+    species.add(static_cast<std::int32_t>(core::species_index(p.species)));
+    arch.add(in_arch[i] ? 1 : 0);
+    id.add(static_cast<std::int32_t>(i));
+    angle.add(p.angle);
+    sides.add(p.sides);
+    conn.add(static_cast<std::int64_t>(i));
+    offsets.add(static_cast<std::int64_t>(i + 1));
+    types.add(1);  // VTK_VERTEX
   }
-  std::string body =
-      "    <FieldData>\n" + array("Float64", "TimeValue", 1, num(f.t), 1) +
-      array("Float64", "ContainerOffset", 2, num(f.container_x) + " " + num(f.container_y), 1) +
-      "    </FieldData>\n<!--piece-->";
+  // Field data: the time, the container's displacement, and the species' names (index = the species array).
+  std::string names;
+  for (const auto& nm : species_names) names += nm + "\n";
+  Column<double> t{a}, offset{a};
+  t.add(f.t), offset.add(f.container_x), offset.add(f.container_y);
+  std::string names_raw;
+  for (const auto& nm : species_names) names_raw += nm + std::string(1, '\0');
+  std::string names_ascii;
+  for (const auto& nm : species_names)
+    for (char c : nm + std::string(1, '\0')) names_ascii += std::to_string(static_cast<int>(c)) + " ";
+  std::string body = "    <FieldData>\n" + out.array("Float64", "TimeValue", 1, t.text, t.raw, 1) +
+                     out.array("Float64", "ContainerOffset", 2, offset.text, offset.raw, 1);
+  if (!species_names.empty())
+    body += out.array("String", "SpeciesNames", 1, names_ascii, names_raw,
+                      static_cast<int>(species_names.size()));
+  body += "    </FieldData>\n<!--piece-->";
   body += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n" +
-          array("Float32", "radius", 1, radius) + array("Float32", "extent", 1, extent) +
-          array("Float32", "velocity", 3, vel) + array("Float32", "force", 1, force) +
-          array("Int32", "species", 1, species) + array("Int32", "arch", 1, arch) +
-          array("Int32", "id", 1, id) + array("Float32", "angle", 1, angle) +
-          array("Int32", "sides", 1, sides) + "      </PointData>\n";
-  body += "      <Points>\n" + array("Float32", nullptr, 3, pts) + "      </Points>\n";
-  body += "      <Cells>\n" + array("Int64", "connectivity", 1, conn) +
-          array("Int64", "offsets", 1, offsets) + array("UInt8", "types", 1, types) + "      </Cells>\n";
-  return grid(n, n, body);
+          out.array("Float32", "radius", 1, radius.text, radius.raw) +
+          out.array("Float32", "extent", 1, extent.text, extent.raw) +
+          out.array("Float32", "velocity", 3, vel.text, vel.raw) +
+          out.array("Float32", "force", 1, force.text, force.raw) +
+          out.array("Int32", "species", 1, species.text, species.raw) +
+          out.array("Int32", "arch", 1, arch.text, arch.raw) + out.array("Int32", "id", 1, id.text, id.raw) +
+          out.array("Float32", "angle", 1, angle.text, angle.raw) +
+          out.array("Int32", "sides", 1, sides.text, sides.raw) + "      </PointData>\n";
+  body += "      <Points>\n" + out.array("Float32", nullptr, 3, pts.text, pts.raw) + "      </Points>\n";
+  body += "      <Cells>\n" + out.array("Int64", "connectivity", 1, conn.text, conn.raw) +
+          out.array("Int64", "offsets", 1, offsets.text, offsets.raw) +
+          out.array("UInt8", "types", 1, types.text, types.raw) + "      </Cells>\n";
+  return out.file(n, n, body);
 }
 
-std::string vtu_walls(const core::Geometry& geo, double dx, double dy) {
+std::string vtu_walls(const core::Geometry& geo, double dx, double dy, VtuEncoding enc) {
   std::vector<core::Vec2> points;
   std::vector<std::vector<size_t>> cells;
   std::vector<int> kinds;
@@ -105,22 +177,29 @@ std::string vtu_walls(const core::Geometry& geo, double dx, double dy) {
     }
     line(outline, static_cast<int>(core::Wall::Obstacle));
   }
-  std::string pts, conn, offsets, types, wall;
-  size_t end = 0;
-  for (const auto& p : points) pts += num(p.x) + " " + num(p.y) + " 0 ";
+  Arrays out(enc);
+  const bool a = out.ascii();
+  Column<float> pts{a};
+  Column<std::int64_t> conn{a}, offsets{a};
+  Column<std::uint8_t> types{a};
+  Column<std::int32_t> wall{a};
+  std::int64_t end = 0;
+  for (const auto& p : points)
+    pts.add(static_cast<float>(p.x)), pts.add(static_cast<float>(p.y)), pts.add(0.0f);
   for (size_t c = 0; c < cells.size(); ++c) {
-    for (size_t i : cells[c]) conn += std::to_string(i) + " ";
-    end += cells[c].size();
-    offsets += std::to_string(end) + " ";
-    types += cells[c].size() == 2 ? "3 " : "4 ";  // VTK_LINE, VTK_POLY_LINE
-    wall += std::to_string(kinds[c]) + " ";
+    for (size_t i : cells[c]) conn.add(static_cast<std::int64_t>(i));
+    end += static_cast<std::int64_t>(cells[c].size());
+    offsets.add(end);
+    types.add(cells[c].size() == 2 ? 3 : 4);  // VTK_LINE, VTK_POLY_LINE
+    wall.add(kinds[c]);
   }
-  std::string body = "<!--piece-->      <CellData Scalars=\"wall\">\n" + array("Int32", "wall", 1, wall) +
-                     "      </CellData>\n      <Points>\n" + array("Float32", nullptr, 3, pts) +
-                     "      </Points>\n      <Cells>\n" + array("Int64", "connectivity", 1, conn) +
-                     array("Int64", "offsets", 1, offsets) + array("UInt8", "types", 1, types) +
-                     "      </Cells>\n";
-  return grid(points.size(), cells.size(), body);
+  std::string body =
+      "<!--piece-->      <CellData Scalars=\"wall\">\n" + out.array("Int32", "wall", 1, wall.text, wall.raw) +
+      "      </CellData>\n      <Points>\n" + out.array("Float32", nullptr, 3, pts.text, pts.raw) +
+      "      </Points>\n      <Cells>\n" + out.array("Int64", "connectivity", 1, conn.text, conn.raw) +
+      out.array("Int64", "offsets", 1, offsets.text, offsets.raw) +
+      out.array("UInt8", "types", 1, types.text, types.raw) + "      </Cells>\n";
+  return out.file(points.size(), cells.size(), body);
 }
 
 std::string pvd(const std::vector<PvdEntry>& entries) {

@@ -10,16 +10,21 @@
 
 namespace io {
 
+// ASCII (readable, about 8 times larger) or VTK's appended raw binary with each array zlib-compressed.
+enum class VtuEncoding { Binary, Ascii };
+
 // The grains of a frame: points at their centres (z = 0), one vertex cell each, point data radius (m, of the
 // disk of equal area), extent (m, circumradius: a polygon's reach), velocity (m/s, 3 components), force (N),
 // species (index), arch (1 for members of the blocking arch), id, angle (rad), sides (0 disk, 3-8 polygon);
-// field data TimeValue (s).
-std::string vtu_grains(const core::Frame& f);
+// field data TimeValue (s), ContainerOffset (m) and SpeciesNames (the names of the species indices).
+std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& species_names = {},
+                       VtuEncoding enc = VtuEncoding::Binary);
 
 // The container at displacement (dx, dy) (m): its bottom, side and top walls as line cells, and the obstacle
 // (a disk as a 64-sided polygon, a bar as a rectangle) as a closed polyline; cell data wall (the core::Wall
 // index).
-std::string vtu_walls(const core::Geometry& geo, double dx = 0, double dy = 0);
+std::string vtu_walls(const core::Geometry& geo, double dx = 0, double dy = 0,
+                      VtuEncoding enc = VtuEncoding::Binary);
 
 struct PvdEntry {
   double t;          // s

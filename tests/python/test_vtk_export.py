@@ -60,3 +60,29 @@ def test_vtu_of_a_flat_silo_with_an_obstacle_and_pentagons(binary, root, tmp_pat
     assert g.GetPointData().GetArray("extent").GetValue(0) > g.GetPointData().GetArray("radius").GetValue(0)
     walls = read_grid(rec / "vtu" / "walls.vtu")
     assert walls.GetNumberOfCells() == 6  # five walls and the bar's outline
+
+
+def test_binary_is_the_default_and_holds_what_ascii_holds(recording, binary, tmp_path):
+    # Binary (appended raw, zlib) by default; --vtu-encoding ascii gives the same values, several times larger;
+    # every frame names its species.
+    files = {}
+    for enc in ("binary", "ascii"):
+        out = tmp_path / enc
+        subprocess.run([binary, "export", str(recording), "--format", "vtu", "--frames", "5:9", "--vtu-encoding", enc,
+                        "--out", str(out)], check=True, capture_output=True)
+        files[enc] = out
+    head = (files["binary"] / "grains_000007.vtu").read_bytes()[:400].decode("latin-1")
+    assert 'compressor="vtkZLibDataCompressor"' in head
+    assert 'format="ascii"' in (files["ascii"] / "grains_000007.vtu").read_text()[:2000]
+    size = {k: sum(f.stat().st_size for f in v.glob("grains_*.vtu")) for k, v in files.items()}
+    assert size["binary"] * 2 < size["ascii"]
+    b, a = read_grid(files["binary"] / "grains_000007.vtu"), read_grid(files["ascii"] / "grains_000007.vtu")
+    for name in ("radius", "force", "species", "arch", "angle"):
+        xb, xa = b.GetPointData().GetArray(name), a.GetPointData().GetArray(name)
+        assert all(abs(xb.GetValue(i) - xa.GetValue(i)) <= 1e-6 * max(1.0, abs(xa.GetValue(i)))
+                   for i in range(250)), name
+    names = b.GetFieldData().GetAbstractArray("SpeciesNames")
+    assert [names.GetValue(i) for i in range(names.GetNumberOfValues())] == ["original", "added"]
+    bad = subprocess.run([binary, "export", str(recording), "--format", "vtu", "--vtu-encoding", "base64", "--out",
+                          str(tmp_path / "x")], capture_output=True, text=True)
+    assert bad.returncode == 2 and "binary" in bad.stderr and "ascii" in bad.stderr

@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct ExportOptions {
-  std::string run, format = "xyz", frames, out;
+  std::string run, format = "xyz", frames, out, vtu_encoding = "binary";
   bool force = false;
 };
 
@@ -77,16 +77,19 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   io::OutputDir dir(out.string(), o.force, io::DirKind::Export);
   std::vector<io::PvdEntry> entries;
   const bool moving = setup.drive.vibrating();
-  if (!moving) io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo), false);
+  const io::VtuEncoding enc = o.vtu_encoding == "ascii" ? io::VtuEncoding::Ascii : io::VtuEncoding::Binary;
+  const std::vector<std::string> names = setup.species_names();
+  if (!moving) io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo, 0, 0, enc), false);
   char name[48];
   for (long k = first; k <= last; ++k) {
     const core::Frame f = t.frame(k);
     std::snprintf(name, sizeof name, "grains_%06ld.vtu", k);
-    io::write_file_atomic(dir.file(name), io::vtu_grains(f), false);
+    io::write_file_atomic(dir.file(name), io::vtu_grains(f, names, enc), false);
     entries.push_back({f.t, 0, name});
     if (moving) {
       std::snprintf(name, sizeof name, "walls_%06ld.vtu", k);
-      io::write_file_atomic(dir.file(name), io::vtu_walls(setup.geo, f.container_x, f.container_y), false);
+      io::write_file_atomic(dir.file(name), io::vtu_walls(setup.geo, f.container_x, f.container_y, enc),
+                            false);
     }
     entries.push_back({f.t, 1, moving ? name : "walls.vtu"});
     if (interrupted()) throw core::RuntimeFault("interrupted; nothing written");
@@ -96,6 +99,7 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
                    {{"export", "vtu"},
                     {"trajectory", fs::absolute(traj).string()},
                     {"first_frame", first},
+                    {"vtu_encoding", o.vtu_encoding},
                     {"last_frame", last},
                     {"open_in_paraview", "trajectory.pvd"}},
                    {}};
@@ -141,6 +145,11 @@ std::string exit_counts(const core::Frame& f, const std::vector<std::string>& na
 }
 
 int export_run(const ExportOptions& o) {
+  if (o.vtu_encoding != "binary" && o.vtu_encoding != "ascii")
+    throw core::InputError("--vtu-encoding " + o.vtu_encoding +
+                           ": allowed values are binary (appended, zlib-compressed) and ascii");
+  if (o.vtu_encoding != "binary" && o.format != "vtu")
+    throw core::InputError("--vtu-encoding is for --format vtu (this is --format " + o.format + ")");
   if (o.format != "xyz" && o.format != "csv" && o.format != "vtu" && o.format != "gsd")
     throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu, gsd");
   fs::path traj = o.run;
@@ -224,6 +233,10 @@ void add_export_command(CLI::App& app, Action& action) {
   cmd->add_option("--frames", o->frames, "K or A:B (inclusive; default: every frame)");
   cmd->add_option("--out", o->out,
                   "output file (default: RUN/trajectory.xyz, .csv or .gsd; vtu: the directory RUN/vtu)");
+  cmd->add_option(
+         "--vtu-encoding", o->vtu_encoding,
+         "vtu: binary (VTK's appended raw data, each array zlib-compressed) or ascii (readable, larger)")
+      ->capture_default_str();
   cmd->add_flag("--force", o->force, "replace an earlier export");
   cmd->callback([o, &action] { action = [o] { return export_run(*o); }; });
 }
