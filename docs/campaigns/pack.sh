@@ -27,6 +27,7 @@ mv "$dest/runs/runs.tar.xz.partial" "$dest/runs/runs.tar.xz"
 for f in points.csv realizations.csv survival.csv avalanches.csv clog_survival.csv species.csv metadata.toml; do
   cp "$src/analysis/$f" "$dest/analysis/"
 done
+[ -f "$src/analysis/drain.csv" ] && cp "$src/analysis/drain.csv" "$dest/analysis/"  # a drain campaign's J
 # No path of this machine in the pack: realizations are named relative to the pack (runs/p000/r000).
 abs=$(cd "$src" && pwd)
 sed -i "s#,$abs/runs/#,runs/#" "$dest/analysis/realizations.csv"

@@ -73,6 +73,8 @@ TEST_CASE("every committed campaign analyses to its committed points.csv", "[app
     CHECK(slurp(d / name / "analysis/avalanches.csv") == slurp(e.path() / "analysis/avalanches.csv"));
     if (fs::exists(e.path() / "analysis/clog_survival.csv"))  // packs made by docs/campaigns/pack.sh
       CHECK(slurp(d / name / "analysis/clog_survival.csv") == slurp(e.path() / "analysis/clog_survival.csv"));
+    if (fs::exists(e.path() / "analysis/drain.csv"))  // a drain campaign's jamming probabilities
+      CHECK(slurp(d / name / "analysis/drain.csv") == slurp(e.path() / "analysis/drain.csv"));
   }
   CHECK(campaigns >= 3);  // kicks, paper, paper-vibrated
 }

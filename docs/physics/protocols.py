@@ -1,0 +1,158 @@
+"""The tilted silo and the fixed-N drain (issue 38, point 5), for physics.py: the mean avalanche against the tilt
+at two outlets (Thomas and Durian, PRE 87, 052201, 2013) and the jamming probability J(D/d) at two hopper angles
+(To, Lai and Pak, PRL 86, 71, 2001; To, Chin. J. Phys. 40, 379, 2002)."""
+import math
+import os
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+import siloscope
+
+D_MEAN = 0.1  # m, the mean grain diameter of both scenes (radii uniform in 0.045-0.055 m)
+
+
+def tilt(results, out, lines, helpers):
+    runs_of, per_run_avalanches, pooled_mean, boot_stat, boot_ratio = helpers
+    c = siloscope.read_campaign(results)
+    p = c.points.sort_values(["aperture", "tilt"])
+    scene = runs_of(results)[0].scene
+    runs = per_run_avalanches(results, ("aperture", "tilt"))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9, 3.6))
+    for D, grp in p.groupby("aperture"):
+        ax.errorbar(grp["tilt"], grp["avalanche_mean"], yerr=grp["avalanche_mean_ci95"], fmt="o-", capsize=3,
+                    label=f"D = {D / D_MEAN:g} d")
+        w = D * np.cos(np.radians(grp["tilt"])) / D_MEAN
+        bx.errorbar(w, grp["avalanche_mean"], yerr=grp["avalanche_mean_ci95"], fmt="o", capsize=3,
+                    label=f"D = {D / D_MEAN:g} d")
+    ax.set_xlabel("tilt [deg]")
+    ax.set_ylabel(r"mean avalanche $\langle s \rangle$ [grains]")
+    ax.set_yscale("log")
+    ax.set_title(f"tilted flat silo, n = {int(p['n_runs'].min())}-{int(p['n_runs'].max())} per point", fontsize=8)
+    ax.legend(fontsize=7)
+    bx.set_xlabel(r"outlet width projected across gravity, $D\cos\theta / d$")
+    bx.set_ylabel(r"$\langle s \rangle$ [grains]")
+    bx.set_yscale("log")
+    bx.set_title("if the projected width governed, one curve", fontsize=8)
+    bx.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "tilt.png"))
+    plt.close(fig)
+    partial = int(p["n_runs"].min()) < 8
+    lines += ["## A tilted silo (Thomas and Durian)", "",
+              f"`assets/campaigns/tilt.toml` (`tilted-silo.toml`): the flat silo of the obstacle campaign without its "
+              f"obstacle (width {scene['silo_width']:g} m, 300 grains of mean diameter d = 0.1 m, no drive, clog rule "
+              "after 1 s), turned by the tilt; outlets 3.5 d and 4.5 d; "
+              f"{int(p['n_runs'].min())}-{int(p['n_runs'].max())} realizations of {scene['duration']:g} s per point"
+              + (" (PARTIAL: the campaign plans 8)" if partial else "") + ". "
+              "A tilted container is filled upright and turned to its tilt with the outlet closed (settle_time: "
+              "half filling, a quarter turning, a quarter at rest): grains dropped into a container already standing "
+              "at 60 degrees rest in a chain up its lower wall, above its top. Avalanches end at held clogs (as for "
+              "the obstacle). 38.94 degrees is where the wider outlet's projected width D cos(tilt) equals the "
+              "narrower one's upright.", "",
+              "| D | tilt [deg] | D cos(tilt) / d | realizations | avalanches | <s> per run (95%) | <s> pooled (95%) | "
+              "Q [grains/s] |", "|---|---|---|---|---|---|---|---|"]
+    for _, row in p.iterrows():
+        sel = runs[np.isclose(runs["aperture"], row["aperture"]) & np.isclose(runs["tilt"], row["tilt"])]
+        pm = pooled_mean(sel)
+        lo, hi = boot_stat(sel, pooled_mean)
+        lines.append(f"| {row['aperture'] / D_MEAN:g} d | {row['tilt']:g} | "
+                     f"{row['aperture'] * math.cos(math.radians(row['tilt'])) / D_MEAN:.2f} | {len(sel)} | "
+                     f"{int(sel['avalanches'].sum())} | {row['avalanche_mean']:.1f} +- {row['avalanche_mean_ci95']:.1f} "
+                     f"| {pm:.1f} ({lo:.1f}-{hi:.1f}) | {row['q_per_s']:.2f} +- {row['q_per_s_ci95']:.2f} |")
+    # The pair of equal projected widths.
+    a = runs[np.isclose(runs["aperture"], 0.35) & np.isclose(runs["tilt"], 0.0)]
+    b = runs[np.isclose(runs["aperture"], 0.45) & np.isclose(runs["tilt"], 38.94)]
+    verdict = []
+    if len(a) and len(b):
+        r = pooled_mean(b) / pooled_mean(a)
+        lo, hi = boot_ratio(b, a, pooled_mean)
+        verdict.append(f"At equal projected widths (3.5 d upright against 4.5 d at 38.94 degrees) the pooled mean "
+                       f"avalanche of the tilted wide outlet is {r:.2f} times the upright narrow one's (95% interval "
+                       f"{lo:.2f}-{hi:.2f}, bootstrap over realizations of both)"
+                       + (": equal within the interval, as the projected width would have it." if lo <= 1 <= hi
+                          else ": not equal, so the projected width alone does not govern clogging here."))
+    for D, grp in p.groupby("aperture"):
+        g = grp.set_index("tilt")["avalanche_mean"]
+        if 0.0 in g.index and 60.0 in g.index:
+            verdict.append(f"At D = {D / D_MEAN:g} d the mean avalanche goes from {g[0.0]:.1f} upright to {g[60.0]:.1f} "
+                           f"at 60 degrees ({'larger' if g[60.0] > g[0.0] else 'smaller'}: tilting makes clogging "
+                           f"{'less' if g[60.0] > g[0.0] else 'more'} likely).")
+    lines += ["", " ".join(verdict), "",
+              "Reading against Thomas and Durian: in their tilted hopper, tilting makes clogging more likely and the "
+              "outlet's width projected across the flow governs it. Where siloscope differs, the geometry is the "
+              "first suspect, not the model: a tilted *flat* silo puts its outlet in a floor inclined at the tilt, so "
+              "at 50-60 degrees (steeper than the packing's angle of repose, about 25-30 degrees for these frictional "
+              "disks) grains slide along the floor and pass the outlet across its width instead of arching over it "
+              "from above; a hopper's converging walls feed the outlet from both sides at any tilt. The grains' "
+              "path to the outlet, not the projected width, then decides.", "",
+              "![Tilt](figures/tilt.png)", ""]
+
+
+def drain(results, out, lines, helpers):
+    runs_of = helpers[0]
+    path = os.path.join(results, "analysis", "drain.csv")
+    if not os.path.exists(path):
+        raise siloscope.SiloscopeError(f"{path}: missing (siloscope analyze writes it for drain runs)")
+    d = pd.read_csv(path)
+    scene = runs_of(results)[0].scene
+    fig, ax = plt.subplots(figsize=(5.2, 3.6))
+    for angle, grp in d.groupby("hopper_angle"):
+        grp = grp.sort_values("aperture")
+        x = grp["aperture"] / D_MEAN
+        j = grp["jam_probability"]
+        ax.errorbar(x, j, yerr=[j - grp["jam_probability_lo95"], grp["jam_probability_hi95"] - j], fmt="o-",
+                    capsize=3, label=f"walls {angle:g} deg from the vertical ({90 - angle:g} from the horizontal)")
+    ax.set_xlabel("outlet D / mean grain diameter d")
+    ax.set_ylabel("jamming probability J")
+    ax.set_ylim(-0.03, 1.03)
+    n = d["n_runs"]
+    span = f"{n.min()}" + (f"-{n.max()}" if n.max() != n.min() else "")
+    ax.set_title(f"{scene['species'][0]['count']} disks drained, n = {span} drains per point (Wilson 95%)", fontsize=8)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "drain.png"))
+    plt.close(fig)
+    partial = int(n.min()) < 40
+    lines += ["## The jamming probability J(D/d) of a drained hopper (To, Lai and Pak)", "",
+              f"`assets/campaigns/drain.toml` (`hopper-drain.toml`, `drain = true`): {scene['species'][0]['count']} "
+              "disks (radii uniform in 0.045-0.055 m) settled in a hopper with the outlet closed, then drained "
+              "without re-injection; a drain ends *emptied* (every grain out) or *jammed* (a clog that stood 1 s: "
+              "without a drive it never breaks). J is the fraction of drains that jam; its interval is Wilson's, the "
+              f"unit one drain; {int(n.min())}" + (f"-{int(n.max())}" if n.max() != n.min() else "") + " drains per point"
+              + (" (PARTIAL: the campaign plans 40)" if partial else "") + ".", "",
+              "| hopper walls from the vertical | D / d | drains | jammed | emptied | J (95%) | grains out before the "
+              "jam (mean) |", "|---|---|---|---|---|---|---|"]
+    for _, r in d.sort_values(["hopper_angle", "aperture"]).iterrows():
+        before = "-" if not math.isfinite(r["exits_before_jam_mean"]) else f"{r['exits_before_jam_mean']:.0f}"
+        lines.append(f"| {r['hopper_angle']:g} deg | {r['aperture'] / D_MEAN:g} | {int(r['n_runs'])} | "
+                     f"{int(r['n_jammed'])} | {int(r['n_emptied'])} | {r['jam_probability']:.2f} "
+                     f"({r['jam_probability_lo95']:.2f}-{r['jam_probability_hi95']:.2f}) | {before} |")
+    # Where J crosses 1/2 at each angle (linear between the measured points), and the direction with the angle.
+    half = {}
+    for angle, grp in d.groupby("hopper_angle"):
+        grp = grp.sort_values("aperture")
+        x, j = grp["aperture"].to_numpy() / D_MEAN, grp["jam_probability"].to_numpy()
+        for k in range(len(x) - 1):
+            if j[k] >= 0.5 > j[k + 1]:
+                half[angle] = x[k] + (j[k] - 0.5) / (j[k] - j[k + 1]) * (x[k + 1] - x[k])
+                break
+    spans = []
+    for angle, grp in d.groupby("hopper_angle"):
+        grp = grp.sort_values("aperture")
+        x, j = grp["aperture"].to_numpy() / D_MEAN, grp["jam_probability"].to_numpy()
+        hi = [xx for xx, jj in zip(x, j) if jj >= 0.95]
+        lo = [xx for xx, jj in zip(x, j) if jj <= 0.05]
+        if hi and lo:
+            spans.append(f"from D/d = {max(hi):g} (J >= 0.95) to {min(lo):g} (J <= 0.05) with walls {angle:g} degrees "
+                         "from the vertical")
+    text = ["J falls from 1 to 0 as the outlet widens, as in To, Lai and Pak's experiment: " + "; ".join(spans) + "."]
+    if len(half) == 2:
+        (a1, x1), (a2, x2) = sorted(half.items())
+        text.append(f"J = 1/2 is crossed at D/d = {x1:.2f} with walls {a1:g} degrees from the vertical and at "
+                    f"{x2:.2f} with walls {a2:g} degrees (linear between measured points): the flatter hopper "
+                    f"{'jams up to wider outlets' if x2 > x1 else 'jams less'}. To (Chin. J. Phys. 40, 379, 2002) finds J "
+                    "decreasing as the walls get steeper (his angles from the horizontal), so a flatter hopper jams "
+                    f"more: siloscope {'agrees' if x2 > x1 else 'disagrees'}.")
+    lines += ["", " ".join(text), "", "![Drain](figures/drain.png)", ""]
