@@ -168,12 +168,13 @@ def boot_ratio(a, b, stat, k=2000):
         ra = a.iloc[RNG.integers(0, len(a), len(a))]
         rb = b.iloc[RNG.integers(0, len(b), len(b))]
         out.append(stat(ra) / stat(rb))
-    return tuple(np.quantile(out, [0.025, 0.975]))
+    # A resample without a single avalanche has no mean: left out (none in the committed obstacle campaign).
+    return tuple(np.nanquantile(out, [0.025, 0.975]))
 
 
 def boot_stat(a, stat, k=2000):
     out = [stat(a.iloc[RNG.integers(0, len(a), len(a))]) for _ in range(k)]
-    return tuple(np.quantile(out, [0.025, 0.975]))
+    return tuple(np.nanquantile(out, [0.025, 0.975]))
 
 
 def avalanche_table(campaign):
