@@ -158,25 +158,6 @@ std::string vtu_walls(const core::Geometry& geo, double dx, double dy, VtuEncodi
     const core::Segment& s = geo.walls[static_cast<int>(w)];
     line({s.a, s.b}, static_cast<int>(w));
   }
-  if (geo.obstacle.present()) {
-    const core::Obstacle& ob = geo.obstacle;
-    std::vector<core::Vec2> outline;
-    if (ob.kind == core::Obstacle::Kind::Disk) {
-      for (int k = 0; k <= 64; ++k) {
-        const double a = 2 * 3.14159265358979323846 * k / 64;
-        outline.push_back(
-            {ob.centre.x + 0.5 * ob.width * std::cos(a), ob.centre.y + 0.5 * ob.width * std::sin(a)});
-      }
-    } else {
-      const double hw = 0.5 * ob.width, hh = 0.5 * ob.height;
-      outline = {{ob.centre.x - hw, ob.centre.y - hh},
-                 {ob.centre.x + hw, ob.centre.y - hh},
-                 {ob.centre.x + hw, ob.centre.y + hh},
-                 {ob.centre.x - hw, ob.centre.y + hh},
-                 {ob.centre.x - hw, ob.centre.y - hh}};
-    }
-    line(outline, static_cast<int>(core::Wall::Obstacle));
-  }
   Arrays out(enc);
   const bool a = out.ascii();
   Column<float> pts{a};
@@ -202,13 +183,155 @@ std::string vtu_walls(const core::Geometry& geo, double dx, double dy, VtuEncodi
   return out.file(points.size(), cells.size(), body);
 }
 
+std::string vtu_cells(const std::vector<core::Vec2>& points,
+                      const std::vector<std::vector<std::int64_t>>& cells,
+                      const std::vector<std::uint8_t>& types, const std::vector<CellFloats>& floats,
+                      const std::vector<CellInts>& ints, VtuEncoding enc) {
+  Arrays out(enc);
+  const bool a = out.ascii();
+  Column<float> pts{a};
+  Column<std::int64_t> conn{a}, offsets{a};
+  Column<std::uint8_t> type{a};
+  for (const auto& p : points)
+    pts.add(static_cast<float>(p.x)), pts.add(static_cast<float>(p.y)), pts.add(0.0f);
+  std::int64_t end = 0;
+  for (size_t c = 0; c < cells.size(); ++c) {
+    for (std::int64_t i : cells[c]) conn.add(i);
+    end += static_cast<std::int64_t>(cells[c].size());
+    offsets.add(end);
+    type.add(types[c]);
+  }
+  std::string body = "<!--piece-->      <CellData>\n";
+  for (const auto& [name, values] : floats) {
+    Column<float> col{a};
+    for (float v : values) col.add(v);
+    body += out.array("Float32", name.c_str(), 1, col.text, col.raw);
+  }
+  for (const auto& [name, values] : ints) {
+    Column<std::int32_t> col{a};
+    for (std::int32_t v : values) col.add(v);
+    body += out.array("Int32", name.c_str(), 1, col.text, col.raw);
+  }
+  body += "      </CellData>\n      <Points>\n" + out.array("Float32", nullptr, 3, pts.text, pts.raw) +
+          "      </Points>\n      <Cells>\n" + out.array("Int64", "connectivity", 1, conn.text, conn.raw) +
+          out.array("Int64", "offsets", 1, offsets.text, offsets.raw) +
+          out.array("UInt8", "types", 1, type.text, type.raw) + "      </Cells>\n";
+  return out.file(points.size(), cells.size(), body);
+}
+
+std::string vtu_obstacle(const core::Geometry& geo, double dx, double dy, VtuEncoding enc) {
+  std::vector<core::Vec2> points;
+  std::vector<std::vector<std::int64_t>> cells;
+  std::vector<std::uint8_t> types;
+  if (geo.obstacle.present()) {
+    const core::Obstacle& ob = geo.obstacle;
+    std::vector<core::Vec2> outline;
+    if (ob.kind == core::Obstacle::Kind::Disk) {
+      for (int k = 0; k <= 64; ++k) {
+        const double a = 2 * 3.14159265358979323846 * k / 64;
+        outline.push_back(
+            {ob.centre.x + 0.5 * ob.width * std::cos(a), ob.centre.y + 0.5 * ob.width * std::sin(a)});
+      }
+    } else {
+      const double hw = 0.5 * ob.width, hh = 0.5 * ob.height;
+      outline = {{ob.centre.x - hw, ob.centre.y - hh},
+                 {ob.centre.x + hw, ob.centre.y - hh},
+                 {ob.centre.x + hw, ob.centre.y + hh},
+                 {ob.centre.x - hw, ob.centre.y + hh},
+                 {ob.centre.x - hw, ob.centre.y - hh}};
+    }
+    outline.pop_back();  // closed by the polygon cell itself
+    std::vector<std::int64_t> cell;
+    for (const auto& p : outline)
+      cell.push_back(static_cast<std::int64_t>(points.size())), points.push_back({p.x + dx, p.y + dy});
+    cells.push_back(cell);
+    types.push_back(7);  // VTK_POLYGON: the obstacle filled
+  }
+  return vtu_cells(
+      points, cells, types, {},
+      {{"wall", std::vector<std::int32_t>(cells.size(), static_cast<std::int32_t>(core::Wall::Obstacle))}},
+      enc);
+}
+
+std::string vtu_shapes(const core::Frame& f, VtuEncoding enc) {
+  std::vector<core::Vec2> points;
+  std::vector<std::vector<std::int64_t>> cells;
+  std::vector<std::uint8_t> types;
+  CellFloats force{"force", {}}, angle{"angle", {}}, radius{"radius", {}};
+  CellInts species{"species", {}}, id{"id", {}}, arch{"arch", {}}, sides{"sides", {}};
+  std::vector<char> in_arch(f.particles.size(), 0);
+  for (int i : f.arch)
+    if (i >= 0 && static_cast<size_t>(i) < in_arch.size()) in_arch[static_cast<size_t>(i)] = 1;
+  for (size_t i = 0; i < f.particles.size(); ++i) {
+    const core::Particle& p = f.particles[i];
+    if (p.sides < 3) continue;
+    const double R = p.radius * core::polygon_extent(p.sides);
+    std::vector<std::int64_t> cell;
+    for (int k = 0; k < p.sides; ++k) {
+      const double a = p.angle + 2.0 * 3.14159265358979323846 * k / p.sides;
+      cell.push_back(static_cast<std::int64_t>(points.size()));
+      points.push_back({p.x + R * std::cos(a), p.y + R * std::sin(a)});
+    }
+    cells.push_back(cell);
+    types.push_back(7);  // VTK_POLYGON
+    force.second.push_back(p.force), angle.second.push_back(p.angle), radius.second.push_back(p.radius);
+    species.second.push_back(static_cast<std::int32_t>(core::species_index(p.species)));
+    id.second.push_back(static_cast<std::int32_t>(i)), arch.second.push_back(in_arch[i]);
+    sides.second.push_back(p.sides);
+  }
+  return vtu_cells(points, cells, types, {force, angle, radius}, {species, id, arch, sides}, enc);
+}
+
+std::string vtu_arch(const core::Frame& f, VtuEncoding enc) {
+  std::vector<core::Vec2> points;
+  std::vector<std::vector<std::int64_t>> cells;
+  std::vector<std::uint8_t> types;
+  CellInts members{"members", {}};
+  if (f.arch.size() >= 2) {
+    std::vector<std::int64_t> cell;
+    for (int i : f.arch) {
+      if (i < 0 || static_cast<size_t>(i) >= f.particles.size()) continue;
+      cell.push_back(static_cast<std::int64_t>(points.size()));
+      points.push_back({f.particles[static_cast<size_t>(i)].x, f.particles[static_cast<size_t>(i)].y});
+    }
+    cells.push_back(cell);
+    types.push_back(4);  // VTK_POLY_LINE
+    members.second.push_back(static_cast<std::int32_t>(cell.size()));
+  }
+  return vtu_cells(points, cells, types, {}, {members}, enc);
+}
+
+std::string vtu_chains(const core::Frame& f, const std::vector<core::Contact>& contacts, VtuEncoding enc) {
+  std::vector<core::Vec2> points;
+  std::vector<std::vector<std::int64_t>> cells;
+  std::vector<std::uint8_t> types;
+  CellFloats force{"force", {}};
+  CellInts a_id{"a", {}}, b_id{"b", {}};
+  for (const auto& c : contacts) {
+    if (c.a < 0 || c.b < 0 || static_cast<size_t>(c.a) >= f.particles.size() ||
+        static_cast<size_t>(c.b) >= f.particles.size())
+      continue;
+    const auto& p = f.particles[static_cast<size_t>(c.a)];
+    const auto& q = f.particles[static_cast<size_t>(c.b)];
+    const auto k = static_cast<std::int64_t>(points.size());
+    points.push_back({p.x, p.y});
+    points.push_back({q.x, q.y});
+    cells.push_back({k, k + 1});
+    types.push_back(3);  // VTK_LINE
+    force.second.push_back(c.force), a_id.second.push_back(c.a), b_id.second.push_back(c.b);
+  }
+  return vtu_cells(points, cells, types, {force}, {a_id, b_id}, enc);
+}
+
 std::string pvd(const std::vector<PvdEntry>& entries) {
+  static const char* const kPartNames[] = {"grains", "walls", "shapes", "arch", "force chains", "obstacle"};
   std::string s =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "  <Collection>\n";
   for (const auto& e : entries)
     s += "    <DataSet timestep=\"" + num(e.t) + "\" group=\"\" part=\"" + std::to_string(e.part) +
-         "\" file=\"" + e.file + "\"/>\n";
+         "\" name=\"" + (e.part >= 0 && e.part < 6 ? kPartNames[e.part] : "part") + "\" file=\"" + e.file +
+         "\"/>\n";
   return s + "  </Collection>\n</VTKFile>\n";
 }
 

@@ -2,7 +2,9 @@
 // and their data, the container's walls as lines, and a .pvd collection that makes them a time series.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/frame.h"
@@ -20,15 +22,36 @@ enum class VtuEncoding { Binary, Ascii };
 std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& species_names = {},
                        VtuEncoding enc = VtuEncoding::Binary);
 
-// The container at displacement (dx, dy) (m): its bottom, side and top walls as line cells, and the obstacle
-// (a disk as a 64-sided polygon, a bar as a rectangle) as a closed polyline; cell data wall (the core::Wall
-// index).
+// The container at displacement (dx, dy) (m): its bottom, side and top walls as line cells; cell data wall
+// (the core::Wall index). The obstacle is a block of its own (vtu_obstacle).
 std::string vtu_walls(const core::Geometry& geo, double dx = 0, double dy = 0,
                       VtuEncoding enc = VtuEncoding::Binary);
 
+// Cell data of vtu_cells: a name and one value per cell.
+using CellFloats = std::pair<std::string, std::vector<float>>;
+using CellInts = std::pair<std::string, std::vector<std::int32_t>>;
+// Any cells in the plane (z = 0): `cells` index `points`, `types` are VTK cell types, cell data as given.
+std::string vtu_cells(const std::vector<core::Vec2>& points,
+                      const std::vector<std::vector<std::int64_t>>& cells,
+                      const std::vector<std::uint8_t>& types, const std::vector<CellFloats>& floats,
+                      const std::vector<CellInts>& ints, VtuEncoding enc = VtuEncoding::Binary);
+// The polygon grains of a frame as polygon cells at their true shape and orientation (cell data force, angle,
+// radius, species, id, arch, sides); disks are left to the grains' points.
+std::string vtu_shapes(const core::Frame& f, VtuEncoding enc = VtuEncoding::Binary);
+// The frame's blocking arch as a polyline through its members' centres (no cell when none stands).
+std::string vtu_arch(const core::Frame& f, VtuEncoding enc = VtuEncoding::Binary);
+// Force chains: a line cell between the centres of each pair in contact, cell data force (N, normal), a, b.
+std::string vtu_chains(const core::Frame& f, const std::vector<core::Contact>& contacts,
+                       VtuEncoding enc = VtuEncoding::Binary);
+
+// The obstacle at displacement (dx, dy), filled: a disk as a 64-sided polygon cell, a bar as a rectangle (no
+// cell without an obstacle); cell data wall.
+std::string vtu_obstacle(const core::Geometry& geo, double dx = 0, double dy = 0,
+                         VtuEncoding enc = VtuEncoding::Binary);
+
 struct PvdEntry {
   double t;          // s
-  int part;          // 0 grains, 1 walls
+  int part;          // 0 grains, 1 walls, 2 shapes, 3 arch, 4 force chains, 5 obstacle (each its own block)
   std::string file;  // relative to the .pvd
 };
 // A ParaView collection of the entries, a time series with one part per kind of file.

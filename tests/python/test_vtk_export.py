@@ -26,8 +26,10 @@ def test_vtk_reads_the_export(recording, binary, tmp_path):
     # The time series: two parts (grains, walls) at every frame's time.
     pvd = ET.parse(out / "trajectory.pvd").getroot()
     sets = pvd.find("Collection").findall("DataSet")
-    assert len(sets) == 2 * 11
     grains = [d for d in sets if d.get("part") == "0"]
+    assert len(grains) == 11
+    # Each frame: grains, walls, the arch and the force chains (record keeps the contacts), each its own block.
+    assert {d.get("part") for d in sets} == {"0", "1", "3", "4"} and len(sets) == 4 * 11
     assert abs(float(grains[5].get("timestep")) - float(tr.t[15])) < 1e-6
     g = read_grid(out / grains[5].get("file"))
     assert g.GetNumberOfPoints() == 250 and g.GetNumberOfCells() == 250
@@ -59,7 +61,9 @@ def test_vtu_of_a_flat_silo_with_an_obstacle_and_pentagons(binary, root, tmp_pat
     assert g.GetPointData().GetArray("sides").GetValue(0) == 5
     assert g.GetPointData().GetArray("extent").GetValue(0) > g.GetPointData().GetArray("radius").GetValue(0)
     walls = read_grid(rec / "vtu" / "walls.vtu")
-    assert walls.GetNumberOfCells() == 6  # five walls and the bar's outline
+    assert walls.GetNumberOfCells() == 5  # five walls; the bar is a block of its own
+    obstacle = read_grid(rec / "vtu" / "obstacle.vtu")
+    assert obstacle.GetNumberOfCells() == 1 and obstacle.GetCellType(0) == 7 and obstacle.GetNumberOfPoints() == 4
 
 
 def test_binary_is_the_default_and_holds_what_ascii_holds(recording, binary, tmp_path):

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <unistd.h>
@@ -17,6 +18,7 @@
 #include "core/format.h"
 #include "core/geometry.h"
 #include "core/setup.h"
+#include "io/contacts.h"
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/trajectory.h"
@@ -79,19 +81,56 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   const bool moving = setup.drive.vibrating();
   const io::VtuEncoding enc = o.vtu_encoding == "ascii" ? io::VtuEncoding::Ascii : io::VtuEncoding::Binary;
   const std::vector<std::string> names = setup.species_names();
-  if (!moving) io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo, 0, 0, enc), false);
+  const bool obstacle = setup.geo.obstacle.present();
+  bool polygons = false;
+  for (const auto& sp : setup.species) polygons = polygons || (sp.count > 0 && sp.polygon());
+  // Force chains when the recording kept its contacts (record always does).
+  std::unique_ptr<io::Contacts> contacts;
+  if (fs::exists(traj.parent_path() / "contacts.sscon"))
+    contacts = std::make_unique<io::Contacts>(traj.parent_path() / "contacts.sscon", t.info().n_particles);
+  if (!moving) {
+    io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo, 0, 0, enc), false);
+    if (obstacle)
+      io::write_file_atomic(dir.file("obstacle.vtu"), io::vtu_obstacle(setup.geo, 0, 0, enc), false);
+  }
   char name[48];
+  auto per_frame = [&](const char* stem, long k) {
+    std::snprintf(name, sizeof name, "%s_%06ld.vtu", stem, k);
+    return std::string(name);
+  };
   for (long k = first; k <= last; ++k) {
     const core::Frame f = t.frame(k);
-    std::snprintf(name, sizeof name, "grains_%06ld.vtu", k);
-    io::write_file_atomic(dir.file(name), io::vtu_grains(f, names, enc), false);
-    entries.push_back({f.t, 0, name});
+    const std::string grains = per_frame("grains", k);
+    io::write_file_atomic(dir.file(grains), io::vtu_grains(f, names, enc), false);
+    entries.push_back({f.t, 0, grains});
     if (moving) {
-      std::snprintf(name, sizeof name, "walls_%06ld.vtu", k);
-      io::write_file_atomic(dir.file(name), io::vtu_walls(setup.geo, f.container_x, f.container_y, enc),
+      const std::string walls = per_frame("walls", k);
+      io::write_file_atomic(dir.file(walls), io::vtu_walls(setup.geo, f.container_x, f.container_y, enc),
                             false);
+      entries.push_back({f.t, 1, walls});
+      if (obstacle) {
+        const std::string ob = per_frame("obstacle", k);
+        io::write_file_atomic(dir.file(ob), io::vtu_obstacle(setup.geo, f.container_x, f.container_y, enc),
+                              false);
+        entries.push_back({f.t, 5, ob});
+      }
+    } else {
+      entries.push_back({f.t, 1, "walls.vtu"});
+      if (obstacle) entries.push_back({f.t, 5, "obstacle.vtu"});
     }
-    entries.push_back({f.t, 1, moving ? name : "walls.vtu"});
+    if (polygons) {
+      const std::string shapes = per_frame("shapes", k);
+      io::write_file_atomic(dir.file(shapes), io::vtu_shapes(f, enc), false);
+      entries.push_back({f.t, 2, shapes});
+    }
+    const std::string arch = per_frame("arch", k);
+    io::write_file_atomic(dir.file(arch), io::vtu_arch(f, enc), false);
+    entries.push_back({f.t, 3, arch});
+    if (contacts && k < contacts->size()) {
+      const std::string chains = per_frame("chains", k);
+      io::write_file_atomic(dir.file(chains), io::vtu_chains(f, contacts->frame(k), enc), false);
+      entries.push_back({f.t, 4, chains});
+    }
     if (interrupted()) throw core::RuntimeFault("interrupted; nothing written");
   }
   io::write_file_atomic(dir.file("trajectory.pvd"), io::pvd(entries), false);
