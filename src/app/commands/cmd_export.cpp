@@ -145,8 +145,8 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(model, info));
   dir.commit();
   std::printf(
-      "%ld frames of %d grains -> %s/trajectory.pvd (ParaView: Glyph filter, Sphere or 2D Glyph, scale by "
-      "radius)\n",
+      "%ld frames of %d grains -> %s/trajectory.pvd (ParaView: open it and Apply; disks: Point Gaussian "
+      "scaled by radius)\n",
       last - first + 1, setup.n_total, out.c_str());
   return 0;
 }
