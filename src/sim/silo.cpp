@@ -364,8 +364,11 @@ void Silo::handle_exits() {
 
 void Silo::park(int id) {
   parked_[static_cast<size_t>(id)] = 1;
-  place(id, {0.0, -100.0 - 10.0 * geo_.total_height});
+  // Out of the world first (its broad-phase proxy goes where it exited), then put below the outlet, out of
+  // every camera's view and within the trajectory readers' reach (ten container sizes): a disabled body's
+  // move touches no broad phase, so where it is parked cannot change the run.
   bodies_[id]->SetEnabled(false);
+  place(id, {0.0, -2.0 * geo_.total_height - 1.0});
   // Its dipole leaves with it.
   const auto k = std::find(dipole_ids_.begin(), dipole_ids_.end(), id);
   if (k != dipole_ids_.end()) {

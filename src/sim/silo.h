@@ -195,7 +195,7 @@ class Silo {
   void skipped_step(bool kick_due);
   void sample_airborne();
   void reinject(int id);
-  void park(int id);  // drain: an exit leaves the world (disabled, far below the outlet)
+  void park(int id);  // drain: an exit leaves the world (disabled, 2 H + 1 m below the outlet)
   void reinject_tilted(int id);
   bool free_at(core::Vec2 p,
                int id) const;           // grain id fits at p (clear of the obstacle and every other grain)

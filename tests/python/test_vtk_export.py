@@ -1,4 +1,4 @@
-"""export --format vtu read back with VTK's own readers (Debian's python3-vtk9, the library ParaView is built on)."""
+"""export --format vtu read back with VTK's own readers (from Debian's python3-paraview, which conflicts with python3-vtk9: ParaView's own VTK)."""
 import os
 import subprocess
 import xml.etree.ElementTree as ET
@@ -7,7 +7,7 @@ import pytest
 
 import siloscope
 
-vtk = pytest.importorskip("vtk", reason="python3-vtk9 (installed by .ci/test) is needed to read the export")
+vtk = pytest.importorskip("vtk", reason="VTK's Python modules (python3-paraview, installed by .ci/test) are needed to read the export")
 
 
 def read_grid(path):
