@@ -133,7 +133,8 @@ def check(binary, scenes, work, preset, rule_off, raw):
         return set(int(i) for i in tr.arch(k))
 
     xyz_ok = run([binary, "export", rec, "--format", "xyz", "--force"], check=False)
-    vtu_ok = run([binary, "export", rec, "--format", "vtu", "--force"], check=False)
+    # ASCII, parsed here as text (the default binary export is read back by VTK in tests/python).
+    vtu_ok = run([binary, "export", rec, "--format", "vtu", "--vtu-encoding", "ascii", "--force"], check=False)
     xyz = xyz_arch_flags(os.path.join(rec, "trajectory.xyz")) if xyz_ok.returncode == 0 else None
     vtu = vtu_arch_flags(os.path.join(rec, "vtu")) if vtu_ok.returncode == 0 else None
     if xyz is None:
