@@ -14,6 +14,8 @@
 #include <cstring>
 #include <fstream>
 
+#include <toml++/toml.h>
+
 #include "core/error.h"
 
 namespace io {
@@ -192,27 +194,21 @@ std::string changed_since_written(const fs::path& path) {
   const std::string none = "a file with no record that siloscope wrote it (" + rec.filename().string() +
                            ", kept beside every single-file output: missing, or the file predates it)";
   if (!fs::is_regular_file(fs::symlink_status(rec, ec)) || fs::file_size(rec, ec) > 4096) return none;
-  std::ifstream in(rec);
-  std::string line, size, hash, name;
-  while (std::getline(in, line)) {
-    auto value = [&](const std::string& key) {
-      const std::string head = key + " = ";
-      if (line.compare(0, head.size(), head) != 0) return std::string();
-      std::string v = line.substr(head.size());
-      if (v.size() >= 2 && v.front() == '"') v = v.substr(1, v.size() - 2);
-      return v;
-    };
-    if (line.rfind("size = ", 0) == 0) size = value("size");
-    if (line.rfind("hash = ", 0) == 0) hash = value("hash");
-    if (line.rfind("file = ", 0) == 0) name = value("file");
+  toml::table t;
+  try {
+    t = toml::parse_file(rec.string());
+  } catch (const toml::parse_error&) {
+    return none;
   }
-  if (size.empty() || hash.empty() || name != path.filename().string()) return none;
+  const auto size = t["size"].value<std::int64_t>();
+  const auto hash = t["hash"].value<std::string>();
+  if (!size || !hash || t["file"].value_or(std::string()) != path.filename().string()) return none;
   const auto now = fs::file_size(path, ec);
   if (ec) return "unreadable (" + ec.message() + ")";
-  if (std::to_string(now) != size)
+  if (static_cast<std::int64_t>(now) != *size)
     return "changed since siloscope wrote it (" + std::to_string(now) + " bytes where siloscope wrote " +
-           size + ")";
-  if (file_hash(path) != hash) return "changed since siloscope wrote it (same size, other contents)";
+           std::to_string(*size) + ")";
+  if (file_hash(path) != *hash) return "changed since siloscope wrote it (same size, other contents)";
   return "";
 }
 

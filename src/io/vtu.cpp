@@ -112,8 +112,6 @@ std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& spe
     types.add(1);  // VTK_VERTEX
   }
   // Field data: the time, the container's displacement, and the species' names (index = the species array).
-  std::string names;
-  for (const auto& nm : species_names) names += nm + "\n";
   Column<double> t{a}, offset{a};
   t.add(f.t), offset.add(f.container_x), offset.add(f.container_y);
   std::string names_raw;
