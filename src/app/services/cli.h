@@ -53,6 +53,7 @@ void add_scene_command(CLI::App& app, Action& action);
 void add_gallery_command(CLI::App& app, Action& action);
 void add_timeline_command(CLI::App& app, Action& action);
 void add_claims_command(CLI::App& app, Action& action);
+void add_import_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 // Interrupted and unhealthy runs are left out (named on stderr) unless included. avalanche_end: "auto" (per
 // protocol: analysis::avalanche_end_for), "gaps" or "held" (analysis/measure.h).

@@ -1,0 +1,267 @@
+// siloscope import TRACKS.csv --geometry SCENE.toml --out RUN: a lab experiment's tracked particles as a run
+// directory like a recording's (trajectory, exits, clogs, the clogs' arches with their descriptors, summary,
+// metadata, manifest), its clogs and arches found by the simulation's own rules from positions alone
+// (lab/import.h). Every command that reads a recording reads it: inspect, export, gallery, analyze, timeline.
+#include <cstdio>
+#include <filesystem>
+
+#include "analysis/measure.h"
+#include "analysis/tidy.h"
+#include "app/services/cli.h"
+#include "app/services/run_outputs.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "core/model.h"
+#include "io/csv_table.h"
+#include "io/events_csv.h"
+#include "io/manifest.h"
+#include "io/metadata.h"
+#include "io/output.h"
+#include "io/trajectory.h"
+#include "lab/import.h"
+
+#include <toml++/toml.h>
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct ImportCliOptions {
+  std::string tracks, geometry, out, columns, origin;
+  std::vector<std::string> overrides;
+  double scale = 0, fps = 0;
+  bool y_up = false, force = false, quiet = false;
+  lab::ImportOptions import;
+};
+
+// "X,Y" in the file's units.
+void parse_origin(const std::string& text, double& x, double& y) {
+  const size_t comma = text.find(',');
+  char* end = nullptr;
+  bool ok = comma != std::string::npos;
+  if (ok) {
+    const std::string a = text.substr(0, comma), b = text.substr(comma + 1);
+    x = std::strtod(a.c_str(), &end);
+    ok = !a.empty() && *end == '\0' && std::isfinite(x);
+    y = std::strtod(b.c_str(), &end);
+    ok = ok && !b.empty() && *end == '\0' && std::isfinite(y);
+  }
+  if (!ok)
+    throw core::InputError("--origin '" + text + "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
+}
+
+// detect's metadata beside its CSV (TRACKS.meta.toml): the calibration it used, when the command line gives
+// none.
+fs::path detect_metadata(const fs::path& tracks) {
+  fs::path m = tracks;
+  m.replace_extension(".meta.toml");
+  return m;
+}
+
+std::string clog_arches_csv(const lab::Imported& im, const std::vector<std::string>& names) {
+  std::string out =
+      "clog,t_s,grains,ids,track_ids,species,span_m,rise_m,aspect_rise_over_half_span,theta_max_deg,defects,"
+      "bead_angle_sd_deg\n";
+  auto g = [](double v) { return core::format_g(v, 6); };
+  for (const lab::ClogArch& a : im.clog_arches) {
+    std::string ids, tracks, species;
+    for (size_t k = 0; k < a.ids.size(); ++k) {
+      const char* sep = k ? " " : "";
+      ids += sep + std::to_string(a.ids[k]);
+      tracks += sep + std::to_string(a.track_ids[k]);
+      species +=
+          sep + names[static_cast<size_t>(core::species_index(im.species[static_cast<size_t>(a.ids[k])]))];
+    }
+    const core::ArchDescriptors& d = a.descriptors;
+    out += std::to_string(a.clog) + "," + g(a.t) + "," + std::to_string(d.grains) + "," + ids + "," + tracks +
+           "," + species + "," + g(d.span) + "," + g(d.rise) + "," + g(d.aspect) + "," + g(d.theta_max_deg) +
+           "," + std::to_string(d.defects) + "," + g(d.angle_sd_deg) + "\n";
+  }
+  return out;
+}
+
+int import_run(ImportCliOptions o) {
+  if (!(o.import.contact_tolerance >= 0 && o.import.contact_tolerance <= 0.5))
+    throw core::InputError("--contact-tolerance " + core::format_g(o.import.contact_tolerance) +
+                           ": expected a gap from 0 to 0.5 of the smaller diameter");
+  if (o.import.max_gap < 0 || o.import.max_gap > 1000)
+    throw core::InputError("--max-gap " + std::to_string(o.import.max_gap) + ": expected 0 to 1000 frames");
+  if (!(o.import.join_distance >= 0 && o.import.join_distance <= 5))
+    throw core::InputError("--join-distance " + core::format_g(o.import.join_distance) +
+                           ": expected 0 to 5 diameters");
+  if (o.scale < 0 || !std::isfinite(o.scale))
+    throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
+  if (o.fps < 0 || !std::isfinite(o.fps))
+    throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
+  core::check_input_file(o.tracks, "tracked particles", io::CsvTable::kMaxBytes, "");
+  const fs::path out = io::output_path(o.out);
+  io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
+
+  lab::Units units;
+  units.scale = o.scale;
+  units.y_up = o.y_up;
+  units.fps = o.fps;
+  std::string calibration = "command line";
+  if (!o.origin.empty()) parse_origin(o.origin, units.origin_x, units.origin_y);
+  const fs::path meta = detect_metadata(o.tracks);
+  if (o.scale == 0 && fs::exists(meta)) {
+    // The calibration detect used (pixels of a siloscope movie or of --scale/--origin given to detect).
+    toml::table t;
+    try {
+      t = toml::parse_file(meta.string());
+    } catch (const toml::parse_error& e) {
+      throw core::InputError(meta.string() + ": not valid TOML (" + std::string(e.description()) + ")");
+    }
+    const auto s = t["calibration"]["scale_m_per_px"].value<double>();
+    const auto ox = t["calibration"]["origin_x_px"].value<double>();
+    const auto oy = t["calibration"]["origin_y_px"].value<double>();
+    if (s && ox && oy && *s > 0) {
+      units.scale = *s;
+      if (o.origin.empty()) units.origin_x = *ox, units.origin_y = *oy;
+      calibration = meta.filename().string();
+    }
+    if (o.fps == 0)
+      if (auto f = t["calibration"]["fps"].value<double>(); f && *f > 0) units.fps = *f;
+  }
+
+  core::Scene scene = core::load_scene(o.geometry);
+  core::apply_overrides(scene, o.overrides);
+  const core::Model geometry = core::compile(scene);
+  const lab::Tracks tracks = lab::read_tracks(o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
+                                              geometry.setup, geometry.setup.geo);
+  if (tracks.frames.size() < 2)
+    throw core::InputError(o.tracks + ": one frame only; a run needs at least two");
+  lab::Imported im = lab::import_tracks(tracks, geometry, o.import);
+  const lab::ImportReport& r = im.report;
+  // The run's scene: the geometry's, lasting as long as the film (what every reader of the run takes as its
+  // duration) and without the clog rule (nothing removes an arch in a lab).
+  scene.duration = std::max(im.frames.back().t, 1e-3);
+  scene.clog_timeout = 0;
+  const core::Model model = core::compile(scene);
+
+  io::OutputDir dir(o.out, o.force, io::DirKind::Run);
+  io::RunInfo info;
+  info.command = command_line();
+  info.facts = {{"imported", true},
+                {"imported_from", o.tracks},
+                {"imported_hash", io::file_hash(o.tracks)},
+                {"columns", tracks.columns_used},
+                {"calibration", calibration},
+                {"scale_m_per_px", units.scale},
+                {"origin_x", units.origin_x},
+                {"origin_y", units.origin_y},
+                {"contact_tolerance", o.import.contact_tolerance},
+                {"max_gap_frames", static_cast<long>(o.import.max_gap)},
+                {"join_distance_diameters", o.import.join_distance},
+                {"frames", r.frames},
+                {"rows", r.rows},
+                {"tracks", r.tracks},
+                {"grains", r.grains},
+                {"ids_joined", r.joined},
+                {"positions_interpolated", r.interpolated},
+                {"gaps_too_long", r.long_gaps},
+                {"exits_seen_below_outlet", r.exits_below},
+                {"exits_from_tracks_ending_in_outlet", r.exits_lost},
+                {"tracks_leaving_view", r.left_view},
+                {"tracks_entering_view", r.entered},
+                {"frame_interval_median_s", r.interval_median},
+                {"frame_interval_min_s", r.interval_min},
+                {"frame_interval_max_s", r.interval_max},
+                {"frame_interval_changes", r.interval_changes},
+                {"time_offset_s", r.time_offset},
+                {"frames_with_arch", r.frames_with_arch}};
+  const std::string metadata = io::metadata_toml(model, info);
+  {
+    io::TrajectoryInfo ti;
+    ti.n_particles = static_cast<std::uint32_t>(im.radius.size());
+    ti.n_species = static_cast<std::uint32_t>(model.setup.species.size());
+    ti.frame_interval = r.interval_median;
+    ti.clog_timeout = 0;
+    ti.clog_min_gap = scene.clog_min_gap;
+    ti.radius_original = model.setup.reference_radius;
+    for (double v : im.radius) ti.radius.push_back(static_cast<float>(v));
+    ti.species = im.species;
+    ti.metadata = metadata;
+    io::TrajectoryWriter w(dir.file("trajectory.sstraj"), ti);
+    for (size_t k = 0; k < im.frames.size(); ++k) w.add(im.frames[k], 0, im.between[k]);
+    w.add_events(im.after);
+    w.close();
+  }
+  const std::vector<std::string> names = model.setup.species_names();
+  const analysis::Measurements m =
+      analysis::measure(im.events, scene.duration, scene.clog_min_gap, static_cast<int>(names.size()),
+                        analysis::avalanche_end_for(scene));
+  io::write_events(dir.file(""), im.events, names);
+  io::write_file_atomic(dir.file("arch_shapes.csv"), arch_shapes_csv(im.events, im.radius));
+  io::write_file_atomic(dir.file("clog_arches.csv"), clog_arches_csv(im, names));
+  io::write_file_atomic(dir.file("species.csv"), analysis::species_csv(model.setup, m));
+  io::write_file_atomic(dir.file("summary.csv"),
+                        analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
+  io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, im.events.exits));
+  io::write_file_atomic(dir.file("metadata.toml"), metadata);
+  dir.commit();
+
+  if (!o.quiet) {
+    std::printf("read        %ld rows, %ld frames (%s s apart", r.rows, r.frames,
+                core::format_g(r.interval_median, 4).c_str());
+    if (r.interval_changes)
+      std::printf("; %ld intervals differ by > 1%%: %s to %s s", r.interval_changes,
+                  core::format_g(r.interval_min, 4).c_str(), core::format_g(r.interval_max, 4).c_str());
+    std::printf("), %ld tracks\n", r.tracks);
+    std::printf(
+        "grains      %ld (%ld ids joined where a track broke off; %ld positions filled in gaps of <= %d "
+        "frames; %ld longer gaps left empty)\n",
+        r.grains, r.joined, r.interpolated, o.import.max_gap, r.long_gaps);
+    std::printf("field       %ld tracks entered after the first frame, %ld left it away from the outlet\n",
+                r.entered, r.left_view);
+    std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
+                im.events.exits.size(), r.exits_below, r.exits_lost);
+    std::printf(
+        "clogs       %zu (%zu with an arch; arches in %ld of %ld frames, contact gap <= %s of a diameter)\n",
+        im.events.clogs.size(), im.clog_arches.size(), r.frames_with_arch, r.frames,
+        core::format_g(o.import.contact_tolerance, 3).c_str());
+    std::printf("written     %s (trajectory.sstraj, exits, clogs, clog_arches, summary, metadata)\n",
+                out.string().c_str());
+  }
+  return 0;
+}
+}  // namespace
+
+void add_import_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ImportCliOptions>();
+  auto* cmd = app.add_subcommand(
+      "import",
+      "a lab experiment's tracked particles (CSV) as a run: trajectory, exits, clogs and their arches");
+  cmd->add_option("tracks", o->tracks,
+                  "CSV, one row per particle per frame: t or frame, particle (id), x, y, optional r or "
+                  "diameter, angle, species (trackpy's names work as they are)")
+      ->required();
+  cmd->add_option("--geometry", o->geometry,
+                  "a scene file: the container (walls, outlet, obstacle) and species")
+      ->required();
+  cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
+  cmd->add_option("--out", o->out, "the run directory to write")->required();
+  cmd->add_option("--columns", o->columns,
+                  "ROLE=COLUMN,...: which column is the time, frame, id, x, y, radius, "
+                  "diameter, angle, species");
+  cmd->add_option("--scale", o->scale,
+                  "metres per pixel (positions and sizes in pixels, image rows downwards)");
+  cmd->add_option("--origin", o->origin, "X,Y: where the outlet's centre is, in the file's units");
+  cmd->add_flag("--y-up", o->y_up, "with --scale: y grows upwards in the file");
+  cmd->add_option("--fps", o->fps, "frames per second, for a file with frame numbers and no times");
+  cmd->add_option(
+      "--contact-tolerance", o->import.contact_tolerance,
+      "largest gap between two grains (or a grain and a wall) that counts as a contact, as a fraction "
+      "of the smaller diameter (default 0.1)");
+  cmd->add_option("--max-gap", o->import.max_gap,
+                  "missing detections of at most this many frames are filled by interpolation (default 3)");
+  cmd->add_option("--join-distance", o->import.join_distance,
+                  "a track starting within this many diameters of where another broke off is the same grain "
+                  "(default 0.5)");
+  cmd->add_flag("--force", o->force, "replace a run directory siloscope wrote");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  cmd->callback([o, &action] { action = [o] { return import_run(*o); }; });
+}
+
+}  // namespace app

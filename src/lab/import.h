@@ -1,0 +1,86 @@
+// A lab run from tracked particles: the same frames and events a simulation's recording has, found from
+// positions alone (lab/tracks.h gives them in metres, in the container's frame).
+//
+//  - Grains: one per track, its radius the median of its detections (or its species' radius). Ids that change
+//    are joined: a track that ends away from the outlet and one that starts within `join_distance` diameters
+//    of where it ended, at most `max_gap` frames later, are the same grain. Gaps of at most `max_gap` frames
+//    inside a track are filled by linear interpolation; longer gaps, and the frames before a grain appears
+//    and after it leaves, park it far below the container (as a drained grain is parked).
+//  - Exits: a grain whose centre falls wholly below the outlet line (y < -r), as in the simulation, or whose
+//    track ends within a diameter above the outlet, inside its opening, before the last frame (it fell out of
+//    the field of view between two frames).
+//  - Contacts: two grains touch when the gap between them is at most `contact_tolerance` times the smaller
+//    diameter (the literature's rule for images: no forces are measured), and a grain touches a wall or the
+//    obstacle within the same gap.
+//  - Clogs and arches: the simulation's own rules (sim::ClogTracker): a clog opens when no grain has left for
+//    clog_min_gap; its arch is the blocking fewest-grains path across the outlet (core::find_arch) found at
+//    each frame; it is arrested when the grains around the outlet moved less than arrest_shift radii over
+//    arrest_hold (at least one frame); there is no rule (nothing removes an arch in a lab), so a clog ends at
+//    the next exit or at the last frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/arch.h"
+#include "core/events.h"
+#include "core/model.h"
+#include "lab/tracks.h"
+
+namespace lab {
+
+struct ImportOptions {
+  double contact_tolerance = 0.1;  // gap, as a fraction of the smaller diameter, that still counts as contact
+  int max_gap = 3;                 // frames
+  double join_distance = 0.5;      // diameters
+};
+
+// What the import did with the file, for the metadata and the terminal.
+struct ImportReport {
+  long frames = 0, rows = 0, tracks = 0, grains = 0;
+  long joined = 0;            // tracks joined to an earlier one (ids that changed)
+  long interpolated = 0;      // positions filled inside short gaps
+  long long_gaps = 0;         // gaps longer than max_gap (the grain parked meanwhile)
+  long exits_below = 0;       // exits seen below the outlet line
+  long exits_lost = 0;        // exits inferred from a track ending inside the outlet
+  long left_view = 0;         // tracks ending elsewhere before the last frame (left the field of view)
+  long entered = 0;           // tracks starting after the first frame (entered the field of view)
+  long interval_changes = 0;  // frame intervals more than 1% from the median (a changed frame rate)
+  double interval_median = 0, interval_min = 0, interval_max = 0;  // s
+  double time_offset = 0;  // s: the file's time of the first frame (the run starts there at t = 0)
+  long frames_with_arch = 0;
+};
+
+struct ClogArch {
+  int clog = 0;                 // row of clogs.csv
+  double t = 0;                 // s: the frame the arch was taken from (the clog's last frame)
+  std::vector<int> ids;         // grains, left to right
+  std::vector<long> track_ids;  // the file's ids
+  core::ArchDescriptors descriptors;
+};
+
+struct Imported {
+  std::vector<core::Frame> frames;
+  std::vector<core::StepEvents> between;  // what happened since the previous frame, per frame
+  core::StepEvents after;                 // the clog the end of the file closed
+  core::Events events;
+  std::vector<double> radius;
+  std::vector<core::Species> species;
+  std::vector<long> track_id;  // per grain, the file's (first) id
+  std::vector<ClogArch> clog_arches;
+  ImportReport report;
+};
+
+Imported import_tracks(const Tracks& tracks, const core::Model& model, const ImportOptions& opt);
+
+// The contact graph by distance (see above): every grain with a finite position, walls and obstacle.
+core::ContactGraph contacts_by_distance(const std::vector<core::Vec2>& pos, const std::vector<double>& radius,
+                                        const std::vector<bool>& present, const core::Geometry& geo,
+                                        double tolerance);
+
+// The blocking arch at a frame by distance (empty if none).
+std::vector<int> arch_by_distance(const std::vector<core::Vec2>& pos, const std::vector<double>& radius,
+                                  const std::vector<bool>& present, const core::Model& model,
+                                  double tolerance);
+
+}  // namespace lab

@@ -1,0 +1,64 @@
+// Tracked particles from a lab experiment (or from `siloscope detect`): a CSV of one row per particle per
+// frame, read into metres in the container's frame (the outlet centred at x = 0, its line at y = 0, y up).
+//
+// Columns are found by name: the time (t, time, t_s) or the frame number (frame, with --fps), the particle's
+// id (particle, id, track, track_id), x and y, and optionally the radius (r, radius) or diameter (diameter,
+// d), the angle (angle, rad) and the species (species: a name of the geometry scene's species or its index).
+// trackpy's columns (frame, particle, x, y, and its own others) work without a map; any other naming is given
+// with a column map "id=TrackID,x=X_px,...". Pixel units are converted by a scale (m per pixel) and the pixel
+// where the outlet's centre is (the origin); image rows grow downwards, so y is flipped unless y_up.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/setup.h"
+
+namespace lab {
+
+// Which column holds what (empty: look for the default names).
+struct ColumnMap {
+  std::string time, frame, id, x, y, radius, diameter, angle, species;
+};
+// "id=TrackID,x=X" into a map; throws core::InputError naming `option`, the entry and the allowed names.
+ColumnMap parse_column_map(const std::string& text, const std::string& option);
+
+struct Units {
+  double scale = 0;                   // m per pixel; 0: the positions are in metres already
+  double origin_x = 0, origin_y = 0;  // the outlet centre, in the file's units (pixels with a scale)
+  bool y_up = false;  // with a scale: y grows upwards in the file (image rows grow downwards otherwise)
+  double fps = 0;     // frames per second, when the file has frame numbers and no times
+};
+
+struct Detection {
+  long id;       // the file's particle id
+  double x, y;   // m, container frame
+  double r;      // m (the species' radius when the file has none)
+  double angle;  // rad (0 when the file has none)
+  int species;   // index into the scene's species
+  long line;     // the file's line (for messages)
+};
+
+struct TrackFrame {
+  double t = 0;      // s, as the file gives it (frame / fps for frame numbers)
+  long number = -1;  // the file's frame number (-1: none)
+  std::vector<Detection> found;
+};
+
+struct Tracks {
+  std::string source;              // the file read
+  std::vector<TrackFrame> frames;  // in time order, one per distinct frame of the file
+  bool has_radius = false, has_angle = false, has_species = false;
+  std::vector<std::string> columns_used;  // "time=t", "id=particle", ... (for the metadata)
+  long rows = 0;
+};
+
+// Reads and checks `path`: the needed columns present (the error names what was looked for and how to map
+// it), numbers where numbers belong, no particle id twice in one frame, no position outside the container
+// (a centre beyond its walls or above its top by more than a grain's diameter: a wrong scale or origin; the
+// region below the outlet, where grains fall, is allowed). Throws core::InputError naming the file, its line,
+// the column and the value.
+Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
+                   const core::Setup& setup, const core::Geometry& geo);
+
+}  // namespace lab
