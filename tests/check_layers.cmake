@@ -21,6 +21,8 @@ forbid(app "box2d" "Box2D (it stays inside sim)")
 forbid(app/services "app/commands" "a command (services serve the commands, not the other way)")
 # lab reads positions: the clog rules of sim/clog.h and nothing of Box2D, GL or the pictures.
 forbid(lab "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/silo|render/|record/|ui/" "Box2D, GL or the pictures")
+# vision sees pictures only: OpenCV and core, nothing of the simulation, the renderer or the files.
+forbid(vision "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/|render/|record/|ui/|io/|lab/" "an upper layer or Box2D")
 forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")
 forbid(ui "box2d|sim/|analysis/|io/|record/|libav|libsw|stb_"
        "Box2D, the simulation, the analysis or a file format (the app feeds it frames and takes its images)")
@@ -29,5 +31,12 @@ foreach(f ${osmesa_users})
   file(STRINGS ${f} hits REGEX "#include *<GL/osmesa.h>")
   if(hits AND NOT f MATCHES "context_osmesa.cpp$")
     message(SEND_ERROR "${f} includes GL/osmesa.h; only src/render/context_osmesa.cpp may")
+  endif()
+endforeach()
+# OpenCV stays with the pictures of a camera: vision/, and the service that feeds it frames (app/services/lab).
+foreach(f ${osmesa_users})
+  file(STRINGS ${f} hits REGEX "#include *<opencv2/")
+  if(hits AND NOT f MATCHES "/src/vision/" AND NOT f MATCHES "/src/app/services/lab\\.(cpp|h)$")
+    message(SEND_ERROR "${f} includes OpenCV; only src/vision/ and src/app/services/lab may")
   endif()
 endforeach()

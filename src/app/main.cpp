@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   app::add_claims_command(cli, action);
   app::add_inspect_command(cli, action);
   app::add_import_command(cli, action);
+  app::add_detect_command(cli, action);
   // A misspelt command: name the nearest one (CLI11 says only that a subcommand is required).
   if (argc > 1 && argv[1][0] != '-') {
     const std::string given = argv[1];

@@ -217,6 +217,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   add_bench_stability_command(*bench, action);
   add_bench_sweep_command(*bench, action);
   add_bench_record_command(*bench, action);
+  add_bench_roundtrip_command(*bench, action);
 }
 
 }  // namespace app

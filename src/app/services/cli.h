@@ -54,6 +54,7 @@ void add_gallery_command(CLI::App& app, Action& action);
 void add_timeline_command(CLI::App& app, Action& action);
 void add_claims_command(CLI::App& app, Action& action);
 void add_import_command(CLI::App& app, Action& action);
+void add_detect_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 // Interrupted and unhealthy runs are left out (named on stderr) unless included. avalanche_end: "auto" (per
 // protocol: analysis::avalanche_end_for), "gaps" or "held" (analysis/measure.h).
@@ -65,5 +66,6 @@ void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);
 void add_bench_sweep_command(CLI::App& bench, Action& action);
 void add_bench_record_command(CLI::App& bench, Action& action);
+void add_bench_roundtrip_command(CLI::App& bench, Action& action);
 
 }  // namespace app

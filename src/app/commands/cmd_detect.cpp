@@ -1,0 +1,192 @@
+// siloscope detect FRAMES_OR_VIDEO --out TRACKS.csv: the disks of a film located in every frame and linked
+// into tracks (vision/detect.h), written as the CSV `import` reads, with TRACKS.meta.toml beside it (the
+// calibration, the settings, the counts, the version). A siloscope movie calibrates itself from its
+// recording's metadata; a lab film takes --scale and --origin, or two marked points.
+#include <cstdio>
+#include <filesystem>
+
+#include "app/services/cli.h"
+#include "app/services/lab.h"
+#include "app/services/terminal.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "io/metadata.h"
+#include "io/output.h"
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct DetectCliOptions {
+  std::string input, geometry, out, origin, points, frames;
+  std::vector<std::string> overrides;
+  double scale = 0, fps = 0;
+  double band = 0.25, edge = 60, max_step = 0.8;
+  int memory = 2;
+  bool bright = false, force = false, quiet = false;
+};
+
+constexpr const char* kHeader = "frame,particle,x,y,r,t,species";
+
+int detect(const DetectCliOptions& o) {
+  if (!(o.band > 0 && o.band < 0.6))
+    throw core::InputError("--radius-band " + core::format_g(o.band) + ": expected 0 to 0.6");
+  if (!(o.edge > 0 && o.edge < 1000))
+    throw core::InputError("--edge " + core::format_g(o.edge) + ": expected 1 to 1000");
+  if (!(o.max_step > 0 && o.max_step <= 5))
+    throw core::InputError("--max-step " + core::format_g(o.max_step) + ": expected 0 to 5 radii");
+  if (o.memory < 0 || o.memory > 100)
+    throw core::InputError("--memory " + std::to_string(o.memory) + ": expected 0 to 100 frames");
+  if (o.scale < 0 || !std::isfinite(o.scale))
+    throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
+  if (o.fps < 0 || !std::isfinite(o.fps))
+    throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
+  const fs::path out = io::output_path(o.out);
+  if (out.extension() != ".csv") throw core::InputError("--out " + o.out + ": expected a .csv file");
+  fs::path meta_out = out;
+  meta_out.replace_extension(".meta.toml");
+  io::check_not_input(out, {fs::absolute(o.input)}, "tracks");
+
+  DetectJob job;
+  core::Model model;
+  bool have_model = false;
+  std::string why;
+  if (o.scale > 0 || !o.origin.empty()) {
+    if (!(o.scale > 0) || o.origin.empty())
+      throw core::InputError(
+          "--scale and --origin go together (metres per pixel, and the outlet centre's pixel X,Y)");
+    const size_t comma = o.origin.find(',');
+    char* e1 = nullptr;
+    char* e2 = nullptr;
+    job.cal.scale = o.scale;
+    job.cal.origin_x = comma == std::string::npos ? NAN : std::strtod(o.origin.substr(0, comma).c_str(), &e1);
+    job.cal.origin_y =
+        comma == std::string::npos ? NAN : std::strtod(o.origin.substr(comma + 1).c_str(), &e2);
+    if (!std::isfinite(job.cal.origin_x) || !std::isfinite(job.cal.origin_y) || *e1 || *e2)
+      throw core::InputError("--origin '" + o.origin +
+                             "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
+    job.cal.from = "command line";
+  } else if (!o.points.empty()) {
+    job.cal = two_point_calibration(o.points, "--points");
+  } else if (!movie_calibration(o.input, job.cal, model, why)) {
+    throw core::InputError(o.input + ": no calibration: give --scale and --origin, or --points (" +
+                           "it is not a siloscope movie that calibrates itself: " + why + ")");
+  } else {
+    have_model = true;
+  }
+  if (!o.geometry.empty()) {
+    core::Scene s = core::load_scene(o.geometry);
+    core::apply_overrides(s, o.overrides);
+    model = core::compile(s);
+    have_model = true;
+  }
+  if (!have_model)
+    throw core::InputError(
+        "--geometry: needed for a film that is not a siloscope movie (the container and its species' sizes)");
+  for (const core::SpeciesDef& sp : model.setup.species)
+    job.detect.radius_px.push_back(sp.radius / job.cal.scale);
+  for (double r : job.detect.radius_px)
+    if (r < 3)
+      throw core::InputError(
+          "the grains are " + core::format_g(r, 3) +
+          " pixels in radius at this calibration: at least 3 are needed (film closer, or a larger "
+          "picture)");
+  job.detect.band = o.band;
+  job.detect.edge_threshold = o.edge;
+  job.max_step = o.max_step;
+  job.memory = o.memory;
+  job.bright = o.bright;
+  if (!o.frames.empty()) {
+    const size_t colon = o.frames.find(':');
+    char* e = nullptr;
+    job.first = std::strtol(o.frames.c_str(), &e, 10);
+    job.last = colon == std::string::npos ? job.first : std::strtol(o.frames.c_str() + colon + 1, &e, 10);
+    if (*e || job.first < 0 || job.last < job.first)
+      throw core::InputError("--frames '" + o.frames + "': expected K or A:B (frame numbers from 0, A <= B)");
+  }
+
+  vision::FrameSource source(o.input);
+  if (o.fps > 0) job.cal.fps = o.fps;
+  if (!(job.cal.fps > 0)) job.cal.fps = source.fps();
+  if (!(job.cal.fps > 0))
+    throw core::InputError(o.input + ": the frame rate is unknown (a directory of frames): give --fps");
+  io::OutputLock lock(out);
+  io::check_destination(out, o.force, "tracks", io::OutputKind::Csv, kHeader);
+
+  Progress progress("detect", source.count() > 0 ? static_cast<double>(source.count()) : 1.0, !o.quiet);
+  job.progress = [&](long k) { progress.update(static_cast<double>(k + 1)); };
+  DetectStats st;
+  const std::string csv = detect_tracks(source, job, model, st);
+  progress.finish();
+  if (st.frames == 0)
+    throw core::InputError(o.input + ": no frame could be decoded (or --frames lies past its end)");
+
+  io::RunInfo info;
+  info.command = command_line();
+  info.facts = {{"input", o.input},
+                {"frames", st.frames},
+                {"detections", st.detections},
+                {"dropped_outside_container", st.dropped_outside},
+                {"tracks", st.tracks},
+                {"wall_time_s", st.seconds},
+                {"seconds_per_frame", st.seconds / std::max(1L, st.frames)},
+                {"radius_band", o.band},
+                {"edge_threshold", o.edge},
+                {"max_step_radii", o.max_step},
+                {"memory_frames", static_cast<long>(o.memory)},
+                {"bright", o.bright}};
+  std::string meta = io::metadata_toml(model, info);
+  meta += "\n[calibration]\nfrom = \"" + job.cal.from +
+          "\"\nscale_m_per_px = " + core::format_toml_float(job.cal.scale, 12) +
+          "\norigin_x_px = " + core::format_toml_float(job.cal.origin_x, 12) +
+          "\norigin_y_px = " + core::format_toml_float(job.cal.origin_y, 12) +
+          "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
+  io::write_file_atomic(out, csv);
+  io::record_output(out);
+  io::write_file_atomic(meta_out, meta);
+  io::record_output(meta_out);
+  if (!o.quiet)
+    std::printf(
+        "%ld frames, %ld disks (%.1f a frame; %ld outside the container dropped), %ld tracks, %.3f s a frame "
+        "-> %s\n",
+        st.frames, st.detections, static_cast<double>(st.detections) / std::max(1L, st.frames),
+        st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
+  return 0;
+}
+}  // namespace
+
+void add_detect_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<DetectCliOptions>();
+  auto* cmd = app.add_subcommand("detect",
+                                 "locate and track the disks of a film (a video or a directory of frames) "
+                                 "as the CSV import reads");
+  cmd->add_option("input", o->input,
+                  "a video (MP4, AVI, ...) or a directory of frames (PNG, JPEG, BMP, TIFF)")
+      ->required();
+  cmd->add_option("--out", o->out, "the tracks CSV to write (TRACKS.meta.toml beside it)")->required();
+  cmd->add_option(
+      "--geometry", o->geometry,
+      "a scene file: the container and the species' sizes (default: a siloscope movie's own scene)");
+  cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
+  cmd->add_option("--scale", o->scale, "metres per pixel");
+  cmd->add_option("--origin", o->origin, "X,Y: the pixel of the outlet's centre");
+  cmd->add_option("--points", o->points, "PX,PY=X,Y:PX,PY=X,Y: two marked pixels and where they are (m)");
+  cmd->add_option("--fps", o->fps,
+                  "frames per second (default: the video's, or a siloscope movie's simulated rate)");
+  cmd->add_option("--frames", o->frames, "K or A:B: only these frames (from 0)");
+  cmd->add_option("--radius-band", o->band,
+                  "a species' disks are searched from r(1 - B) to r(1 + B) (default 0.25)");
+  cmd->add_option("--edge", o->edge,
+                  "edge strength for the sub-pixel circle fit, on the flattened picture (default 60)");
+  cmd->add_option("--max-step", o->max_step,
+                  "largest move between frames beyond the predicted one, in radii of the largest grains, for "
+                  "linking (default 0.8)");
+  cmd->add_option("--memory", o->memory, "frames a disk may go unseen and keep its id (default 2)");
+  cmd->add_flag("--bright", o->bright, "bright disks on a dark background");
+  cmd->add_flag("--force", o->force, "replace tracks siloscope wrote");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  cmd->callback([o, &action] { action = [o] { return detect(*o); }; });
+}
+
+}  // namespace app

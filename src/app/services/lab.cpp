@@ -1,0 +1,180 @@
+// Camera frames to tracked particles (app/services/lab.h).
+#include "app/services/lab.h"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include <toml++/toml.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "render/camera.h"
+
+namespace app {
+
+namespace fs = std::filesystem;
+
+bool movie_calibration(const fs::path& input, Calibration& cal, core::Model& model, std::string& why) {
+  fs::path meta;
+  for (const fs::path& candidate :
+       {fs::path(input).replace_extension("") / "metadata.toml", input.parent_path() / "metadata.toml"})
+    if (fs::is_regular_file(candidate)) {
+      meta = candidate;
+      break;
+    }
+  if (meta.empty()) {
+    why = "no recording's metadata.toml beside it";
+    return false;
+  }
+  toml::table t;
+  try {
+    t = toml::parse_file(meta.string());
+  } catch (const toml::parse_error& e) {
+    why = meta.string() + " is not valid TOML";
+    return false;
+  }
+  const auto size = t["run"]["size"].value<std::string>();
+  const auto camera = t["run"]["camera"].value<std::string>();
+  const auto interval = t["run"]["frame_interval_s"].value<double>();
+  if (!size || !camera || !interval || !(*interval > 0)) {
+    why = meta.string() + " is not a recording's metadata (no [run] size, camera and frame_interval_s)";
+    return false;
+  }
+  if (!t["run"]["camera_path"].value_or(std::string()).empty() ||
+      !t["run"]["freeze"].value_or(std::string()).empty() || t["run"]["slowmo_frames"].value_or(0) != 0) {
+    why = "its camera moves or its clock stops (a camera path, slow motion or freezes)";
+    return false;
+  }
+  model = core::compile(core::load_scene(meta.string()));
+  int w = 0, h = 0;
+  render::parse_size(*size, "size", w, h);
+  const render::CameraSpec spec = render::parse_camera(*camera);
+  const std::vector<render::View> views = render::layout_views(spec, model.setup.geo, w, h);
+  if (views.size() != 1) {
+    why = "its camera '" + *camera + "' has " + std::to_string(views.size()) +
+          " panels (film with one, e.g. --camera hopper or a window)";
+    return false;
+  }
+  if (views[0].cam.angle != 0) {
+    why = "its camera is turned (a tilted container): give --scale and --origin in the turned picture";
+    return false;
+  }
+  const core::Vec2 o = views[0].world_to_pixel({0, 0});
+  cal.scale = 1.0 / views[0].px_per_m();
+  cal.origin_x = o.x - 0.5;  // OpenCV's pixel centres sit at whole numbers
+  cal.origin_y = o.y - 0.5;
+  cal.fps = 1.0 / *interval;
+  cal.from = meta.string();
+  return true;
+}
+
+Calibration two_point_calibration(const std::string& text, const std::string& option) {
+  auto fail = [&]() -> Calibration {
+    throw core::InputError(option + " '" + text +
+                           "': expected PX,PY=X,Y:PX,PY=X,Y (two pixels and where they are in metres, the "
+                           "outlet's centre at 0,0)");
+  };
+  double v[8];
+  int n = 0;
+  std::string cur;
+  for (size_t i = 0; i <= text.size(); ++i) {
+    const char ch = i < text.size() ? text[i] : ':';
+    if (ch == ',' || ch == '=' || ch == ':') {
+      char* end = nullptr;
+      if (n >= 8 || cur.empty()) return fail();
+      v[n++] = std::strtod(cur.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(v[n - 1])) return fail();
+      cur.clear();
+    } else {
+      cur += ch;
+    }
+  }
+  if (n != 8) return fail();
+  const double dpx = std::hypot(v[4] - v[0], v[5] - v[1]), dm = std::hypot(v[6] - v[2], v[7] - v[3]);
+  if (!(dpx > 0) || !(dm > 0))
+    throw core::InputError(option + " '" + text + "': the two points must differ (in pixels and in metres)");
+  Calibration c;
+  c.scale = dm / dpx;
+  c.origin_x = v[0] - v[2] / c.scale;
+  c.origin_y = v[1] + v[3] / c.scale;  // image rows grow downwards
+  c.from = "two points";
+  return c;
+}
+
+std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,
+                          DetectStats& stats) {
+  const core::Geometry& geo = model.setup.geo;
+  const std::vector<std::string> names = model.setup.species_names();
+  vision::Linker linker(job.max_step, job.memory);
+  std::mt19937_64 rng(job.seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::string csv = "frame,particle,x,y,r,t,species\n";
+  cv::Mat frame;
+  using Clock = std::chrono::steady_clock;
+  // The walls' pixels (and the obstacle's rim): their edges are not a disk's rim. As wide as 0.4 of the
+  // largest radius, from the geometry and the calibration.
+  double rmax = 0;
+  for (double r : job.detect.radius_px) rmax = std::max(rmax, r);
+  vision::DetectOptions detect = job.detect;
+  if (detect.ignore.empty() && source.width() > 0) {
+    detect.ignore = cv::Mat::zeros(source.height(), source.width(), CV_8U);
+    auto px = [&](core::Vec2 p) {
+      return cv::Point(static_cast<int>(std::lround(job.cal.origin_x + p.x / job.cal.scale)),
+                       static_cast<int>(std::lround(job.cal.origin_y - p.y / job.cal.scale)));
+    };
+    const int thick = std::max(3, static_cast<int>(std::lround(0.8 * rmax)));
+    for (core::Wall w :
+         {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
+      cv::line(detect.ignore, px(geo.walls[static_cast<size_t>(w)].a),
+               px(geo.walls[static_cast<size_t>(w)].b), 255, thick);
+    if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
+      cv::circle(detect.ignore, px(geo.obstacle.centre),
+                 static_cast<int>(std::lround(0.5 * geo.obstacle.width / job.cal.scale)), 255, thick);
+    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
+      cv::rectangle(detect.ignore,
+                    px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
+                        geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
+                    px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
+                        geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
+                    255, thick);
+  }
+  for (long k = 0; source.next(frame); ++k) {
+    if (k < job.first) continue;
+    if (job.last >= 0 && k > job.last) break;
+    cv::Mat picture = job.camera ? job.camera(frame, k) : frame;
+    if (job.bright) cv::bitwise_not(picture, picture);
+    const auto t0 = Clock::now();
+    std::vector<vision::Circle> found = vision::detect_disks(picture, detect);
+    std::vector<vision::Circle> kept;
+    for (const vision::Circle& c : found) {
+      if (job.drop > 0 && u(rng) < job.drop) continue;
+      const core::Vec2 p{(c.x - job.cal.origin_x) * job.cal.scale, (job.cal.origin_y - c.y) * job.cal.scale};
+      const double slack = 2 * c.r * job.cal.scale;
+      if (p.y > geo.total_height + slack || p.x < geo.x_left - slack || p.x > geo.x_right + slack ||
+          (p.y >= slack && geo.side_clearance(p, 0) < -slack)) {
+        ++stats.dropped_outside;
+        continue;
+      }
+      kept.push_back(c);
+    }
+    const std::vector<long> ids = linker.link(kept);
+    stats.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    const double t = job.cal.fps > 0 ? static_cast<double>(k) / job.cal.fps : static_cast<double>(k);
+    for (size_t i = 0; i < kept.size(); ++i) {
+      const vision::Circle& c = kept[i];
+      csv += std::to_string(k) + "," + std::to_string(ids[i]) + "," + core::format_g(c.x, 7) + "," +
+             core::format_g(c.y, 7) + "," + core::format_g(c.r, 5) + "," + core::format_g(t, 9) + "," +
+             names[static_cast<size_t>(c.band)] + "\n";
+    }
+    stats.detections += static_cast<long>(kept.size());
+    ++stats.frames;
+    if (job.progress) job.progress(k);
+  }
+  stats.tracks = linker.tracks();
+  return csv;
+}
+
+}  // namespace app

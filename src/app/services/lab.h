@@ -1,0 +1,60 @@
+// Camera frames to tracked particles, shared by `detect` and the round-trip benchmark: the calibration from
+// pixels to the container's metres, and the detection and linking of every frame (vision/detect.h) into the
+// CSV that `import` reads (trackpy's column names: frame, particle, x, y in pixels; r in pixels; t in s;
+// species by name).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "core/model.h"
+#include "vision/detect.h"
+
+namespace app {
+
+struct Calibration {
+  double scale = 0;  // m per pixel
+  double origin_x = 0,
+         origin_y = 0;  // px (OpenCV's: the first pixel's centre is 0, 0) of the outlet's centre
+  double fps = 0;       // frames per simulated or lab second (0: unknown)
+  std::string from;     // "command line", "two points", or the recording's metadata file
+};
+
+// A siloscope movie's own calibration, from the recording directory beside it (MOVIE without .mp4, holding
+// metadata.toml): its camera, picture size and frame interval. Returns false with `why` when the input is not
+// such a movie or its camera moves (a camera path, slow motion or freezes: pixels then change meaning during
+// the film). `model` gets the recording's scene.
+bool movie_calibration(const std::filesystem::path& input, Calibration& cal, core::Model& model,
+                       std::string& why);
+
+// Two marked points "PX,PY=X,Y:PX,PY=X,Y" (pixels = metres in the container's frame): scale and origin (no
+// rotation). Throws core::InputError naming `option`.
+Calibration two_point_calibration(const std::string& text, const std::string& option);
+
+struct DetectStats {
+  long frames = 0, detections = 0, dropped_outside = 0, tracks = 0;
+  double seconds = 0;  // wall time of detection and linking (not decoding, not the camera's effects)
+};
+
+struct DetectJob {
+  vision::DetectOptions detect;
+  Calibration cal;
+  long first = 0, last = -1;  // frames to use (last < 0: to the end)
+  double max_step = 0.8;      // radii
+  int memory = 2;             // frames
+  bool bright = false;        // bright disks on a dark background (inverted before detection)
+  // For the round trip: what a camera adds to each frame (null: nothing), and detections dropped at random.
+  std::function<cv::Mat(const cv::Mat&, long)> camera;
+  double drop = 0;
+  std::uint64_t seed = 1;
+  std::function<void(long)> progress;
+};
+
+// Every frame of `source` detected and linked; the CSV's text. Disks whose centre lies outside the container
+// (by more than a diameter; below the outlet is inside) are dropped and counted.
+std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,
+                          DetectStats& stats);
+
+}  // namespace app
