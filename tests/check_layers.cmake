@@ -22,7 +22,7 @@ forbid(app/services "app/commands" "a command (services serve the commands, not 
 # lab reads positions: the clog rules of sim/clog.h and nothing of Box2D, GL or the pictures.
 forbid(lab "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/silo|render/|record/|ui/" "Box2D, GL or the pictures")
 # vision sees pictures only: OpenCV and core, nothing of the simulation, the renderer or the files.
-forbid(vision "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/|render/|record/|ui/|io/|lab/" "an upper layer or Box2D")
+forbid(vision "box2d|GL/|glad|imgui|libsw|stb_|sim/|render/|record/|ui/|io/|lab/" "an upper layer or Box2D")
 forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")
 forbid(ui "box2d|sim/|analysis/|io/|record/|libav|libsw|stb_"
        "Box2D, the simulation, the analysis or a file format (the app feeds it frames and takes its images)")

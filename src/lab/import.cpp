@@ -296,6 +296,12 @@ Imported import_tracks(const Tracks& tracks, const core::Model& model, const Imp
     tracker.on_step_end(
         t[k], [&] { return arch; }, ev);
     const core::ClogState& st = tracker.state();
+    if (st.open) {
+      ++rep.frames_clogged;
+      rep.frames_clogged_with_arch += !arch.empty();
+    } else {
+      rep.frames_flowing_with_arch += !arch.empty();
+    }
     if (st.open && !st.arch.empty()) {
       held_arch = st.arch;
       held_frame = k;

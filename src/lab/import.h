@@ -47,8 +47,11 @@ struct ImportReport {
   long entered = 0;           // tracks starting after the first frame (entered the field of view)
   long interval_changes = 0;  // frame intervals more than 1% from the median (a changed frame rate)
   double interval_median = 0, interval_min = 0, interval_max = 0;  // s
-  double time_offset = 0;  // s: the file's time of the first frame (the run starts there at t = 0)
-  long frames_with_arch = 0;
+  double time_offset = 0;             // s: the file's time of the first frame (the run starts there at t = 0)
+  long frames_with_arch = 0;          // frames where a blocking arch is found (by distance), flowing or not
+  long frames_clogged = 0;            // frames with a clog open
+  long frames_clogged_with_arch = 0;  // ... where this frame's own check finds a blocking arch
+  long frames_flowing_with_arch = 0;  // frames without a clog where the check finds one (a chain in passing)
 };
 
 struct ClogArch {

@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 
+extern "C" {
+#include <libavutil/log.h>
+}
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -275,6 +280,12 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
     width_ = first.cols, height_ = first.rows;
     return;
   }
+  // FFmpeg and OpenCV would print their own lines about a file they cannot read; the error below says it
+  // once. (OpenCV sets FFmpeg's level when its backend starts, from OPENCV_FFMPEG_LOGLEVEL: -8 is
+  // AV_LOG_QUIET.)
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
+  av_log_set_level(AV_LOG_QUIET);
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   if (!impl_->video.open(path, cv::CAP_FFMPEG) || !impl_->video.isOpened()) {
     delete impl_;
     throw core::InputError(path +

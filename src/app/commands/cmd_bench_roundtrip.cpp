@@ -20,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RoundTripOptions {
+  std::string tolerances = "0,0.02,0.05,0.1,0.2,0.3,0.5";
   std::string scene = "", camera = "window:-1.4,-0.4,1.4,1.6", size = "1920x1080", levels = "0,1,2,3",
               work = "", csv;
   std::uint64_t seed = 3;
@@ -94,9 +95,49 @@ int bench_roundtrip(const RoundTripOptions& o) {
   std::printf(
       "(grains: whole disks in the picture, per frame; clogs matched by start within 0.25 s; arches at the "
       "import's arch frame; err in diameters)\n");
+  // The contact tolerance: the same tracks of the clean camera imported with each gap.
+  std::printf(
+      "\ncontact tolerance (the first and last levels' tracks imported again):\n%5s %9s | %5s %5s | %10s "
+      "%10s | %8s %8s %8s | %6s %6s "
+      "%6s %6s\n",
+      "level", "tolerance", "clogs", "found", "arch_true", "arch_found", "clogged", "w_arch", "flow_arch",
+      "m_rec", "m_prec", "span_d", "theta");
+  std::string tol_csv =
+      "level,contact_tolerance,true_clogs,found_clogs,matched_clogs,arch_frames_true,arch_frames_found,"
+      "frames_clogged,clogged_with_arch,flowing_with_arch,"
+      "member_recall,member_precision,span_error_d,theta_error_deg\n";
+  std::vector<double> tol_levels = {levels.front()};
+  if (levels.back() != levels.front()) tol_levels.push_back(levels.back());
+  for (double level : tol_levels) {
+    std::stringstream ts(o.tolerances);
+    for (std::string item; std::getline(ts, item, ',');) {
+      char* end = nullptr;
+      const double tol = std::strtod(item.c_str(), &end);
+      if (item.empty() || *end || !(tol >= 0 && tol <= 0.5))
+        throw core::InputError("--tolerances '" + o.tolerances + "': '" + item +
+                               "' is not a gap from 0 to 0.5");
+      const RoundTripRow r = round_trip(rec, level, o.drop * level, o.seed,
+                                        work / ("tracks_level_" + core::format_g(level) + ".csv"), tol, true);
+      std::printf("%5g %9g | %5ld %5ld | %10ld %10ld | %8ld %8ld %8ld | %6.3f %6.3f %6.3f %6.1f\n", level,
+                  tol, r.true_clogs, r.found_clogs, r.arch_frames_true, r.arch_frames_found, r.frames_clogged,
+                  r.clogged_with_arch, r.flowing_with_arch, r.member_recall, r.member_precision,
+                  r.span_error_d, r.theta_error_deg);
+      std::fflush(stdout);
+      auto g = [](double v) { return core::format_g(v, 5); };
+      tol_csv += g(level) + "," + g(tol) + "," + std::to_string(r.true_clogs) + "," +
+                 std::to_string(r.found_clogs) + "," + std::to_string(r.matched_clogs) + "," +
+                 std::to_string(r.arch_frames_true) + "," + std::to_string(r.arch_frames_found) + "," +
+                 std::to_string(r.frames_clogged) + "," + std::to_string(r.clogged_with_arch) + "," +
+                 std::to_string(r.flowing_with_arch) + "," + g(r.member_recall) + "," +
+                 g(r.member_precision) + "," + g(r.span_error_d) + "," + g(r.theta_error_deg) + "\n";
+    }
+  }
   if (!o.csv.empty()) {
     io::write_file_atomic(o.csv, csv);
-    std::printf("written %s\n", o.csv.c_str());
+    fs::path tol_path = o.csv;
+    tol_path.replace_extension(".tolerance.csv");
+    io::write_file_atomic(tol_path, tol_csv);
+    std::printf("written %s and %s\n", o.csv.c_str(), tol_path.c_str());
   }
   return 0;
 }
@@ -119,6 +160,9 @@ void add_bench_roundtrip_command(CLI::App& bench, Action& action) {
   cmd->add_option("--drop", o->drop,
                   "detections dropped at random, per level (default 0.01: 1 % at level 1)");
   cmd->add_option("--contact-tolerance", o->tolerance, "import's contact gap, fraction of a diameter");
+  cmd->add_option("--tolerances", o->tolerances,
+                  "contact gaps to import the first level's tracks with again (sensitivity; default "
+                  "0,0.02,0.05,0.1,0.2,0.3,0.5)");
   cmd->add_option("--work", o->work, "directory for the recording and the tracks (created)")->required();
   cmd->add_option("--csv", o->csv, "write the table as CSV here");
   cmd->callback([o, &action] { action = [o] { return bench_roundtrip(*o); }; });

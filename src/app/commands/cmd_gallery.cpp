@@ -2,11 +2,14 @@
 // zoomed outlet view just before the 5 s rule removed it, members highlighted, labelled with the time, the
 // clog's duration, the members and their species. The run is re-simulated from its metadata (runs are
 // deterministic: the trajectory is not needed), and each re-simulated removal is checked against the run's
-// own arches.csv.
+// own arches.csv. An imported lab run (siloscope import) has no rule and cannot be re-simulated: its tiles
+// are its clogs' arches, drawn from its trajectory.
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <sstream>
 
 #include "app/services/cli.h"
 #include "app/services/process.h"
@@ -17,10 +20,12 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/setup.h"
+#include "io/csv_table.h"
 #include "io/events_csv.h"
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/trajectory.h"
 #include "render/camera.h"
 #include "render/draw_list.h"
 #include "render/overlay.h"
@@ -81,9 +86,49 @@ int gallery(const GalleryOptions& o) {
   const core::Scene& scene = model.scene;
   const core::Setup& setup = model.setup;
   const std::vector<std::string> names = setup.species_names();
-  const core::Events recorded = io::read_events(run, names);
+  core::Events recorded = io::read_events(run, names);
+  // A lab run (siloscope import) has no rule and nothing to re-simulate: its tiles are its clogs' arches, at
+  // the frame of its trajectory the import took each from (clog_arches.csv).
+  const bool imported = fs::exists(run / "clog_arches.csv") && fs::exists(run / "trajectory.sstraj");
+  std::unique_ptr<io::Trajectory> traj;
+  std::vector<long> traj_frame;
+  if (imported) {
+    for (const char* f : {"clog_arches.csv", "trajectory.sstraj"}) io::verify_listed(run / f, "gallery: run");
+    traj = std::make_unique<io::Trajectory>(run / "trajectory.sstraj");
+    const io::CsvTable rows =
+        io::CsvTable::read((run / "clog_arches.csv").string(), "an imported run's clog arches");
+    recorded.arches.clear();
+    for (size_t r = 0; r < rows.rows(); ++r) {
+      core::ArchEvent a;
+      a.t = rows.num(r, "t_s");
+      const double clog = rows.num(r, "clog");
+      if (!(clog >= 1) || clog > static_cast<double>(recorded.clogs.size()))
+        throw core::InputError((run / "clog_arches.csv").string() + ":" + std::to_string(r + 2) + ": clog " +
+                               rows.text(r, "clog") + " is not a row of clogs.csv");
+      a.clog_duration = a.t - recorded.clogs[static_cast<size_t>(clog) - 1].start;
+      long k = 0;
+      while (k + 1 < traj->size() && traj->time(k) < a.t - 1e-6) ++k;
+      const core::Frame f = traj->frame(k);
+      std::istringstream ids(rows.text(r, "ids"));
+      for (int id; ids >> id;) {
+        if (id < 0 || static_cast<size_t>(id) >= f.particles.size())
+          throw core::InputError((run / "clog_arches.csv").string() + ":" + std::to_string(r + 2) +
+                                 ": grain " + std::to_string(id) + " is not in the trajectory");
+        a.ids.push_back(id);
+        a.species.push_back(f.particles[static_cast<size_t>(id)].species);
+      }
+      std::vector<core::Vec2> pos;
+      std::vector<double> radius;
+      for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
+      a.geometry = core::arch_geometry(a.ids, pos, radius);
+      recorded.arches.push_back(std::move(a));
+      traj_frame.push_back(k);
+    }
+  }
   if (recorded.arches.empty())
-    throw core::InputError("gallery: " + o.run + " has no long-lasting arch (arches.csv is empty)");
+    throw core::InputError("gallery: " + o.run +
+                           (imported ? " has no clog with an arch (clog_arches.csv is empty)"
+                                     : " has no long-lasting arch (arches.csv is empty)"));
   const size_t n = std::min(recorded.arches.size(), static_cast<size_t>(o.max_arches));
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "gallery", io::OutputKind::Sheet);
@@ -115,18 +160,15 @@ int gallery(const GalleryOptions& o) {
   for (size_t k = 0; k < n; ++k) at.push_back(std::lround(recorded.arches[k].t / scene.dt) - 1);
   // The re-simulation takes as long as the run did: say how far it has got (on a terminal, as run does).
   const double until = recorded.arches[n - 1].t + 0.5 * scene.dt;
-  Progress progress("gallery: re-simulating", until, true);
-  Session session({model});
   std::string index =
       "tile,t_s,clog_s,members,added,species,method,span_m,rise_m,aspect,theta_max_deg,defects,angle_sd_deg,"
       "window_m\n";
   size_t k = 0;
   FunctionSink tiles;
   tiles.forces = style.chains;
-  tiles.on_frame = [&](const FrameTick& tick) {
+  auto make_tile = [&](core::Frame f) {
     const core::ArchEvent& a = recorded.arches[k];
     // The frame just before the rule fires: its clog is open, and its arch is the one the rule removes.
-    core::Frame f = tick.frames[0];
     f.arch = a.ids;
     f.clog_open = f.clog_arrested = true;
     f.since_last_exit = a.clog_duration;
@@ -141,21 +183,30 @@ int gallery(const GalleryOptions& o) {
     index += tile_row(name, a, f, names, 2 * half);
     ++k;
   };
-  session.run(until, FrameClock::at_steps(at), {&tiles}, {}, [&](double t) {
-    progress.update(t, std::to_string(k) + " of " + std::to_string(n) + " arches");
-  });
-  progress.finish();
-  // The re-simulation must give the recorded arches: the same physics, build and seed.
-  const auto& again = session.world(0).events().arches;
-  for (size_t i = 0; i < n; ++i)
-    if (again.size() <= i || again[i].ids != recorded.arches[i].ids)
-      throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
-                               std::to_string(i) + " at t = " + core::format_g(recorded.arches[i].t, 6) +
-                               " s (a different build or physics?)");
+  tiles.on_frame = [&](const FrameTick& tick) { make_tile(tick.frames[0]); };
+  if (imported) {
+    for (size_t i = 0; i < n; ++i) make_tile(traj->frame(traj_frame[i]));
+  } else {
+    Progress progress("gallery: re-simulating", until, true);
+    Session session({model});
+    session.run(until, FrameClock::at_steps(at), {&tiles}, {}, [&](double t) {
+      progress.update(t, std::to_string(k) + " of " + std::to_string(n) + " arches");
+    });
+    progress.finish();
+    // The re-simulation must give the recorded arches: the same physics, build and seed.
+    const auto& again = session.world(0).events().arches;
+    for (size_t i = 0; i < n; ++i)
+      if (again.size() <= i || again[i].ids != recorded.arches[i].ids)
+        throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
+                                 std::to_string(i) + " at t = " + core::format_g(recorded.arches[i].t, 6) +
+                                 " s (a different build or physics?)");
+  }
   io::write_file_atomic(tmp / "index.csv", index);
   const std::string title =
-      "long-lasting arches of " + fs::absolute(run).filename().string() + ": " +
-      (setup.shorthand
+      (imported ? "clogs' arches of the imported run " : "long-lasting arches of ") +
+      fs::absolute(run).filename().string() + ": " +
+      (imported ? std::string("from tracked particles, contacts by distance")
+       : setup.shorthand
            ? "r = " + core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) +
                  ", mu = " + core::format_g(scene.mu) + " A m^2, kick " +
                  core::format_g(scene.kick_impulse_max) + " N s, seed " + std::to_string(scene.seed)
@@ -166,9 +217,17 @@ int gallery(const GalleryOptions& o) {
                     : "");
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
-  const int status =
-      run_python(script_path("gallery.py"), {tmp.string(), partial.string(), title, io::version_string(),
-                                             std::to_string(o.columns), std::to_string(o.tile)});
+  const int status = run_python(
+      script_path("gallery.py"),
+      imported ? std::vector<std::string>{tmp.string(), partial.string(), title, io::version_string(),
+                                          std::to_string(o.columns), std::to_string(o.tile),
+                                          "members ringed, bonds dark; each clog's arch at the last frame "
+                                          "it stood, found from positions (contacts by distance, import's "
+                                          "--contact-tolerance); h/(s/2): rise over half the span; "
+                                          "\u03b8max: the largest bead angle; defects: bead angles above "
+                                          "180\u00b0"}
+               : std::vector<std::string>{tmp.string(), partial.string(), title, io::version_string(),
+                                          std::to_string(o.columns), std::to_string(o.tile)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);

@@ -171,6 +171,8 @@ int import_run(ImportCliOptions o) {
                 {"frame_interval_changes", r.interval_changes},
                 {"time_offset_s", r.time_offset},
                 {"frames_with_arch", r.frames_with_arch}};
+  // No simulation to watch: the health table says so (readers of runs require one).
+  info.health = {{"status", "imported"}, {"warnings", 0L}, {"ballistic", false}};
   const std::string metadata = io::metadata_toml(model, info);
   {
     io::TrajectoryInfo ti;

@@ -37,7 +37,7 @@ double quantile_of(std::vector<double> v, double q) {
 }  // namespace
 
 RoundTripRow round_trip(const fs::path& recording, double level, double drop, std::uint64_t seed,
-                        const fs::path& tracks_csv, double contact_tolerance) {
+                        const fs::path& tracks_csv, double contact_tolerance, bool reuse_tracks) {
   const io::Trajectory truth(recording / "trajectory.sstraj");
   toml::table meta;
   try {
@@ -69,8 +69,12 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
   job.drop = drop;
   job.seed = seed;
   DetectStats st;
-  vision::FrameSource source(movie.string());
-  io::write_file_atomic(tracks_csv, detect_tracks(source, job, model, st), false);
+  if (!reuse_tracks || !fs::exists(tracks_csv)) {
+    vision::FrameSource source(movie.string());
+    io::write_file_atomic(tracks_csv, detect_tracks(source, job, model, st), false);
+  } else {
+    st.seconds = NAN;
+  }
 
   lab::Units units;
   units.scale = cal.scale;
@@ -86,6 +90,10 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
   row.drop = drop;
   row.frames = static_cast<long>(tracks.frames.size());
   row.detect_s_per_frame = st.seconds / std::max(1L, st.frames);
+  row.contact_tolerance = contact_tolerance;
+  row.frames_clogged = im.report.frames_clogged;
+  row.clogged_with_arch = im.report.frames_clogged_with_arch;
+  row.flowing_with_arch = im.report.frames_flowing_with_arch;
 
   // Grains, frame by frame: each detection matched to the nearest true grain within half its radius.
   long tp = 0, fn = 0, fp = 0, grain_frames = 0;
@@ -97,6 +105,8 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
     const long fk = tracks.frames[k].number;
     if (fk < 0 || fk >= truth.size()) continue;
     const core::Frame g = truth.frame(fk);
+    row.arch_frames_true += g.clog_open && !g.arch.empty();
+    row.arch_frames_found += im.frames[k].clog_open && !im.frames[k].arch.empty();
     const auto& found = tracks.frames[k].found;
     std::vector<std::pair<double, std::pair<size_t, int>>> pairs;
     for (size_t a = 0; a < found.size(); ++a)

@@ -28,12 +28,20 @@ struct RoundTripRow {
   long arches_compared = 0;
   double member_recall = 0, member_precision = 0, span_error_d = 0, rise_error_d = 0, theta_error_deg = 0;
   double detect_s_per_frame = 0;  // detection and linking, without decoding or the camera's effects
+  // Frames during a clog with its arch standing, in the recording and in the import.
+  double contact_tolerance = 0.1;
+  long arch_frames_true = 0, arch_frames_found = 0;
+  // The import's own check at each frame (not the clog's held arch): frames clogged, of them with an arch
+  // found, and frames flowing with one found (a chain across the outlet in passing).
+  long frames_clogged = 0, clogged_with_arch = 0, flowing_with_arch = 0;
 };
 
 // `recording`: a recording directory (with trajectory.sstraj), its movie beside it (single-panel camera, no
 // camera path, slow motion or freezes). The tracks CSV goes to `tracks_csv`. Throws core::InputError when the
 // recording cannot serve as ground truth.
+// With `reuse_tracks`, an existing `tracks_csv` is imported again without detection (another tolerance).
 RoundTripRow round_trip(const std::filesystem::path& recording, double level, double drop, std::uint64_t seed,
-                        const std::filesystem::path& tracks_csv, double contact_tolerance = 0.1);
+                        const std::filesystem::path& tracks_csv, double contact_tolerance = 0.1,
+                        bool reuse_tracks = false);
 
 }  // namespace app

@@ -1,0 +1,174 @@
+// Issue 40: lab data. Tracked particles in trackpy's format import as a run whose clogs are the recording's;
+// bad input gets one line and exit 2; the round trip through a filmed recording recovers grains, clogs and
+// arches within stated bounds.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "app/services/roundtrip.h"
+#include "helpers.h"
+#include "io/events_csv.h"
+#include "io/trajectory.h"
+
+namespace fs = std::filesystem;
+using test::cli;
+using test::kScene;
+using test::slurp;
+using test::temp_dir;
+
+namespace {
+
+constexpr double kScale = 0.004;                  // m per pixel
+constexpr double kOriginX = 400, kOriginY = 600;  // the outlet's centre, px
+
+// A recording's trajectory as a tracker would give it: pandas' index column, then trackpy's columns (pixels,
+// y down), a new particle id whenever a grain jumps (an exit or the rule re-injecting it at the top: a lab's
+// tracker sees a new grain), and the diameter in pixels.
+void write_trackpy(const fs::path& traj, const fs::path& csv) {
+  io::Trajectory t(traj);
+  std::ofstream out(csv);
+  out << ",y,x,mass,size,ecc,signal,raw_mass,ep,frame,particle,diameter\n";
+  std::map<int, long> id_of;
+  std::map<int, float> last_y;
+  long next = 0, row = 0;
+  for (long k = 0; k < t.size(); ++k) {
+    const core::Frame f = t.frame(k);
+    for (size_t i = 0; i < f.particles.size(); ++i) {
+      const core::Particle& p = f.particles[i];
+      const int g = static_cast<int>(i);
+      if (!id_of.count(g) || std::fabs(p.y - last_y[g]) > 0.5f) id_of[g] = next++;
+      last_y[g] = p.y;
+      out << row++ << "," << kOriginY - p.y / kScale << "," << kOriginX + p.x / kScale
+          << ",100,3,0.1,10,120,0.1," << k << "," << id_of[g] << "," << 2 * p.radius / kScale << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("import: a trackpy CSV of a recording gives back its clogs, arches the inspector shows, an export",
+          "[lab][app]") {
+  const fs::path d = temp_dir("lab_import");
+  REQUIRE(
+      cli("run " + kScene + " --seed 3 --duration 8 --trajectory-fps 30 --quiet --out " + (d / "r").string())
+          .code == 0);
+  write_trackpy(d / "r" / "trajectory.sstraj", d / "tracks.csv");
+  const auto imp = cli("import " + (d / "tracks.csv").string() + " --geometry " + kScene +
+                       " --scale 0.004 --origin 400,600 --fps 30.303030303 --out " + (d / "imp").string());
+  INFO(imp.output);
+  REQUIRE(imp.code == 0);
+  const core::Events truth = io::read_events(d / "r");
+  const core::Events found = io::read_events(d / "imp");
+  REQUIRE(truth.clogs.size() >= 2);
+  REQUIRE(found.clogs.size() == truth.clogs.size());
+  for (size_t c = 0; c < truth.clogs.size(); ++c) {
+    CHECK(std::fabs(found.clogs[c].start - truth.clogs[c].start) < 0.05);  // within a frame and a half
+    CHECK(std::fabs(found.clogs[c].end - truth.clogs[c].end) < 0.1);
+  }
+  // Exits: the recording's, give or take the grains the rule removed from an arch at the outlet.
+  CHECK(std::abs(static_cast<long>(found.exits.size()) - static_cast<long>(truth.exits.size())) <= 8);
+  const std::string arches = slurp(d / "imp" / "clog_arches.csv");
+  CHECK(test::count_of(arches, "\n") == static_cast<long>(truth.clogs.size()) + 1);
+  CHECK(slurp(d / "imp" / "metadata.toml").find("imported = true") != std::string::npos);
+  CHECK(fs::exists(d / "imp" / "manifest.toml"));
+
+  // The inspector opens it at the first clog's arch and prints its members.
+  std::ofstream(d / "s.txt") << "goto clog 1 arch\nprint\nsnapshot " << (d / "clog1.png").string()
+                             << " 640x360\n";
+  const auto ins = cli("inspect " + (d / "imp").string() + " --script " + (d / "s.txt").string());
+  INFO(ins.output);
+  REQUIRE(ins.code == 0);
+  CHECK(ins.output.find("clog 1 open") != std::string::npos);
+  CHECK(ins.output.find("arch [") != std::string::npos);
+  CHECK(fs::file_size(d / "clog1.png") > 1000);
+  REQUIRE(cli("export " + (d / "imp").string() + " --format xyz --out " + (d / "imp.xyz").string()).code ==
+          0);
+  // The gallery draws its clogs' arches from the trajectory (nothing to re-simulate), one tile per clog.
+  const auto gal = cli("gallery " + (d / "imp").string() + " --out " + (d / "g.svg").string());
+  INFO(gal.output);
+  REQUIRE(gal.code == 0);
+  CHECK(gal.output.find(std::to_string(truth.clogs.size()) + " arches") != std::string::npos);
+  CHECK(slurp(d / "g.svg").find("imported run") != std::string::npos);
+  // Analyze takes it as a realization.
+  const auto an = cli("analyze " + (d / "imp").string() + " --out " + (d / "an").string());
+  INFO(an.output);
+  CHECK(an.code == 0);
+}
+
+TEST_CASE("import and detect: bad input gets one line naming the problem and exit 2, nothing written",
+          "[lab][app][robust]") {
+  const fs::path d = temp_dir("lab_bad");
+  auto refused = [&](const std::string& args, const std::string& says) {
+    const auto r = cli(args);
+    INFO(args << "\n" << r.output);
+    CHECK(r.code == 2);
+    CHECK(r.output.find(says) != std::string::npos);
+    CHECK(test::count_of(r.output, "\n") == 1);
+    CHECK(!fs::exists(d / "out"));
+  };
+  const std::string tracks = (d / "t.csv").string(),
+                    geo = " --geometry " + kScene + " --out " + (d / "out").string();
+  std::ofstream(tracks) << "frame,particle,x\n0,1,0.1\n";
+  refused("import " + tracks + geo, "no column for y (looked for y; name it with --columns y=COLUMN)");
+  std::ofstream(tracks) << "t,particle,x,y\n0,1,0.1,0.5\n0,1,0.2,0.5\n0.1,1,0.1,0.5\n";
+  refused("import " + tracks + geo, "particle 1 appears twice at t = 0 s");
+  std::ofstream(tracks) << "t,particle,x,y\n0,1,5,0.5\n0.1,1,5,0.5\n";
+  refused("import " + tracks + geo, ":2: particle 1 at (5, 0.5) m lies outside the container");
+  std::ofstream(tracks) << "frame,particle,x,y\n0,1,0.1,0.5\n1,1,0.1,0.5\n";
+  refused("import " + tracks + geo, "give the frame rate with --fps");
+  std::ofstream(tracks) << "t,particle,x,y\n0,1,0.1,nan\n";
+  refused("import " + tracks + geo, ":2: column y is 'nan', not a finite number");
+  refused("import " + tracks + geo + " --columns id=TrackID",
+          "--columns id=TrackID: the file has no column 'TrackID'");
+  std::ofstream(d / "movie.mp4") << "not a movie\n";
+  refused("detect " + (d / "movie.mp4").string() + " --scale 0.004 --origin 400,600 --geometry " + kScene +
+              " --out " + (d / "out" / "t.csv").string(),
+          "cannot be decoded as a video");
+  fs::create_directories(d / "frames");
+  std::ofstream(d / "frames" / "a.png") << "x";
+  refused("detect " + (d / "frames").string() + " --geometry " + kScene + " --out " +
+              (d / "out" / "t.csv").string(),
+          "no calibration: give --scale and --origin, or --points");
+}
+
+TEST_CASE("round trip: a filmed recording's grains, clogs and arches come back through detect and import",
+          "[lab][app]") {
+  const fs::path d = temp_dir("lab_roundtrip");
+  REQUIRE(cli("record " + kScene +
+              " --seed 3 --duration 8 --camera window:-1.4,-0.4,1.4,1.6 --size 1280x720 --overlay none "
+              "--arch-halo off --quiet --out " +
+              (d / "truth").string())
+              .code == 0);
+  // A clean camera: every whole disk found where it is.
+  const app::RoundTripRow clean = app::round_trip(d / "truth", 0, 0, 3, d / "t0.csv");
+  CHECK(clean.recall >= 0.995);
+  CHECK(clean.precision >= 0.995);
+  CHECK(clean.error_median_d <= 0.01);
+  CHECK(clean.error_p95_d <= 0.06);
+  CHECK(clean.switches_per_1000 <= 2);
+  REQUIRE(clean.true_clogs >= 2);
+  CHECK(clean.matched_clogs == clean.true_clogs);
+  CHECK(clean.found_clogs == clean.true_clogs);
+  CHECK(clean.start_error_s <= 0.05);
+  CHECK(clean.end_error_s <= 0.1);
+  REQUIRE(clean.arches_compared >= 1);
+  CHECK(clean.member_recall >= 0.99);
+  CHECK(clean.member_precision >= 0.99);
+  CHECK(clean.span_error_d <= 0.02);
+  CHECK(clean.theta_error_deg <= 2);
+  // Camera level 2 (blur, noise, light, perspective) and 2 % of the detections dropped.
+  const app::RoundTripRow noisy = app::round_trip(d / "truth", 2, 0.02, 3, d / "t2.csv");
+  CHECK(noisy.recall >= 0.96);
+  CHECK(noisy.precision >= 0.99);
+  CHECK(noisy.error_median_d <= 0.06);
+  CHECK(noisy.switches_per_1000 <= 5);
+  CHECK(noisy.matched_clogs == noisy.true_clogs);
+  CHECK(noisy.start_error_s <= 0.05);
+  REQUIRE(noisy.arches_compared >= 1);
+  CHECK(noisy.member_recall >= 0.9);
+  CHECK(noisy.member_precision >= 0.9);
+  CHECK(noisy.span_error_d <= 0.05);
+}
