@@ -105,23 +105,28 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None):
     cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
     nrows = math.ceil(n / cols)
     width = TILE_IN * cols
-    fig, axes = plt.subplots(nrows, cols, figsize=(width, (TILE_IN + 0.55) * nrows + 0.6), squeeze=False)
+    # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer; the sheet is as tall
+    # as its tiles plus the lines of both, so neither runs into a tile.
+    chars = max(30, int(width * 72 / (9 * 0.55)))
+    title_lines = textwrap.wrap(title, chars)
+    footer = f"siloscope {version}; {footer}" if footer else (
+        f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
+        f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
+        f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
+    footer_lines = textwrap.wrap(footer, int(width * 72 / (6 * 0.55)))
+    title_in = len(title_lines) * 9 * 1.3 / 72 + 0.1
+    footer_in = len(footer_lines) * 6 * 1.3 / 72 + 0.1
+    height = (TILE_IN + 0.55) * nrows + title_in + footer_in
+    fig, axes = plt.subplots(nrows, cols, figsize=(width, height), squeeze=False)
     for k, ax in enumerate(axes.flat):
         if k >= n:
             ax.axis("off")
             continue
         draw_tile(ax, tables[k], float(rows[k]["window_m"]))
         ax.set_title(label(k, rows[k]), fontsize=6.5)
-    # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer.
-    chars = max(30, int(width * 72 / (9 * 0.55)))
-    fig.suptitle("\n".join(textwrap.wrap(title, chars)), fontsize=9)
-    footer = f"siloscope {version}; {footer}" if footer else (
-        f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
-        f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
-        f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
-    fig.text(0.01, 0.003, "\n".join(textwrap.wrap(footer, int(width * 72 / (6 * 0.55)))), ha="left",
-             va="bottom", fontsize=6, color="#444444")
-    fig.tight_layout(rect=(0, 0.04 + 0.02 / nrows, 1, 0.97))
+    fig.suptitle("\n".join(title_lines), fontsize=9)
+    fig.text(0.01, 0.003, "\n".join(footer_lines), ha="left", va="bottom", fontsize=6, color="#444444")
+    fig.tight_layout(rect=(0, footer_in / height, 1, 1 - title_in / height))
     # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
     tag = f"siloscope gallery {version}"
     if out.endswith(".pdf"):

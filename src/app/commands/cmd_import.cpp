@@ -1,6 +1,6 @@
-// siloscope import TRACKS.csv --geometry SCENE.toml --out RUN: a lab experiment's tracked particles as a run
-// directory like a recording's (trajectory, exits, clogs, the clogs' arches with their descriptors, summary,
-// metadata, manifest), its clogs and arches found by the simulation's own rules from positions alone
+// siloscope import TRACKS.csv [--geometry SCENE.toml] --out RUN: a lab experiment's tracked particles as a
+// run directory like a recording's (trajectory, exits, clogs, the clogs' arches with their descriptors,
+// summary, metadata, manifest), its clogs and arches found by the simulation's own rules from positions alone
 // (lab/import.h). Every command that reads a recording reads it: inspect, export, gallery, analyze, timeline.
 #include <cstdio>
 #include <filesystem>
@@ -125,7 +125,17 @@ int import_run(ImportCliOptions o) {
       if (auto f = t["calibration"]["fps"].value<double>(); f && *f > 0) units.fps = *f;
   }
 
-  core::Scene scene = core::load_scene(o.geometry);
+  // The container: --geometry, or the scene detect wrote beside the tracks (a siloscope movie's own).
+  std::string geometry_file = o.geometry;
+  if (geometry_file.empty()) {
+    if (!fs::exists(meta))
+      throw core::InputError(
+          "--geometry: needed (a scene file with the container and its species), unless the "
+          "tracks come from detect with its " +
+          meta.filename().string() + " beside them");
+    geometry_file = meta.string();
+  }
+  core::Scene scene = core::load_scene(geometry_file);
   core::apply_overrides(scene, o.overrides);
   const core::Model geometry = core::compile(scene);
   const lab::Tracks tracks = lab::read_tracks(o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
@@ -240,8 +250,8 @@ void add_import_command(CLI::App& app, Action& action) {
                   "diameter, angle, species (trackpy's names work as they are)")
       ->required();
   cmd->add_option("--geometry", o->geometry,
-                  "a scene file: the container (walls, outlet, obstacle) and species")
-      ->required();
+                  "a scene file: the container (walls, outlet, obstacle) and species (default: the scene in "
+                  "TRACKS.meta.toml, which detect writes)");
   cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
   cmd->add_option("--out", o->out, "the run directory to write")->required();
   cmd->add_option("--columns", o->columns,

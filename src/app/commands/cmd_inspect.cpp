@@ -8,6 +8,8 @@
 #include <memory>
 #include <sstream>
 
+#include <toml++/toml.h>
+
 #include "app/services/cli.h"
 #include "app/services/inspect_files.h"
 #include "app/services/live_silo.h"
@@ -54,6 +56,21 @@ fs::path trajectory_path(const std::string& p) {
   return path;
 }
 
+// An imported lab run (siloscope import) is named as such in the information box, not by the geometry scene's
+// r, chi and mu (which it was not made with).
+void title_imported(ui::Inspector& insp, const io::Trajectory& traj) {
+  toml::table t;
+  try {
+    t = toml::parse(traj.info().metadata);
+  } catch (const toml::parse_error&) {
+    return;
+  }
+  if (!t["run"]["imported"].value_or(false)) return;
+  insp.overlay_data.title =
+      "imported: " + fs::path(t["run"]["imported_from"].value_or(std::string())).filename().string() +
+      " (contacts: gap <= " + core::format_g(t["run"]["contact_tolerance"].value_or(0.0), 3) + " d)";
+}
+
 int inspect(const InspectOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   io::Trajectory traj(trajectory_path(o.path));
@@ -72,6 +89,7 @@ int inspect(const InspectOptions& o) {
   const TrajectoryFrames frames(traj, contacts.get());
   const RecordFiles files;
   ui::Inspector insp(frames, model, &files);
+  title_imported(insp, traj);
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet)
     std::fprintf(stderr, "trajectory: %ld frames%s, %zu clogs, opened in %.0f ms\n", traj.size(),
@@ -112,6 +130,7 @@ int frame(const FrameOptions& o) {
   const TrajectoryFrames frames(traj, contacts.get());
   const RecordFiles files;
   ui::Inspector insp(frames, model, &files);
+  title_imported(insp, traj);
   // --at: clog:K (where clog K's final arch first stands), rule:K (the K-th long-lasting arch, the frame
   // before the rule removed it), t:SECONDS or frame:N.
   const size_t colon = o.at.find(':');
@@ -167,6 +186,7 @@ int filmstrip(const FilmstripOptions& o) {
   const TrajectoryFrames frames(traj);
   const RecordFiles files;
   ui::Inspector insp(frames, model, &files);
+  title_imported(insp, traj);
   if (o.clog < 1 || o.clog > static_cast<long>(insp.clogs().size()))
     throw core::InputError("--clog " + std::to_string(o.clog) + ": the recording has " +
                            std::to_string(insp.clogs().size()) + " clogs (numbered from 1)");
