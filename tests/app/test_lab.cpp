@@ -92,6 +92,20 @@ TEST_CASE("import: a trackpy CSV of a recording gives back its clogs, arches the
   REQUIRE(gal.code == 0);
   CHECK(gal.output.find(std::to_string(truth.clogs.size()) + " arches") != std::string::npos);
   CHECK(slurp(d / "g.svg").find("imported run") != std::string::npos);
+  // A movie of the simulation beside the experiment, on one clock; a scene with another container is refused.
+  const auto cmp = cli("record " + kScene + " --seed 3 --duration 3 --size 320x180 --quiet --compare-run " +
+                       (d / "imp").string() + " --out " + (d / "cmp").string());
+  INFO(cmp.output);
+  REQUIRE(cmp.code == 0);
+  CHECK(fs::file_size(d / "cmp.mp4") > 1000);
+  CHECK(slurp(d / "cmp" / "metadata.toml").find("experiment: imp") != std::string::npos);
+  const auto other =
+      cli("record " + kScene + " --set aperture=0.4 --duration 3 --size 320x180 --quiet --compare-run " +
+          (d / "imp").string() + " --out " + (d / "cmp2").string());
+  CHECK(other.code == 2);
+  CHECK(other.output.find("its container is not the scene's (outlet 0.4 m against 0.299 m)") !=
+        std::string::npos);
+  CHECK(!fs::exists(d / "cmp2"));
   // Analyze takes it as a realization.
   const auto an = cli("analyze " + (d / "imp").string() + " --out " + (d / "an").string());
   INFO(an.output);
@@ -171,4 +185,38 @@ TEST_CASE("round trip: a filmed recording's grains, clogs and arches come back t
   CHECK(noisy.member_recall >= 0.9);
   CHECK(noisy.member_precision >= 0.9);
   CHECK(noisy.span_error_d <= 0.05);
+}
+
+TEST_CASE("import: a broken track is joined, a short gap filled, a changed frame rate counted", "[lab]") {
+  const fs::path d = temp_dir("lab_tracks");
+  // Three grains resting on the hopper's walls for 12 frames; grain 2's id changes to 7 at frame 6; grain 3
+  // is not detected in frames 3 and 4; frames 0-5 come every 1/30 s, then every 1/20 s.
+  std::ofstream out(d / "t.csv");
+  out << "t,id,x,y,r\n";
+  double t = 0;
+  for (int k = 0; k < 12; ++k) {
+    out << t << ",1,-0.3,1.0,0.065\n";
+    out << t << "," << (k < 6 ? 2 : 7) << ",0.0,1.2,0.065\n";
+    if (k != 3 && k != 4) out << t << ",3," << 0.1 + 0.01 * k << ",0.9,0.065\n";
+    t += k < 5 ? 1.0 / 30 : 1.0 / 20;
+  }
+  out.close();
+  const auto r =
+      cli("import " + (d / "t.csv").string() + " --geometry " + kScene + " --out " + (d / "run").string());
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const std::string meta = slurp(d / "run" / "metadata.toml");
+  CHECK(meta.find("tracks = 4") != std::string::npos);
+  CHECK(meta.find("grains = 3") != std::string::npos);
+  CHECK(meta.find("ids_joined = 1") != std::string::npos);
+  CHECK(meta.find("positions_interpolated = 2") != std::string::npos);
+  CHECK(meta.find("frame_interval_changes = 5") != std::string::npos);  // the median is 1/20 s
+  // The filled positions lie on the line between the detections around the gap.
+  io::Trajectory traj(d / "run" / "trajectory.sstraj");
+  REQUIRE(traj.size() == 12);
+  const core::Frame f3 = traj.frame(3);
+  bool found = false;
+  for (const auto& p : f3.particles)
+    found = found || (std::fabs(p.x - 0.13) < 1e-5 && std::fabs(p.y - 0.9) < 1e-5);
+  CHECK(found);
 }

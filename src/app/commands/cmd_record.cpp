@@ -13,11 +13,13 @@
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
+#include "app/commands/record_plan.h"
 #include "app/services/cli.h"
 #include "app/services/looks.h"
 #include "app/services/pipeline.h"
 #include "app/services/process.h"
 #include "app/services/recording.h"
+#include "app/services/replay.h"
 #include "app/services/run_outputs.h"
 #include "app/services/session.h"
 #include "app/services/sinks.h"
@@ -37,28 +39,8 @@
 namespace app {
 
 namespace {
-std::string num6(double v) {
-  return core::format_g(v, 6);
-}
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-struct RecordOptions {
-  SceneOptions scene;
-  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species",
-                   overlay = "all";
-  int fps = 30, crf = 20, png_every = 0;
-  double speed = 1.0, slowmo = 1.0;
-  std::string color_max;  // the colour scale: MAX or MIN:MAX; "": the fixed default; "auto"
-  std::string colormap = "viridis";
-  std::string camera_path;                          // key frames T:CAMERA,... (render/camera.h)
-  std::string freeze;                               // EVENT:SECONDS, EVENT clog or rule
-  double displacement_from = 0;                     // s: --color displacement measures from here
-  std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
-  std::string preset = "veryfast";
-  LookOptions looks;  // background, text size, force chains, tracked grains
-  bool transparent = false, no_movie = false, force = false, quiet = false;
-};
 
 struct Stages {
   double sim = 0, draw = 0, readback = 0, convert = 0, encode = 0, png = 0;
@@ -66,68 +48,6 @@ struct Stages {
 
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
-struct Panel {
-  core::Model model;  // the panel's scene, compiled once
-  std::string label;  // what differs, e.g. "mu=2.2" (empty for a single movie)
-  core::Geometry geo;
-  std::vector<render::View> views;
-  render::OverlayData odata;
-  EventMarks marks;
-  std::string subdir;  // inside NAME/: "" for one panel, "panelK/" for a comparison
-};
-
-// The panels: the base scene alone, or one per --compare / --compare-scene (with a single one, the base scene
-// is the first panel so that the comparison has two sides).
-std::vector<Panel> make_panels(const RecordOptions& o) {
-  std::vector<Panel> panels;
-  // Each panel's scene compiled once, here: everything below reads its Model.
-  const core::Model base_model = o.scene.compile();
-  const core::Scene& base = base_model.scene;
-  auto add_model = [&](core::Model m, const std::string& label) {
-    Panel p;
-    p.model = std::move(m);
-    p.label = label;
-    panels.push_back(std::move(p));
-  };
-  auto add = [&](const core::Scene& s, const std::string& label) { add_model(core::compile(s), label); };
-  const size_t n_compare = o.compare.size() + o.compare_scene.size();
-  if (n_compare == 0) {
-    add_model(base_model, "");
-    return panels;
-  }
-  if (n_compare == 1) add_model(base_model, "base: " + fs::path(o.scene.path).stem().string());
-  for (const auto& c : o.compare) {
-    core::Scene s = base;
-    std::vector<std::string> sets;
-    std::stringstream ss(c);
-    for (std::string item; std::getline(ss, item, ',');) sets.push_back(item);
-    if (sets.empty())
-      throw core::InputError("--compare '" + c + "': expected key=value[,key=value...], e.g. mu=2.2");
-    core::apply_overrides(s, sets);
-    if (o.scene.seed) s.seed = *o.scene.seed;
-    if (o.scene.duration) s.duration = *o.scene.duration;
-    add(s, c);
-  }
-  for (const auto& f : o.compare_scene) {
-    core::Scene s = core::load_scene(f);
-    core::apply_overrides(s, o.scene.overrides);
-    if (o.scene.seed) s.seed = *o.scene.seed;
-    s.duration = base.duration;
-    add(s, fs::path(f).stem().string());
-  }
-  if (panels.size() > 4)
-    throw core::InputError("--compare: " + std::to_string(panels.size()) +
-                           " panels; a comparison has 2 to 4");
-  for (const auto& p : panels)
-    if (p.model.scene.dt != base.dt || p.model.scene.duration != base.duration)
-      throw core::InputError("--compare " + p.label +
-                             ": dt and duration must equal the base scene's (dt = " + num6(base.dt) +
-                             " s, duration = " + num6(base.duration) + " s): the panels run on one clock");
-  for (size_t k = 0; k < panels.size(); ++k) panels[k].subdir = "panel" + std::to_string(k) + "/";
-  return panels;
 }
 
 void print_recording(const RecordOptions& o, const Stages& st, long encoded, double shown, double wall,
@@ -145,114 +65,12 @@ void print_recording(const RecordOptions& o, const Stages& st, long encoded, dou
       st.sim * per, st.draw * per, st.readback * per, st.convert * per, st.encode * per, st.png * per);
   for (size_t k = 0; k < panels.size(); ++k) {
     if (panels.size() > 1) std::printf("--- panel %zu: %s\n", k, panels[k].label.c_str());
+    if (panels[k].replay) continue;
     const auto& setup = session.world(k).setup();
     std::printf("%s", analysis::summary_text(ms[k], setup.species_names(), setup.clog_rule).c_str());
   }
   if (!o.no_movie) std::printf("movie       %s\n", movie_path.c_str());
   std::printf("run data    %s/\n", base.c_str());
-}
-
-// Everything the user typed, checked before any work starts: the video, the clock, the style, the overlay and
-// each panel's views.
-struct Plan {
-  record::VideoSettings video;
-  FrameClock clock;
-  render::Style style;
-  render::OverlayOptions overlay;
-  render::CameraPath path;  // a camera move (empty: the camera stands)
-  render::Freeze freeze;    // --freeze EVENT:SECONDS (off: none)
-};
-
-Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
-  Plan plan;
-  const core::Scene& scene = panels.front().model.scene;
-  record::VideoSettings& video = plan.video;
-  render::parse_size(o.size, "--size", video.width, video.height);
-  video.fps = o.fps;
-  video.crf = o.crf;
-  video.preset = o.preset;
-  if (!o.no_movie) record::validate(video);
-  if (!(o.speed > 0) || o.speed > 1000)
-    throw core::InputError("--speed " + num6(o.speed) +
-                           ": allowed range is (0, 1000] simulated s per video s");
-  if (!(o.slowmo >= 1) || o.slowmo > 100)
-    throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
-  if (o.fps < 1 || o.fps > 240)
-    throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
-  plan.clock = FrameClock::video(scene.dt, o.fps, o.speed, o.slowmo);
-  video.frame_rate = plan.clock.video_fps;
-  if (o.png_every < 0)
-    throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
-  if (o.no_movie && o.png_every == 0)
-    throw core::InputError("--no-movie without --png-every would record nothing");
-  plan.style.palette = render::parse_palette(o.palette);
-  plan.style.color = render::parse_color_mode(o.color);
-  plan.style.transparent = o.transparent;
-  plan.overlay = render::parse_overlay(o.overlay);
-  const core::Setup& setup = panels.front().model.setup;
-  o.looks.apply(setup.n_total, o.transparent, plan.style, plan.overlay);
-  // The information box goes to the corner of each panel that covers the least of the container and its
-  // grains (below the outlet in the default split view), as in the windows; it stays there unless another
-  // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
-  // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
-  plan.overlay.place_clear = !plan.overlay.plot;
-  const render::CameraSpec camera = render::parse_camera(o.camera);
-  if (!o.camera_path.empty()) plan.path = render::parse_camera_path(o.camera_path);
-  if (!o.freeze.empty()) {
-    const size_t colon = o.freeze.find(':');
-    plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
-                                       colon == std::string::npos ? "" : o.freeze.substr(colon + 1),
-                                       "--freeze " + o.freeze, "clog:SECONDS or rule:SECONDS");
-    if (plan.freeze.at == render::Freeze::At::Rule && !setup.clog_rule)
-      throw core::InputError(
-          "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
-  }
-  plan.style.colormap = render::parse_colormap(o.colormap);
-  if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
-    throw core::InputError("--displacement-from " + num6(o.displacement_from) +
-                           ": allowed range is 0 to 1e6 s");
-  if (o.displacement_from > 0 && plan.style.color != render::ColorMode::Displacement)
-    throw core::InputError("--displacement-from applies to --color displacement, not " + o.color);
-  plan.style.displacement_from = o.displacement_from;
-  const bool look_ahead = o.color_max == "auto" && (plan.style.color == render::ColorMode::Speed ||
-                                                    plan.style.color == render::ColorMode::Force);
-  if (!o.color_max.empty() && !look_ahead) {
-    try {
-      render::set_color_range(plan.style, o.color_max);
-    } catch (const core::InputError& e) {
-      throw core::InputError("--color-max " + o.color_max + ": " + e.what());
-    }
-  }
-  double top = 0;
-  // Panels side by side, equal widths, the same camera (and so the same scales) in each.
-  const size_t n_panels = panels.size();
-  const int panel_w = video.width / static_cast<int>(n_panels);
-  for (size_t k = 0; k < n_panels; ++k) {
-    Panel& p = panels[k];
-    p.geo = p.model.setup.geo;
-    p.views = render::layout_views(camera, p.geo, panel_w, video.height);
-    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
-    p.odata = render::overlay_data_for(p.model);
-    if (n_panels > 1) {
-      p.odata.title = p.label + "  |  " + p.odata.title;
-      p.odata.panel_x = static_cast<int>(k) * panel_w;
-      p.odata.panel_w = panel_w;
-    }
-  }
-  // The look-ahead last: everything it could be refused for has been checked.
-  if (look_ahead) {
-    // The same scale in every panel: the largest of the panels' own.
-    for (const auto& p : panels)
-      top = std::max(
-          top, color_scale_from_data(p.model, plan.style.color == render::ColorMode::Force, 2.0, !o.quiet));
-    if (!o.quiet)
-      std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
-                   num6(top).c_str(), plan.style.color == render::ColorMode::Force ? "N" : "m/s");
-  }
-  if (top > 0)
-    (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
-  o.looks.resolve_tags(panels.front().model, plan.style, o.quiet);
-  return plan;
 }
 
 // The movie's sink: each frame tick becomes one picture of every panel with its annotations, pushed to the
@@ -273,6 +91,18 @@ class MovieSink : public Sink {
     pf.frames = tick.frames;
     bool freeze = false;
     for (size_t i = 0; i < panels_.size(); ++i) {
+      if (panels_[i].replay) {  // a run played back: its frame at this time, no marks of the simulation's
+        pf.frames.push_back(panels_[i].replay->at(tick.frames[0].t));
+        render::Annotations notes;
+        notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
+        pf.notes.push_back(std::move(notes));
+        if (!plan_.path.empty()) {
+          render::View v = plan_.path.view_at(tick.frames[0].t, panels_[i].geo, panel_w_, height_);
+          v.rect.x += static_cast<int>(i) * panel_w_;
+          pf.views.push_back({v});
+        }
+        continue;
+      }
       render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.events[i], tick.frames[i].t);
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
@@ -386,6 +216,7 @@ std::vector<analysis::Measurements> write_recording_outputs(
   const size_t n_panels = panels.size();
   std::vector<analysis::Measurements> ms;
   for (size_t k = 0; k < n_panels; ++k) {
+    if (panels[k].replay) continue;  // a played-back run has its own directory already
     const sim::Silo& h = session.world(k);
     const double analysed = was_interrupted ? std::max(h.time(), 1e-9) : panels[k].model.scene.duration;
     io::RunInfo pinfo = info;
@@ -465,10 +296,11 @@ int record_movie(const RecordOptions& o) {
   std::unique_ptr<MovieSink> movie;
   try {
     std::vector<core::Model> scenes;
-    for (const auto& p : panels) scenes.push_back(p.model);
+    for (const auto& p : panels)
+      if (!p.replay) scenes.push_back(p.model);
     session = std::make_unique<Session>(scenes);
     std::vector<Sink*> sinks;
-    for (size_t k = 0; k < n_panels; ++k) {
+    for (size_t k = 0; k < session->size(); ++k) {
       const std::string meta =
           n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(panels[k].model, info);
       trajectories.push_back(std::make_unique<TrajectorySink>(
@@ -588,6 +420,11 @@ void add_record_command(CLI::App& app, Action& action) {
       "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts), or auto (speed and "
       "force: the 99th percentile of the first 2 s of discharge; displacement: each frame's largest); "
       "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts) the same in every movie, displacement auto");
+  cmd->add_option("--compare-run", o->compare_run,
+                  "a recorded or imported run (an experiment from siloscope import) played back beside the "
+                  "simulation, "
+                  "on one clock from the opening; its container must be the scene's")
+      ->check(CLI::ExistingPath);
   cmd->add_option(
       "--compare", o->compare,
       "a comparison panel: the scene with key=value[,key=value...] (repeatable; 2-4 panels side by side, "

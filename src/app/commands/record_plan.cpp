@@ -1,0 +1,180 @@
+// record's options turned into panels and a plan (app/commands/record_plan.h).
+#include "app/commands/record_plan.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "core/setup.h"
+
+namespace app {
+
+namespace {
+namespace fs = std::filesystem;
+std::string num6(double v) {
+  return core::format_g(v, 6);
+}
+}  // namespace
+
+// The panels: the base scene alone, or one per --compare / --compare-scene (with a single one, the base scene
+// is the first panel so that the comparison has two sides).
+std::vector<Panel> make_panels(const RecordOptions& o) {
+  std::vector<Panel> panels;
+  // Each panel's scene compiled once, here: everything below reads its Model.
+  const core::Model base_model = o.scene.compile();
+  const core::Scene& base = base_model.scene;
+  auto add_model = [&](core::Model m, const std::string& label) {
+    Panel p;
+    p.model = std::move(m);
+    p.label = label;
+    panels.push_back(std::move(p));
+  };
+  auto add = [&](const core::Scene& s, const std::string& label) { add_model(core::compile(s), label); };
+  const size_t n_compare = o.compare.size() + o.compare_scene.size();
+  if (!o.compare_run.empty()) {
+    // An experiment (or any run) beside the simulation of its container, on one clock from the opening.
+    if (n_compare > 0)
+      throw core::InputError("--compare-run goes alone (not with --compare or --compare-scene)");
+    auto replay = std::make_shared<Replay>(o.compare_run);
+    const std::string diff = container_difference(base_model.setup.geo, replay->model().setup.geo);
+    if (!diff.empty())
+      throw core::InputError("--compare-run " + o.compare_run + ": its container is not the scene's (" +
+                             diff + "): a comparison shows one geometry");
+    add_model(base_model, "simulation: " + fs::path(o.scene.path).stem().string());
+    add_model(replay->model(), (replay->imported() ? "experiment: " : "run: ") + replay->name());
+    panels.front().subdir = "panel0/";
+    panels.back().replay = std::move(replay);
+    return panels;
+  }
+  if (n_compare == 0) {
+    add_model(base_model, "");
+    return panels;
+  }
+  if (n_compare == 1) add_model(base_model, "base: " + fs::path(o.scene.path).stem().string());
+  for (const auto& c : o.compare) {
+    core::Scene s = base;
+    std::vector<std::string> sets;
+    std::stringstream ss(c);
+    for (std::string item; std::getline(ss, item, ',');) sets.push_back(item);
+    if (sets.empty())
+      throw core::InputError("--compare '" + c + "': expected key=value[,key=value...], e.g. mu=2.2");
+    core::apply_overrides(s, sets);
+    if (o.scene.seed) s.seed = *o.scene.seed;
+    if (o.scene.duration) s.duration = *o.scene.duration;
+    add(s, c);
+  }
+  for (const auto& f : o.compare_scene) {
+    core::Scene s = core::load_scene(f);
+    core::apply_overrides(s, o.scene.overrides);
+    if (o.scene.seed) s.seed = *o.scene.seed;
+    s.duration = base.duration;
+    add(s, fs::path(f).stem().string());
+  }
+  if (panels.size() > 4)
+    throw core::InputError("--compare: " + std::to_string(panels.size()) +
+                           " panels; a comparison has 2 to 4");
+  for (const auto& p : panels)
+    if (p.model.scene.dt != base.dt || p.model.scene.duration != base.duration)
+      throw core::InputError("--compare " + p.label +
+                             ": dt and duration must equal the base scene's (dt = " + num6(base.dt) +
+                             " s, duration = " + num6(base.duration) + " s): the panels run on one clock");
+  for (size_t k = 0; k < panels.size(); ++k) panels[k].subdir = "panel" + std::to_string(k) + "/";
+  return panels;
+}
+
+Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
+  Plan plan;
+  const core::Scene& scene = panels.front().model.scene;
+  record::VideoSettings& video = plan.video;
+  render::parse_size(o.size, "--size", video.width, video.height);
+  video.fps = o.fps;
+  video.crf = o.crf;
+  video.preset = o.preset;
+  if (!o.no_movie) record::validate(video);
+  if (!(o.speed > 0) || o.speed > 1000)
+    throw core::InputError("--speed " + num6(o.speed) +
+                           ": allowed range is (0, 1000] simulated s per video s");
+  if (!(o.slowmo >= 1) || o.slowmo > 100)
+    throw core::InputError("--slowmo " + num6(o.slowmo) + ": allowed range is 1 (off) to 100");
+  if (o.fps < 1 || o.fps > 240)
+    throw core::InputError("--fps " + std::to_string(o.fps) + ": allowed range is 1 to 240");
+  plan.clock = FrameClock::video(scene.dt, o.fps, o.speed, o.slowmo);
+  video.frame_rate = plan.clock.video_fps;
+  if (o.png_every < 0)
+    throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
+  if (o.no_movie && o.png_every == 0)
+    throw core::InputError("--no-movie without --png-every would record nothing");
+  plan.style.palette = render::parse_palette(o.palette);
+  plan.style.color = render::parse_color_mode(o.color);
+  plan.style.transparent = o.transparent;
+  plan.overlay = render::parse_overlay(o.overlay);
+  const core::Setup& setup = panels.front().model.setup;
+  o.looks.apply(setup.n_total, o.transparent, plan.style, plan.overlay);
+  // The information box goes to the corner of each panel that covers the least of the container and its
+  // grains (below the outlet in the default split view), as in the windows; it stays there unless another
+  // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
+  // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
+  plan.overlay.place_clear = !plan.overlay.plot;
+  const render::CameraSpec camera = render::parse_camera(o.camera);
+  if (!o.camera_path.empty()) plan.path = render::parse_camera_path(o.camera_path);
+  if (!o.freeze.empty()) {
+    const size_t colon = o.freeze.find(':');
+    plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
+                                       colon == std::string::npos ? "" : o.freeze.substr(colon + 1),
+                                       "--freeze " + o.freeze, "clog:SECONDS or rule:SECONDS");
+    if (plan.freeze.at == render::Freeze::At::Rule && !setup.clog_rule)
+      throw core::InputError(
+          "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
+  }
+  plan.style.colormap = render::parse_colormap(o.colormap);
+  if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
+    throw core::InputError("--displacement-from " + num6(o.displacement_from) +
+                           ": allowed range is 0 to 1e6 s");
+  if (o.displacement_from > 0 && plan.style.color != render::ColorMode::Displacement)
+    throw core::InputError("--displacement-from applies to --color displacement, not " + o.color);
+  plan.style.displacement_from = o.displacement_from;
+  const bool look_ahead = o.color_max == "auto" && (plan.style.color == render::ColorMode::Speed ||
+                                                    plan.style.color == render::ColorMode::Force);
+  if (!o.color_max.empty() && !look_ahead) {
+    try {
+      render::set_color_range(plan.style, o.color_max);
+    } catch (const core::InputError& e) {
+      throw core::InputError("--color-max " + o.color_max + ": " + e.what());
+    }
+  }
+  double top = 0;
+  // Panels side by side, equal widths, the same camera (and so the same scales) in each.
+  const size_t n_panels = panels.size();
+  const int panel_w = video.width / static_cast<int>(n_panels);
+  for (size_t k = 0; k < n_panels; ++k) {
+    Panel& p = panels[k];
+    p.geo = p.model.setup.geo;
+    p.views = render::layout_views(camera, p.geo, panel_w, video.height);
+    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
+    p.odata = render::overlay_data_for(p.model);
+    if (n_panels > 1) {
+      p.odata.title = p.replay ? p.label : p.label + "  |  " + p.odata.title;
+      p.odata.panel_x = static_cast<int>(k) * panel_w;
+      p.odata.panel_w = panel_w;
+    }
+  }
+  // The look-ahead last: everything it could be refused for has been checked.
+  if (look_ahead) {
+    // The same scale in every panel: the largest of the panels' own.
+    for (const auto& p : panels)
+      top = std::max(
+          top, color_scale_from_data(p.model, plan.style.color == render::ColorMode::Force, 2.0, !o.quiet));
+    if (!o.quiet)
+      std::fprintf(stderr, "siloscope: --color-max auto: %s %s (99th percentile over the first 2 s)\n",
+                   num6(top).c_str(), plan.style.color == render::ColorMode::Force ? "N" : "m/s");
+  }
+  if (top > 0)
+    (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
+  o.looks.resolve_tags(panels.front().model, plan.style, o.quiet);
+  return plan;
+}
+
+}  // namespace app

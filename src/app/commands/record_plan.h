@@ -1,0 +1,71 @@
+// What `record` is asked for and what it plans from it, checked before any work: the options, the panels (one
+// scene, or a comparison of 2 to 4 on one clock, or a run played back beside the simulation) and the plan
+// (the video, the frame clock, the style, the overlay, the camera's path, the freezes). cmd_record.cpp runs
+// it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/services/cli.h"
+#include "app/services/looks.h"
+#include "app/services/recording.h"
+#include "app/services/replay.h"
+#include "app/services/session.h"
+#include "core/geometry.h"
+#include "core/model.h"
+#include "record/mp4.h"
+#include "render/camera.h"
+#include "render/overlay.h"
+
+namespace app {
+
+struct RecordOptions {
+  SceneOptions scene;
+  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species",
+                   overlay = "all";
+  int fps = 30, crf = 20, png_every = 0;
+  double speed = 1.0, slowmo = 1.0;
+  std::string color_max;  // the colour scale: MAX or MIN:MAX; "": the fixed default; "auto"
+  std::string colormap = "viridis";
+  std::string camera_path;                          // key frames T:CAMERA,... (render/camera.h)
+  std::string freeze;                               // EVENT:SECONDS, EVENT clog or rule
+  double displacement_from = 0;                     // s: --color displacement measures from here
+  std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
+  std::string compare_run;  // a recorded or imported run played back beside the simulation
+  std::string preset = "veryfast";
+  LookOptions looks;  // background, text size, force chains, tracked grains
+  bool transparent = false, no_movie = false, force = false, quiet = false;
+};
+
+// One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
+struct Panel {
+  core::Model model;  // the panel's scene, compiled once
+  std::string label;  // what differs, e.g. "mu=2.2" (empty for a single movie)
+  core::Geometry geo;
+  std::vector<render::View> views;
+  render::OverlayData odata;
+  EventMarks marks;
+  std::string subdir;              // inside NAME/: "" for one panel, "panelK/" for a comparison
+  std::shared_ptr<Replay> replay;  // --compare-run: this panel plays a run back (always the last panel)
+};
+
+// The panels: the base scene alone, or one per --compare / --compare-scene (with a single one, the base scene
+// is the first panel so that the comparison has two sides).
+std::vector<Panel> make_panels(const RecordOptions& o);
+
+// Everything the user typed, checked before any work starts: the video, the clock, the style, the overlay and
+// each panel's views.
+struct Plan {
+  record::VideoSettings video;
+  FrameClock clock;
+  render::Style style;
+  render::OverlayOptions overlay;
+  render::CameraPath path;  // a camera move (empty: the camera stands)
+  render::Freeze freeze;    // --freeze EVENT:SECONDS (off: none)
+};
+
+Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels);
+
+}  // namespace app
