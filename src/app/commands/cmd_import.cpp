@@ -81,6 +81,64 @@ std::string clog_arches_csv(const lab::Imported& im, const std::vector<std::stri
   return out;
 }
 
+// Every setting and count of the import, for the run's metadata ([run]).
+io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, const lab::Units& units,
+                       const std::string& calibration, const lab::ImportReport& r) {
+  return {{"imported", true},
+          {"imported_from", o.tracks},
+          {"imported_hash", io::file_hash(o.tracks)},
+          {"columns", tracks.columns_used},
+          {"calibration", calibration},
+          {"scale_m_per_px", units.scale},
+          {"origin_x", units.origin_x},
+          {"origin_y", units.origin_y},
+          {"contact_tolerance", o.import.contact_tolerance},
+          {"max_gap_frames", static_cast<long>(o.import.max_gap)},
+          {"join_distance_diameters", o.import.join_distance},
+          {"frames", r.frames},
+          {"rows", r.rows},
+          {"tracks", r.tracks},
+          {"grains", r.grains},
+          {"ids_joined", r.joined},
+          {"positions_interpolated", r.interpolated},
+          {"gaps_too_long", r.long_gaps},
+          {"exits_seen_below_outlet", r.exits_below},
+          {"exits_from_tracks_ending_in_outlet", r.exits_lost},
+          {"tracks_leaving_view", r.left_view},
+          {"tracks_entering_view", r.entered},
+          {"frame_interval_median_s", r.interval_median},
+          {"frame_interval_min_s", r.interval_min},
+          {"frame_interval_max_s", r.interval_max},
+          {"frame_interval_changes", r.interval_changes},
+          {"time_offset_s", r.time_offset},
+          {"frames_with_arch", r.frames_with_arch}};
+}
+
+// What the import did, on the terminal.
+void print_import(const lab::Imported& im, const ImportCliOptions& o, const fs::path& out) {
+  const lab::ImportReport& r = im.report;
+  std::printf("read        %ld rows, %ld frames (%s s apart", r.rows, r.frames,
+              core::format_g(r.interval_median, 4).c_str());
+  if (r.interval_changes)
+    std::printf("; %ld intervals differ by > 1%%: %s to %s s", r.interval_changes,
+                core::format_g(r.interval_min, 4).c_str(), core::format_g(r.interval_max, 4).c_str());
+  std::printf("), %ld tracks\n", r.tracks);
+  std::printf(
+      "grains      %ld (%ld ids joined where a track broke off; %ld positions filled in gaps of <= %d "
+      "frames; %ld longer gaps left empty)\n",
+      r.grains, r.joined, r.interpolated, o.import.max_gap, r.long_gaps);
+  std::printf("field       %ld tracks entered after the first frame, %ld left it away from the outlet\n",
+              r.entered, r.left_view);
+  std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
+              im.events.exits.size(), r.exits_below, r.exits_lost);
+  std::printf(
+      "clogs       %zu (%zu with an arch; arches in %ld of %ld frames, contact gap <= %s of a diameter)\n",
+      im.events.clogs.size(), im.clog_arches.size(), r.frames_with_arch, r.frames,
+      core::format_g(o.import.contact_tolerance, 3).c_str());
+  std::printf("written     %s (trajectory.sstraj, exits, clogs, clog_arches, summary, metadata)\n",
+              out.string().c_str());
+}
+
 int import_run(ImportCliOptions o) {
   if (!(o.import.contact_tolerance >= 0 && o.import.contact_tolerance <= 0.5))
     throw core::InputError("--contact-tolerance " + core::format_g(o.import.contact_tolerance) +
@@ -153,34 +211,7 @@ int import_run(ImportCliOptions o) {
   io::OutputDir dir(o.out, o.force, io::DirKind::Run);
   io::RunInfo info;
   info.command = command_line();
-  info.facts = {{"imported", true},
-                {"imported_from", o.tracks},
-                {"imported_hash", io::file_hash(o.tracks)},
-                {"columns", tracks.columns_used},
-                {"calibration", calibration},
-                {"scale_m_per_px", units.scale},
-                {"origin_x", units.origin_x},
-                {"origin_y", units.origin_y},
-                {"contact_tolerance", o.import.contact_tolerance},
-                {"max_gap_frames", static_cast<long>(o.import.max_gap)},
-                {"join_distance_diameters", o.import.join_distance},
-                {"frames", r.frames},
-                {"rows", r.rows},
-                {"tracks", r.tracks},
-                {"grains", r.grains},
-                {"ids_joined", r.joined},
-                {"positions_interpolated", r.interpolated},
-                {"gaps_too_long", r.long_gaps},
-                {"exits_seen_below_outlet", r.exits_below},
-                {"exits_from_tracks_ending_in_outlet", r.exits_lost},
-                {"tracks_leaving_view", r.left_view},
-                {"tracks_entering_view", r.entered},
-                {"frame_interval_median_s", r.interval_median},
-                {"frame_interval_min_s", r.interval_min},
-                {"frame_interval_max_s", r.interval_max},
-                {"frame_interval_changes", r.interval_changes},
-                {"time_offset_s", r.time_offset},
-                {"frames_with_arch", r.frames_with_arch}};
+  info.facts = import_facts(o, tracks, units, calibration, r);
   // No simulation to watch: the health table says so (readers of runs require one).
   info.health = {{"status", "imported"}, {"warnings", 0L}, {"ballistic", false}};
   const std::string metadata = io::metadata_toml(model, info);
@@ -214,28 +245,7 @@ int import_run(ImportCliOptions o) {
   io::write_file_atomic(dir.file("metadata.toml"), metadata);
   dir.commit();
 
-  if (!o.quiet) {
-    std::printf("read        %ld rows, %ld frames (%s s apart", r.rows, r.frames,
-                core::format_g(r.interval_median, 4).c_str());
-    if (r.interval_changes)
-      std::printf("; %ld intervals differ by > 1%%: %s to %s s", r.interval_changes,
-                  core::format_g(r.interval_min, 4).c_str(), core::format_g(r.interval_max, 4).c_str());
-    std::printf("), %ld tracks\n", r.tracks);
-    std::printf(
-        "grains      %ld (%ld ids joined where a track broke off; %ld positions filled in gaps of <= %d "
-        "frames; %ld longer gaps left empty)\n",
-        r.grains, r.joined, r.interpolated, o.import.max_gap, r.long_gaps);
-    std::printf("field       %ld tracks entered after the first frame, %ld left it away from the outlet\n",
-                r.entered, r.left_view);
-    std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
-                im.events.exits.size(), r.exits_below, r.exits_lost);
-    std::printf(
-        "clogs       %zu (%zu with an arch; arches in %ld of %ld frames, contact gap <= %s of a diameter)\n",
-        im.events.clogs.size(), im.clog_arches.size(), r.frames_with_arch, r.frames,
-        core::format_g(o.import.contact_tolerance, 3).c_str());
-    std::printf("written     %s (trajectory.sstraj, exits, clogs, clog_arches, summary, metadata)\n",
-                out.string().c_str());
-  }
+  if (!o.quiet) print_import(im, o, out);
   return 0;
 }
 }  // namespace
