@@ -29,6 +29,38 @@ namespace {
 const char* kFont = SILOSCOPE_FONT;  // found at build time
 }  // namespace
 
+TimedNote parse_note(const std::string& spec, const std::string& option) {
+  // T0:T1:X,Y:TEXT (the text may hold colons)
+  auto fail = [&](const std::string& why) -> TimedNote {
+    throw core::InputError(
+        option + " '" + spec + "': " + why +
+        " (expected T0:T1:X,Y:TEXT: from T0 to T1 s, an arrow to X,Y m, e.g. 2:6:0,0.3:the arch)");
+  };
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const size_t colon = spec.find(':', start);
+    if (colon == std::string::npos) return fail("missing a field");
+    parts.push_back(spec.substr(start, colon - start));
+    start = colon + 1;
+  }
+  TimedNote n;
+  n.text = spec.substr(start);
+  if (n.text.empty()) return fail("the text is empty");
+  auto number = [&](const std::string& s, double& out) {
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return !s.empty() && *end == '\0' && std::isfinite(out);
+  };
+  const size_t comma = parts[2].find(',');
+  if (!number(parts[0], n.t0) || !number(parts[1], n.t1)) return fail("T0 and T1 must be numbers");
+  if (!(n.t0 >= 0) || !(n.t1 > n.t0)) return fail("expected 0 <= T0 < T1");
+  if (comma == std::string::npos || !number(parts[2].substr(0, comma), n.x) ||
+      !number(parts[2].substr(comma + 1), n.y))
+    return fail("X,Y must be two numbers (m)");
+  return n;
+}
+
 OverlayOptions parse_overlay(const std::string& spec) {
   if (spec == "all") return {};
   OverlayOptions o = OverlayOptions::none();
@@ -155,7 +187,7 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
                    const core::Geometry* geo, const Annotations* notes) {
   static const Annotations none;
   const Annotations& marks = notes ? *notes : none;
-  if (!o.any() && marks.selected < 0) return;
+  if (!o.any() && marks.selected < 0 && marks.texts.empty()) return;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(static_cast<ImGuiContext*>(ctx_));
   ensure_font(h, o.font_scale);
@@ -196,6 +228,7 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
 
   if (o.zoombox && views.size() > 1) draw_zoombox(views, h);
   if (o.events) draw_events(notes, views, em);
+  if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   if (o.ids || notes.selected >= 0) draw_ids(f, views, o.ids, notes.selected, em);
   // The information box first: the plot, the colour bar and the scale bar are placed clear of it.
   info_shown_ = false;

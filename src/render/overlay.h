@@ -59,7 +59,21 @@ struct Annotations {
   std::string caption;        // e.g. "arch removed (5 s rule)"
   double slowdown = 1;        // > 1: the video runs this many times slower than real time
   int selected = -1;          // a grain asked about in the inspector: ringed and labelled with its id
+  // A user's notes (record --annotate): a text in a box with an arrow to a point (m, container frame).
+  struct Text {
+    float x, y;
+    std::string text;
+  };
+  std::vector<Text> texts;
 };
+
+// A note shown from t0 to t1 (s of simulated time) at a point: "T0:T1:X,Y:TEXT" (record --annotate).
+struct TimedNote {
+  double t0 = 0, t1 = 0, x = 0, y = 0;
+  std::string text;
+};
+// Throws core::InputError naming `option`, the note and what is allowed.
+TimedNote parse_note(const std::string& spec, const std::string& option);
 
 struct OverlayData {
   double clog_timeout = 5;       // s
@@ -116,6 +130,7 @@ class Overlay {
   void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
   void draw_zoombox(const std::vector<View>& views, int h);
   void draw_events(const Annotations& notes, const std::vector<View>& views, float em);
+  void draw_texts(const Annotations& notes, const std::vector<View>& views, float em);
   void draw_colorbar(const OverlayOptions& o, const std::vector<View>& views, const Style& style, float em);
   void draw_info(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                  const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "render/overlay.h"
@@ -172,6 +173,40 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
                         IM_COL32(20, 20, 20, 220), 0.3f * em);
       dl->AddText(ImVec2(x + 0.4f * em, y + 0.15f * em), IM_COL32(255, 220, 0, 255), badge);
     }
+  }
+}
+
+void Overlay::draw_texts(const Annotations& notes, const std::vector<View>& views, float em) {
+  // Each note in a dark box, up and to the right of its point (left or down where the view ends), with an
+  // arrow from the box to the point, in every view that shows the point.
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImU32 ink = IM_COL32(255, 255, 255, 255), box = IM_COL32(25, 25, 25, 225),
+              arrow = IM_COL32(255, 200, 0, 255);
+  for (const auto& v : views) {
+    const float x0 = static_cast<float>(v.rect.x), y0 = static_cast<float>(v.rect.y);
+    const float x1 = x0 + static_cast<float>(v.rect.w), y1 = y0 + static_cast<float>(v.rect.h);
+    dl->PushClipRect(ImVec2(x0, y0), ImVec2(x1, y1));
+    for (const auto& t : notes.texts) {
+      const core::Vec2 c = v.world_to_pixel({t.x, t.y});
+      const float px = static_cast<float>(c.x), py = static_cast<float>(c.y);
+      if (px < x0 || px > x1 || py < y0 || py > y1) continue;
+      const ImVec2 size = ImGui::CalcTextSize(t.text.c_str());
+      const float w = size.x + 0.8f * em, h = size.y + 0.4f * em, gap = 2.5f * em;
+      const float dx = px + gap + w <= x1 ? gap : -gap - w;  // right of the point, or left
+      const float dy = py - gap - h >= y0 ? -gap - h : gap;  // above it, or below
+      const float bx = px + dx, by = py + dy;
+      // The arrow from the box's nearest corner to the point, with its head at the point.
+      const ImVec2 from(dx > 0 ? bx : bx + w, dy < 0 ? by + h : by), to(px, py);
+      const float len = std::hypot(to.x - from.x, to.y - from.y), ux = (to.x - from.x) / len,
+                  uy = (to.y - from.y) / len, head = 0.6f * em, width = std::max(2.0f, 0.12f * em);
+      const ImVec2 base(to.x - ux * head, to.y - uy * head);
+      dl->AddLine(from, base, arrow, width);
+      dl->AddTriangleFilled(to, ImVec2(base.x - uy * 0.45f * head, base.y + ux * 0.45f * head),
+                            ImVec2(base.x + uy * 0.45f * head, base.y - ux * 0.45f * head), arrow);
+      dl->AddRectFilled(ImVec2(bx, by), ImVec2(bx + w, by + h), box, 0.25f * em);
+      dl->AddText(ImVec2(bx + 0.4f * em, by + 0.2f * em), ink, t.text.c_str());
+    }
+    dl->PopClipRect();
   }
 }
 

@@ -46,7 +46,8 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
       }
       renderer_->paint(list, *p.views, panel_style, w, h);
     }
-    if (!overlay.any()) continue;  // no overlay object (and no ImGui context) for clean frames
+    // No overlay object (and no ImGui context) for clean frames: nothing to show and no note of the user's.
+    if (!overlay.any() && !(p.notes && !p.notes->texts.empty())) continue;
     while (overlays_.size() <= k) overlays_.push_back(std::make_unique<Overlay>());
     overlays_[k]->draw(*p.frame, *p.data, overlay, *p.views, panel_style, overlay_w < 0 ? w : overlay_w, h,
                        p.geometry, p.notes);

@@ -327,3 +327,36 @@ TEST_CASE("gallery and timeline refuse a run whose metadata.toml was cut or edit
     CHECK_FALSE(fs::exists(d / (cmd + ".svg")));
   }
 }
+
+TEST_CASE(
+    "record --annotate: a note with an arrow to its point while its time lasts; malformed notes refused",
+    "[app][record]") {
+  const fs::path d = temp_dir("annotate");
+  auto yellow_pixels = [](const fs::path& png) {
+    int w = 0, h = 0, c = 0;
+    unsigned char* px = stbi_load(png.c_str(), &w, &h, &c, 3);
+    REQUIRE(px);
+    long n = 0;
+    for (long i = 0; i < static_cast<long>(w) * h; ++i)
+      n += px[3 * i] > 230 && px[3 * i + 1] > 170 && px[3 * i + 1] < 230 && px[3 * i + 2] < 60;
+    stbi_image_free(px);
+    return n;
+  };
+  REQUIRE(cli("record " + kScene +
+              " --duration 1 --size 320x180 --camera outlet --overlay none --arch-halo off --png-every 10 "
+              "--annotate 0.5:1:0,0.3:here --quiet --out " +
+              (d / "a").string())
+              .code == 0);
+  // Frame 0 (t = 0) is before the note; frame 20 (t = 0.66 s) shows its arrow in the note's yellow.
+  CHECK(yellow_pixels(d / "a" / "frames" / "frame_000000.png") == 0);
+  CHECK(yellow_pixels(d / "a" / "frames" / "frame_000020.png") > 10);
+  CHECK(slurp(d / "a" / "metadata.toml").find("annotate = [\"0.5:1:0,0.3:here\"]") != std::string::npos);
+  for (const std::string bad : {"1:0.5:0,0:x", "0:1:0:x", "0:1:0,0:", "a:1:0,0:x"}) {
+    const auto r = cli("record " + kScene + " --duration 1 --size 320x180 --quiet --annotate " + bad +
+                       " --out " + (d / "b").string());
+    INFO(bad << "\n" << r.output);
+    CHECK(r.code == 2);
+    CHECK(r.output.find("--annotate '" + bad + "'") != std::string::npos);
+    CHECK(!fs::exists(d / "b"));
+  }
+}

@@ -113,6 +113,11 @@ class MovieSink : public Sink {
       }
       freeze = freeze || freezes(tick.frames[i], tick.events[i]);
     }
+    // The user's notes due at this time, in every panel.
+    for (auto& n : pf.notes)
+      for (const auto& note : plan_.notes)
+        if (tick.frames[0].t >= note.t0 - 1e-9 && tick.frames[0].t <= note.t1 + 1e-9)
+          n.texts.push_back({static_cast<float>(note.x), static_cast<float>(note.y), note.text});
     last_t = tick.frames[0].t;
     slow_frames += tick.slow;
     sim_seconds += since(t0_);

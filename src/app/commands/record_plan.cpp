@@ -173,6 +173,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   }
   if (top > 0)
     (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
+  plan.notes = o.looks.notes();
   o.looks.resolve_tags(panels.front().model, plan.style, o.quiet);
   return plan;
 }

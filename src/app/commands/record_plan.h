@@ -62,8 +62,9 @@ struct Plan {
   FrameClock clock;
   render::Style style;
   render::OverlayOptions overlay;
-  render::CameraPath path;  // a camera move (empty: the camera stands)
-  render::Freeze freeze;    // --freeze EVENT:SECONDS (off: none)
+  render::CameraPath path;               // a camera move (empty: the camera stands)
+  render::Freeze freeze;                 // --freeze EVENT:SECONDS (off: none)
+  std::vector<render::TimedNote> notes;  // --annotate
 };
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels);

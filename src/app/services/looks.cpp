@@ -40,6 +40,9 @@ void LookOptions::add_to(CLI::App& cmd) {
       "--chain-colormap", chain_colormap,
       "the force chains' colour map: viridis, magma, inferno or cividis (default: the grains' map, "
       "or magma when the grains are coloured on a viridis scale, so chains stand out)");
+  cmd.add_option("--annotate", annotate,
+                 "T0:T1:X,Y:TEXT: a note in a box with an arrow to the point X,Y (m, the outlet's centre at "
+                 "0,0), shown from T0 to T1 s (repeatable; e.g. 2:6:0,0.2:the arch forms)");
   cmd.add_option("--arch-halo", arch_halo, "on or off: the halo and bonds that mark the blocking arch")
       ->capture_default_str();
   cmd.add_option("--background", background, "white, or dark (light walls and text: projectors, dark slides)")
@@ -75,6 +78,7 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
     throw core::InputError("--arch-halo " + arch_halo + ": expected on or off");
   style.show_arch = arch_halo == "on";
   if (!chain_colormap.empty()) style.chain_colormap = render::parse_colormap(chain_colormap);
+  (void)notes();  // every note's form checked now, before any work
   if (transparent && style.dark)
     throw core::InputError(
         "--background dark and --transparent: choose one (a transparent frame has no background)");
@@ -135,10 +139,17 @@ void LookOptions::resolve_tags(const core::Model& model, render::Style& style, b
   }
 }
 
+std::vector<render::TimedNote> LookOptions::notes() const {
+  std::vector<render::TimedNote> out;
+  for (const auto& a : annotate) out.push_back(render::parse_note(a, "--annotate"));
+  return out;
+}
+
 io::Facts LookOptions::facts(const render::Style& style) const {
   std::string ids;
   for (int id : style.tracked) ids += (ids.empty() ? "" : ",") + std::to_string(id);
-  return {{"background", background},
+  return {{"annotate", annotate},
+          {"background", background},
           {"font_scale", font_scale},
           {"tracked_grains", ids},
           {"track_region", track_region},
