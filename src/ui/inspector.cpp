@@ -84,9 +84,12 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   const core::Frame ref = reference_frame();
   const core::Frame f = current();
   const auto vs = views(w, h);
-  render::Annotations notes;
-  notes.selected = static_cast<int>(selected);
-  return p.paint({{&f, &geo_, &vs, &overlay_data, &notes, ref.particles.empty() ? nullptr : &ref}}, style, o,
+  render::Annotations marks;
+  marks.selected = static_cast<int>(selected);
+  for (const auto& n : notes)
+    if (f.t >= n.t0 - 1e-9 && f.t <= n.t1 + 1e-9)
+      marks.texts.push_back({static_cast<float>(n.x), static_cast<float>(n.y), n.text});
+  return p.paint({{&f, &geo_, &vs, &overlay_data, &marks, ref.particles.empty() ? nullptr : &ref}}, style, o,
                  w, h);
 }
 

@@ -13,6 +13,8 @@
 //   export clog FILE.mp4 [WxH] [FPS]       the clog at or after this frame, 1 s before to 0.5 s after
 //   (FILE may hold {frame} and {t}, e.g. snapshot arch-{frame}.png; an existing file is never written over)
 //   select ID|off                ask about a grain (ringed; its details in the panel)
+//   annotate T0:T1:X,Y:TEXT|off  a note with an arrow to X,Y (m) in pictures from T0 to T1 s (as record's
+//                                --annotate)
 //   print [grain|arch]           frame, time, clog timer and arch members (the selected grain's details; the
 //                                arch member by member) on standard output
 #pragma once
@@ -154,8 +156,9 @@ class Inspector {
   // colouring is not by displacement.
   core::Frame reference_frame() const;
 
-  render::CameraSpec camera;  // split
-  long selected = -1;         // the grain asked about (select_grain), or -1
+  render::CameraSpec camera;             // split
+  long selected = -1;                    // the grain asked about (select_grain), or -1
+  std::vector<render::TimedNote> notes;  // script `annotate`: shown in pictures while their time lasts
   // A camera move (script `camera-path`): while set, pictures follow it by each frame's time (zoom and pan
   // do not apply).
   render::CameraPath path;

@@ -119,6 +119,15 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       return show_arch(a[1] == "on");
     }
     if (cmd == "track") return track_command(a);
+    if (cmd == "annotate") {
+      // The note's text may hold spaces: everything after the command word.
+      if (a.size() < 2) throw core::InputError("usage: annotate T0:T1:X,Y:TEXT | annotate off");
+      if (a.size() == 2 && a[1] == "off") return notes.clear();
+      std::string spec;
+      for (size_t k = 1; k < a.size(); ++k) spec += (k > 1 ? " " : "") + a[k];
+      notes.push_back(render::parse_note(spec, "annotate"));
+      return;
+    }
     if (cmd == "select") {
       need(1, "select ID|off");
       return select_grain(a[1] == "off" ? -1 : to_long(a[1], "grain id"));
