@@ -210,6 +210,10 @@ void check_obstacle(const Scene& s, const Setup& st) {
 
 }  // namespace
 
+bool parse_hex_color(const std::string& text, std::array<float, 3>& rgb) {
+  return parse_color(text, rgb);
+}
+
 double SpeciesDef::extent_factor() const {
   // A regular n-gon of circumradius R has area (n/2) R^2 sin(2 pi / n); equal to pi r^2.
   return polygon_extent(sides);

@@ -81,6 +81,9 @@ Setup resolve(const Scene& s);
 // A sin(omega t) along the vibration's axis; zero before the opening and without vibration.
 Vec2 container_offset(const Setup& setup, double t);
 
+// "#rrggbb" into sRGB components in [0, 1]; false when the text is not that.
+bool parse_hex_color(const std::string& text, std::array<float, 3>& rgb);
+
 // H_t: hopper_height, or from hopper_angle when that is set.
 double hopper_height_of(const Scene& s);
 // The largest species' mean radius, m (the shorthand: radius_original): what cameras, slabs and the scale bar

@@ -360,3 +360,31 @@ TEST_CASE(
     CHECK(!fs::exists(d / "b"));
   }
 }
+
+TEST_CASE("record --species-color: any species' colour, the paper's two included, in grains and legend",
+          "[app][record]") {
+  const fs::path d = temp_dir("species_color");
+  REQUIRE(cli("record " + kScene +
+              " --duration 0.2 --size 320x180 --camera outlet --png-every 1 --species-color original=#00ff00 "
+              "--quiet --out " +
+              (d / "a").string())
+              .code == 0);
+  int w = 0, h = 0, c = 0;
+  unsigned char* px = stbi_load((d / "a" / "frames" / "frame_000000.png").c_str(), &w, &h, &c, 3);
+  REQUIRE(px);
+  long green = 0;
+  for (long i = 0; i < static_cast<long>(w) * h; ++i)
+    green += px[3 * i] < 40 && px[3 * i + 1] > 215 && px[3 * i + 2] < 40;
+  stbi_image_free(px);
+  CHECK(green > 500);  // the original disks, now green
+  CHECK(slurp(d / "a" / "metadata.toml").find("species_colors = [\"original=#00ff00\"]") !=
+        std::string::npos);
+  const auto bad = cli("record " + kScene + " --duration 0.2 --quiet --species-color big=#00ff00 --out " +
+                       (d / "b").string());
+  CHECK(bad.code == 2);
+  CHECK(bad.output.find("no species named 'big' (this scene has original, added)") != std::string::npos);
+  const auto hex = cli("record " + kScene + " --duration 0.2 --quiet --species-color added=green --out " +
+                       (d / "b").string());
+  CHECK(hex.code == 2);
+  CHECK(hex.output.find("the colour is not #rrggbb") != std::string::npos);
+}

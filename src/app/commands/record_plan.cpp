@@ -155,6 +155,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     p.views = render::layout_views(camera, p.geo, panel_w, video.height);
     for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
     p.odata = render::overlay_data_for(p.model);
+    o.looks.color_species(p.odata);
     if (n_panels > 1) {
       p.odata.title = p.replay ? p.label : p.label + "  |  " + p.odata.title;
       p.odata.panel_x = static_cast<int>(k) * panel_w;

@@ -8,6 +8,7 @@
 #include "app/services/recording.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/setup.h"
 
 namespace app {
 
@@ -43,6 +44,9 @@ void LookOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--annotate", annotate,
                  "T0:T1:X,Y:TEXT: a note in a box with an arrow to the point X,Y (m, the outlet's centre at "
                  "0,0), shown from T0 to T1 s (repeatable; e.g. 2:6:0,0.2:the arch forms)");
+  cmd.add_option("--species-color", species_color,
+                 "NAME=#rrggbb: a species' colour, the paper's original and added too (repeatable; e.g. "
+                 "original=#444444)");
   cmd.add_option("--arch-halo", arch_halo, "on or off: the halo and bonds that mark the blocking arch")
       ->capture_default_str();
   cmd.add_option("--background", background, "white, or dark (light walls and text: projectors, dark slides)")
@@ -139,6 +143,28 @@ void LookOptions::resolve_tags(const core::Model& model, render::Style& style, b
   }
 }
 
+void LookOptions::color_species(render::OverlayData& d) const {
+  for (const auto& spec : species_color) {
+    const size_t eq = spec.find('=');
+    const std::string name = spec.substr(0, eq);
+    std::string names;
+    for (const auto& n : d.species_names) names += (names.empty() ? "" : ", ") + n;
+    if (eq == std::string::npos)
+      throw core::InputError("--species-color '" + spec + "': expected NAME=#rrggbb (species: " + names +
+                             ")");
+    std::array<float, 3> rgb{};
+    if (!core::parse_hex_color(spec.substr(eq + 1), rgb))
+      throw core::InputError("--species-color '" + spec + "': the colour is not #rrggbb (hex), e.g. #2a9d8f");
+    const auto it = std::find(d.species_names.begin(), d.species_names.end(), name);
+    if (it == d.species_names.end())
+      throw core::InputError("--species-color '" + spec + "': no species named '" + name +
+                             "' (this scene has " + names + ")");
+    const size_t k = static_cast<size_t>(it - d.species_names.begin());
+    if (d.species_colors.size() < d.species_names.size()) d.species_colors.resize(d.species_names.size());
+    d.species_colors[k] = {rgb[0], rgb[1], rgb[2], 1};
+  }
+}
+
 std::vector<render::TimedNote> LookOptions::notes() const {
   std::vector<render::TimedNote> out;
   for (const auto& a : annotate) out.push_back(render::parse_note(a, "--annotate"));
@@ -149,6 +175,7 @@ io::Facts LookOptions::facts(const render::Style& style) const {
   std::string ids;
   for (int id : style.tracked) ids += (ids.empty() ? "" : ",") + std::to_string(id);
   return {{"annotate", annotate},
+          {"species_colors", species_color},
           {"background", background},
           {"font_scale", font_scale},
           {"tracked_grains", ids},

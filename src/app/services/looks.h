@@ -27,7 +27,8 @@ struct LookOptions {
   int track_arch = 0;              // K >= 1: the members of the K-th long-lasting arch (the rule removed)
   int track_clog = 0;              // K >= 1: the members of the arch standing as the K-th clog forms
   double trail_s = 2.0;
-  std::vector<std::string> annotate;  // "T0:T1:X,Y:TEXT": a note with an arrow, shown from T0 to T1 s
+  std::vector<std::string> annotate;       // "T0:T1:X,Y:TEXT": a note with an arrow, shown from T0 to T1 s
+  std::vector<std::string> species_color;  // "NAME=#rrggbb": a species' colour (the shorthand's too)
 
   void add_to(CLI::App& cmd);
   // Checked against a scene of n_grains grains (the tracked ids) and --transparent; throws core::InputError
@@ -39,6 +40,9 @@ struct LookOptions {
   // repeatable, so the recording shows these grains doing what the look-ahead saw); added to style.tracked.
   // Call after apply (which checks the options' form) and after every other check: it costs a simulation.
   void resolve_tags(const core::Model& model, render::Style& style, bool quiet) const;
+  // --species-color applied to a panel's overlay data (its species' colours, which the painter uses); throws
+  // core::InputError naming the option, the species the scene has and the colour's form.
+  void color_species(render::OverlayData& d) const;
   // The notes of --annotate, parsed (throws core::InputError naming the note).
   std::vector<render::TimedNote> notes() const;
 };
