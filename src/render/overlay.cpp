@@ -29,6 +29,15 @@ namespace {
 const char* kFont = SILOSCOPE_FONT;  // found at build time
 }  // namespace
 
+int parse_corner(const std::string& text, const std::string& option) {
+  const char* names[] = {"top-right", "top-left", "bottom-right", "bottom-left"};
+  if (text == "auto") return -1;
+  for (int k = 0; k < 4; ++k)
+    if (text == names[k]) return k;
+  throw core::InputError(option + " " + text +
+                         ": expected auto, top-right, top-left, bottom-right or bottom-left");
+}
+
 TimedNote parse_note(const std::string& spec, const std::string& option) {
   // T0:T1:X,Y:TEXT (the text may hold colons)
   auto fail = [&](const std::string& why) -> TimedNote {

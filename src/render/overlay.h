@@ -33,6 +33,9 @@ struct OverlayOptions {
   // corner.
   bool may_leave = false;
   double font_scale = 1.0;  // text size over the default (1/42 of the image height): 1.5-2 for projectors
+  // Where the information box goes: -1 as above (place_clear's choice, or top-right); else the user's corner,
+  // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (record --overlay-at).
+  int info_at = -1;
   static OverlayOptions none() {
     OverlayOptions o;
     o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
@@ -43,6 +46,9 @@ struct OverlayOptions {
            colorbar || ids;
   }
 };
+// "auto", "top-right", "top-left", "bottom-right" or "bottom-left" into OverlayOptions::info_at. Throws
+// core::InputError naming `option`.
+int parse_corner(const std::string& text, const std::string& option);
 // Parse "all", "none" or a comma list of
 // time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar,ids
 // ("all+plot" is all of the default elements and the plot). Throws core::InputError.

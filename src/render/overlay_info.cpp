@@ -166,7 +166,9 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
       return ImVec2(k % 2 == 0 ? right - pad : left + pad, k < 2 ? pad : bottom - pad);
     };
     auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
-    if (o.place_clear && info_w_ > 0) {
+    if (o.info_at >= 0 && o.info_at < 4) {
+      info_corner_ = o.info_at;  // the user's corner
+    } else if (o.place_clear && info_w_ > 0) {
       // Cost of corner k: the container under the box first (sampled every few pixels), then arch members,
       // then other disks.
       constexpr long kContainer = 1000000;

@@ -376,3 +376,38 @@ TEST_CASE("image sizes outside what GL allows are refused", "[render]") {
   CHECK_THROWS_AS(render::Target(0, 100), core::InputError);
   CHECK_THROWS_AS(render::Target(100000, 100), core::InputError);
 }
+
+TEST_CASE(
+    "the information box goes to the corner --overlay-at asks for in the corner asked for, whatever it "
+    "covers",
+    "[render]") {
+  auto& fx = fixture();
+  core::Frame f;
+  f.t = 1.0;
+  f.exits = {3, 1};
+  f.particles = {disk(0.0f, 0.3f, 0.065f, core::Species::Original)};
+  render::Style style;
+  constexpr int w = 640, h = 360;
+  const auto views = render::layout_views(render::parse_camera("outlet"), fx.geo, w, h);
+  render::Target target(w, h);
+  for (const char* corner : {"top-right", "top-left", "bottom-right", "bottom-left"}) {
+    render::OverlayOptions o = render::parse_overlay("time,counts,legend");
+    o.place_clear = true;  // what auto would do: overridden by the user's corner
+    o.info_at = render::parse_corner(corner, "--overlay-at");
+    render::Overlay overlay;
+    std::array<float, 4> r{};
+    for (int pass = 0; pass < 2; ++pass) {  // the first picture sizes the box, as in a movie
+      target.bind();
+      fx.renderer.draw(f, fx.geo, views, style, w, h);
+      overlay.draw(f, {}, o, views, style, w, h, &fx.geo);
+      r = overlay.info_rect();
+    }
+    INFO(corner);
+    const bool right = std::string(corner).find("right") != std::string::npos;
+    const bool top = std::string(corner).find("top") != std::string::npos;
+    CHECK((right ? r[2] > 0.9f * w : r[0] < 0.1f * w));
+    CHECK((top ? r[1] < 0.1f * h : r[3] > 0.9f * h));
+  }
+  CHECK_THROWS_WITH(render::parse_corner("middle", "--overlay-at"),
+                    Catch::Contains("expected auto, top-right, top-left, bottom-right or bottom-left"));
+}

@@ -44,6 +44,11 @@ void LookOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--annotate", annotate,
                  "T0:T1:X,Y:TEXT: a note in a box with an arrow to the point X,Y (m, the outlet's centre at "
                  "0,0), shown from T0 to T1 s (repeatable; e.g. 2:6:0,0.2:the arch forms)");
+  cmd.add_option(
+         "--overlay-at", overlay_at,
+         "the information box's corner: auto (where it covers the fewest grains), top-right, top-left, "
+         "bottom-right or bottom-left")
+      ->capture_default_str();
   cmd.add_option("--species-color", species_color,
                  "NAME=#rrggbb: a species' colour, the paper's original and added too (repeatable; e.g. "
                  "original=#444444)");
@@ -83,6 +88,7 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   style.show_arch = arch_halo == "on";
   if (!chain_colormap.empty()) style.chain_colormap = render::parse_colormap(chain_colormap);
   (void)notes();  // every note's form checked now, before any work
+  overlay.info_at = render::parse_corner(overlay_at, "--overlay-at");
   if (transparent && style.dark)
     throw core::InputError(
         "--background dark and --transparent: choose one (a transparent frame has no background)");
@@ -176,6 +182,7 @@ io::Facts LookOptions::facts(const render::Style& style) const {
   for (int id : style.tracked) ids += (ids.empty() ? "" : ",") + std::to_string(id);
   return {{"annotate", annotate},
           {"species_colors", species_color},
+          {"overlay_at", overlay_at},
           {"background", background},
           {"font_scale", font_scale},
           {"tracked_grains", ids},
