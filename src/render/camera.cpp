@@ -205,9 +205,22 @@ View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) cons
   View a = at(k - 1);
   const View b = at(k);
   const double u = (t - keys[k - 1].t) / (keys[k].t - keys[k - 1].t), s = u * u * (3 - 2 * u);
-  a.cam.cx += s * (b.cam.cx - a.cam.cx);
-  a.cam.cy += s * (b.cam.cy - a.cam.cy);
-  a.cam.height *= std::pow(b.cam.height / a.cam.height, s);
+  const double ha = a.cam.height, hb = b.cam.height;
+  if (std::fabs(hb - ha) <= 1e-9 * ha) {  // a pan: the centre moves, the size stays
+    a.cam.cx += s * (b.cam.cx - a.cam.cx);
+    a.cam.cy += s * (b.cam.cy - a.cam.cy);
+  } else {
+    // A zoom at a steady rate about the one point that sits at the same place in both keys' pictures: every
+    // point inside both keys' windows stays inside the picture throughout (its place in the picture moves
+    // monotonically from one key's to the other's), so a glide from the hopper to the outlet never loses the
+    // outlet (centre and height interpolated apart, it dropped below the frame half way).
+    const double h = ha * std::pow(hb / ha, s);
+    const double px = (a.cam.cx * hb - b.cam.cx * ha) / (hb - ha),
+                 py = (a.cam.cy * hb - b.cam.cy * ha) / (hb - ha);
+    a.cam.cx = px + (a.cam.cx - px) * h / ha;
+    a.cam.cy = py + (a.cam.cy - py) * h / ha;
+    a.cam.height = h;
+  }
   a.name = "path";
   return a;
 }

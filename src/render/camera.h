@@ -61,9 +61,10 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
 
 // A camera move: key frames "T:CAMERA,T:CAMERA,..." (simulated seconds, increasing; each camera hopper,
 // outlet or window:X0,Y0,X1,Y1: one view, since a path moves one view). Before the first key and after the
-// last the camera stands still; between two keys it glides with an ease in and out (smoothstep), the centre
-// moving linearly and the height shown geometrically (a zoom at a steady rate). Two keys at the same camera
-// hold it.
+// last the camera stands still; between two keys it glides with an ease in and out (smoothstep): a zoom at a
+// steady rate (the height shown geometrically) about the point that sits at the same place in both keys'
+// pictures, so whatever both keys show (the outlet, between the hopper and the outlet) stays in the picture
+// throughout; a pan when the heights are equal. Two keys at the same camera hold it.
 struct CameraPath {
   struct Key {
     double t;

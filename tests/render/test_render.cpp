@@ -74,7 +74,11 @@ TEST_CASE("a camera path: the keys' cameras at their times, an eased glide betwe
   // Half-way in time is half-way in zoom (geometric mean), eased: slow at the keys.
   const render::View mid = path.view_at(1, geo, 640, 360);
   CHECK(mid.cam.height == Approx(std::sqrt(hopper.cam.height * outlet.cam.height)));
-  CHECK(mid.cam.cy == Approx(0.5 * (hopper.cam.cy + outlet.cam.cy)));
+  // The zoom is about the point that sits at the same place in both keys' pictures: there at mid-glide too.
+  const double ha = hopper.cam.height, hb = outlet.cam.height;
+  const double fixed = (hopper.cam.cy * hb - outlet.cam.cy * ha) / (hb - ha);
+  CHECK((fixed - mid.cam.cy) / mid.cam.height == Approx((fixed - hopper.cam.cy) / ha));
+  CHECK((fixed - outlet.cam.cy) / hb == Approx((fixed - hopper.cam.cy) / ha));
   const double early = path.view_at(0.1, geo, 640, 360).cam.cy - hopper.cam.cy;
   CHECK(std::fabs(early) < 0.05 * std::fabs(outlet.cam.cy - hopper.cam.cy));
   for (const char* bad : {"0:split", "1:hopper,1:outlet", "2:hopper,1:outlet", "x:hopper", "0:funnel", ""}) {
@@ -410,4 +414,30 @@ TEST_CASE(
   }
   CHECK_THROWS_WITH(render::parse_corner("middle", "--overlay-at"),
                     Catch::Contains("expected auto, top-right, top-left, bottom-right or bottom-left"));
+}
+
+TEST_CASE(
+    "the README's camera path keeps the outlet and the region of its arches in the picture at every frame",
+    "[render]") {
+  // record --camera-path 0:hopper,3:outlet,9:outlet,12:hopper: gliding from the whole hopper to the outlet,
+  // the centre and the height once moved apart and the outlet dropped below the frame half way.
+  const core::Geometry geo = core::make_geometry(core::Scene{});
+  const render::CameraPath path = render::parse_camera_path("0:hopper,3:outlet,9:outlet,12:hopper");
+  const double d = 2 * 0.065;
+  long frames = 0;
+  for (double t = 0; t <= 15; t += 1.0 / 30, ++frames) {
+    const render::View v = path.view_at(t, geo, 1920, 1080);
+    // The outlet's edges and the region an arch over it stands in (two diameters up, across the outlet).
+    for (const core::Vec2 p :
+         {core::Vec2{-geo.half_aperture, 0}, core::Vec2{geo.half_aperture, 0},
+          core::Vec2{-geo.half_aperture - d, 2 * d}, core::Vec2{geo.half_aperture + d, 2 * d}}) {
+      const core::Vec2 px = v.world_to_pixel(p);
+      INFO("t = " << t << " s, point " << p.x << ", " << p.y);
+      REQUIRE(px.x >= 0);
+      REQUIRE(px.x <= 1920);
+      REQUIRE(px.y >= 0);
+      REQUIRE(px.y <= 1080);
+    }
+  }
+  CHECK(frames > 400);
 }
