@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 
+#include "app/services/lab.h"
 #include "app/services/roundtrip.h"
 #include "helpers.h"
 #include "io/events_csv.h"
@@ -173,6 +174,24 @@ TEST_CASE("round trip: a filmed recording's grains, clogs and arches come back t
   CHECK(clean.member_precision >= 0.99);
   CHECK(clean.span_error_d <= 0.02);
   CHECK(clean.theta_error_deg <= 2);
+  // The clean camera's tracks (trackpy's names, as detect writes them) import and open in the inspector at a
+  // clog's arch.
+  app::Calibration cal;
+  core::Model model;
+  std::string why;
+  REQUIRE(app::movie_calibration(d / "truth.mp4", cal, model, why));
+  const auto imp =
+      cli("import " + (d / "t0.csv").string() + " --geometry " + (d / "truth" / "metadata.toml").string() +
+          " --scale " + std::to_string(cal.scale) + " --origin " + std::to_string(cal.origin_x) + "," +
+          std::to_string(cal.origin_y) + " --quiet --out " + (d / "imp").string());
+  INFO(imp.output);
+  REQUIRE(imp.code == 0);
+  std::ofstream(d / "s.txt") << "goto clog 1 arch\nprint\n";
+  const auto ins = cli("inspect " + (d / "imp").string() + " --script " + (d / "s.txt").string());
+  INFO(ins.output);
+  CHECK(ins.code == 0);
+  CHECK(ins.output.find("clog 1 open") != std::string::npos);
+  CHECK(ins.output.find("arch [") != std::string::npos);
   // Camera level 2 (blur, noise, light, perspective) and 2 % of the detections dropped.
   const app::RoundTripRow noisy = app::round_trip(d / "truth", 2, 0.02, 3, d / "t2.csv");
   CHECK(noisy.recall >= 0.96);
