@@ -372,6 +372,65 @@ std::string Inspector::vector_table(int w, int h, double& width_m, double& heigh
   return table;
 }
 
+namespace {
+std::string hex(render::Rgba c) {
+  char b[8];
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  std::snprintf(b, sizeof b, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return b;
+}
+}  // namespace
+
+std::string Inspector::vector_key() const {
+  // As the bitmap pictures, by the overlay's elements: the information box (the caption already gives the
+  // time, the clog timer and the arch's size), the legend, the colour bar and the scale bar.
+  const render::OverlayOptions& o = overlay;
+  const core::Frame f = current();
+  render::Style st = style;
+  st.species_colors = overlay_data.species_colors;
+  std::string k;
+  char line[200];
+  if (o.time || o.counts || o.timer) {
+    if (!overlay_data.title.empty()) k += "info\t" + overlay_data.title + "\n";
+    if (o.counts) {
+      std::string exits = "info\texits:";
+      for (size_t s = 0; s < overlay_data.species_names.size(); ++s)
+        exits += (s ? ", " : " ") + std::to_string(f.exits_of(static_cast<int>(s))) + " " +
+                 overlay_data.species_names[s];
+      k += exits + "\n";
+    }
+    if (o.timer) {
+      if (f.clog_open)
+        std::snprintf(line, sizeof line, "info\tclog %d open%s\n", f.clog_number,
+                      f.clog_arrested ? " (arrested)" : "");
+      else
+        std::snprintf(line, sizeof line, "info\tflowing\n");
+      k += line;
+    }
+  }
+  const std::string scale = render::color_scale_label(st);
+  if (o.legend) {
+    if (scale.empty())
+      for (size_t s = 0; s < overlay_data.species_names.size(); ++s)
+        k += "species\t" + overlay_data.species_names[s] + "\t" +
+             hex(render::species_color(st, static_cast<core::Species>(s))) + "\n";
+    if (st.show_arch && !f.arch.empty())
+      k += "arch\tarch members\t" + hex(render::arch_color(st.palette)) + "\n";
+  }
+  if (!scale.empty() && (o.legend || o.colorbar)) {
+    std::snprintf(line, sizeof line, "\t%.6g\t%.6g\t%s\n", st.color_min, render::color_scale_max(st),
+                  render::colormap_name(st.colormap));
+    k += "colorbar\t" + scale + line;
+  }
+  if (o.scale) {
+    std::snprintf(line, sizeof line, "scale\t%.6g\t1 d = %.3g cm\n", overlay_data.diameter,
+                  100 * overlay_data.diameter);
+    k += line;
+  }
+  if (k.empty()) return k;  // overlay none: the picture alone
+  return std::string("background\t") + (st.dark ? "dark" : "white") + "\n" + k;
+}
+
 std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
   if (!painter || !files_) throw core::InputError("snapshot needs a renderer and files");
   const std::string path = output_name(pattern, "snapshot " + pattern);
@@ -380,7 +439,7 @@ std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painte
     double width_m = 0, height_m = 0;
     std::string text;
     const std::string table = vector_table(w, h, width_m, height_m, text);
-    files_->write_vector(path, table, width_m, height_m, text);
+    files_->write_vector(path, table, width_m, height_m, text, vector_key());
   } else {
     painter->start_afresh();  // the picture of this state alone, as a replayed script makes it
     files_->write_png(path, render_current(*painter, w, h));

@@ -113,6 +113,9 @@ class Inspector {
   // (render::draw_list_csv), the window's size in metres and a caption (time, clog timer, arch, colour
   // scale).
   std::string vector_table(int w, int h, double& width_m, double& height_m, std::string& caption) const;
+  // What a vector snapshot draws beside its picture (ui/sources.h, write_vector): the information box's
+  // lines, the legend (species, arch), the colour bar and the scale bar of the current frame, tab-separated.
+  std::string vector_key() const;
   // Files are never written over; patterns may hold {frame} and {t}. Return the path written.
   std::string snapshot(const std::string& pattern, int w, int h, Painter* painter);
   std::string export_frames(const std::string& pattern, long from, long to, int w, int h, int fps,

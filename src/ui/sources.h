@@ -50,8 +50,12 @@ class ImageFiles {
   // when it cannot be made.
   // A text file (a saved session), written whole under a temporary name and renamed.
   virtual void write_text(const std::string& path, const std::string& text) const = 0;
+  // A vector picture (SVG, PDF) of a draw list; `key` (tab-separated lines: background, info, species, arch,
+  // colorbar, scale) is drawn beside it as vector elements: the information box, legend, colour bar, scale
+  // bar.
   virtual void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
-                            double height_m, const std::string& caption) const = 0;
+                            double height_m, const std::string& caption,
+                            const std::string& key = "") const = 0;
 };
 
 }  // namespace ui

@@ -329,7 +329,7 @@ TEST_CASE("gallery and timeline refuse a run whose metadata.toml was cut or edit
 }
 
 TEST_CASE(
-    "record --annotate: a note with an arrow to its point while its time lasts; malformed notes refused",
+    "record --annotate: a note with an arrow to its point while its time lasts, malformed notes refused",
     "[app][record]") {
   const fs::path d = temp_dir("annotate");
   auto yellow_pixels = [](const fs::path& png) {

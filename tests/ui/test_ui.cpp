@@ -557,7 +557,7 @@ struct CountingFiles : ui::ImageFiles {
     void finish() override {}
   };
   void write_png(const std::string&, const core::Image&) const override {}
-  void write_vector(const std::string&, const std::string&, double, double,
+  void write_vector(const std::string&, const std::string&, double, double, const std::string&,
                     const std::string&) const override {}
   void write_text(const std::string&, const std::string&) const override {}
   void check_movie(int, int, int) const override {}
@@ -770,4 +770,34 @@ TEST_CASE(
     ImGui_ImplOpenGL3_Shutdown();
     ImGui::DestroyContext(lctx);
   }
+}
+
+TEST_CASE("vector snapshots carry the information box, legend, colour bar and scale bar as text and paths",
+          "[ui]") {
+  fs::path d = temp_dir("vector_key");
+  REQUIRE(test::cli("record " + test::kScene +
+                    " --duration 3 --size 320x180 --no-movie --png-every 1000 --quiet --out " +
+                    (d / "run").string())
+              .code == 0);
+  std::ofstream(d / "s.txt") << "goto clog 1 arch\nsnapshot " << (d / "a.svg").string()
+                             << " 640x360\ncolor speed\n"
+                             << "snapshot " << (d / "b.svg").string() << " 640x360\noverlay none\nsnapshot "
+                             << (d / "c.svg").string() << " 640x360\n";
+  const auto r = test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "s.txt").string());
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const std::string a = test::slurp(d / "a.svg"), b = test::slurp(d / "b.svg"), c = test::slurp(d / "c.svg");
+  const auto count = test::count_of;
+  // By species: the legend's names and the arch, the exits, the clog, the scale bar.
+  CHECK(count(a, "<image") == 0);
+  CHECK(count(a, "1 d = 13 cm") == 1);
+  CHECK(count(a, "arch members") == 1);
+  CHECK(count(a, "clog 1 open") == 1);
+  CHECK(count(a, ">original<") + count(a, " original<") >= 1);
+  // By speed: a colour bar labelled with the scale instead of the species' legend.
+  CHECK(count(b, "speed") >= 1);
+  CHECK(count(b, "1 d = 13 cm") == 1);
+  // Overlay none: the picture alone, as the bitmap.
+  CHECK(count(c, "1 d = 13 cm") == 0);
+  CHECK(count(c, "arch members") == 0);
 }

@@ -425,10 +425,12 @@ void add_record_command(CLI::App& app, Action& action) {
       "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts), or auto (speed and "
       "force: the 99th percentile of the first 2 s of discharge; displacement: each frame's largest); "
       "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts) the same in every movie, displacement auto");
+  cmd->add_option("--panel-title", o->panel_titles,
+                  "each panel's title, first in its information box, in order (repeatable, one per panel; "
+                  "default: the --compare keys, the scene's name, or the run's)");
   cmd->add_option("--compare-run", o->compare_run,
                   "a recorded or imported run (an experiment from siloscope import) played back beside the "
-                  "simulation, "
-                  "on one clock from the opening; its container must be the scene's")
+                  "simulation, on one clock from the opening; its container must be the scene's")
       ->check(CLI::ExistingPath);
   cmd->add_option(
       "--compare", o->compare,

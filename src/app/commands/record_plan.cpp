@@ -21,7 +21,7 @@ std::string num6(double v) {
 
 // The panels: the base scene alone, or one per --compare / --compare-scene (with a single one, the base scene
 // is the first panel so that the comparison has two sides).
-std::vector<Panel> make_panels(const RecordOptions& o) {
+static std::vector<Panel> make_panels_untitled(const RecordOptions& o) {
   std::vector<Panel> panels;
   // Each panel's scene compiled once, here: everything below reads its Model.
   const core::Model base_model = o.scene.compile();
@@ -82,6 +82,20 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
                              ": dt and duration must equal the base scene's (dt = " + num6(base.dt) +
                              " s, duration = " + num6(base.duration) + " s): the panels run on one clock");
   for (size_t k = 0; k < panels.size(); ++k) panels[k].subdir = "panel" + std::to_string(k) + "/";
+  return panels;
+}
+
+std::vector<Panel> make_panels(const RecordOptions& o) {
+  std::vector<Panel> panels = make_panels_untitled(o);
+  if (o.panel_titles.empty()) return panels;
+  if (panels.size() == 1)
+    throw core::InputError(
+        "--panel-title: a single movie has no panels to title (with --compare, --compare-scene "
+        "or --compare-run it has 2 to 4)");
+  if (o.panel_titles.size() != panels.size())
+    throw core::InputError("--panel-title: " + std::to_string(o.panel_titles.size()) + " given for " +
+                           std::to_string(panels.size()) + " panels (one each, in order)");
+  for (size_t k = 0; k < panels.size(); ++k) panels[k].label = o.panel_titles[k];
   return panels;
 }
 

@@ -33,7 +33,8 @@ struct RecordOptions {
   std::string freeze;                               // EVENT:SECONDS, EVENT clog or rule
   double displacement_from = 0;                     // s: --color displacement measures from here
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
-  std::string compare_run;  // a recorded or imported run played back beside the simulation
+  std::string compare_run;                // a recorded or imported run played back beside the simulation
+  std::vector<std::string> panel_titles;  // --panel-title: each panel's title, in order (default: its label)
   std::string preset = "veryfast";
   LookOptions looks;  // background, text size, force chains, tracked grains
   bool transparent = false, no_movie = false, force = false, quiet = false;

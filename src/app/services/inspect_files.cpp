@@ -56,18 +56,25 @@ std::unique_ptr<ui::MovieSink> RecordFiles::open_movie(const std::string& path, 
 }
 
 void RecordFiles::write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
-                               double height_m, const std::string& caption) const {
+                               double height_m, const std::string& caption, const std::string& key) const {
   // The table beside the picture under a temporary name; matplotlib draws it (src/figures/snapshot.py).
   const std::string pid = std::to_string(::getpid());
   const std::filesystem::path table = path + ".table-" + pid + ".csv";
   const std::filesystem::path partial =
       path + ".partial-" + pid + std::filesystem::path(path).extension().string();
+  const std::filesystem::path key_file = path + ".key-" + pid + ".tsv";
   io::write_file_atomic(table, draw_list_csv);
-  const int status =
-      run_python(script_path("snapshot.py"), {table.string(), partial.string(), core::format_g(width_m, 9),
-                                              core::format_g(height_m, 9), caption, io::version_string()});
+  std::vector<std::string> args = {
+      table.string(), partial.string(),    core::format_g(width_m, 9), core::format_g(height_m, 9),
+      caption,        io::version_string()};
+  if (!key.empty()) {
+    io::write_file_atomic(key_file, key);
+    args.push_back(key_file.string());
+  }
+  const int status = run_python(script_path("snapshot.py"), args);
   std::error_code ec;
   std::filesystem::remove(table, ec);
+  std::filesystem::remove(key_file, ec);
   if (status != 0) {
     std::filesystem::remove(partial, ec);
     throw core::RuntimeFault(path + ": the matplotlib script snapshot.py failed");

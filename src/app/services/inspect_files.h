@@ -43,7 +43,7 @@ class RecordFiles : public ui::ImageFiles {
   std::unique_ptr<ui::MovieSink> open_movie(const std::string& path, int width, int height,
                                             int fps) const override;
   void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
-                    double height_m, const std::string& caption) const override;
+                    double height_m, const std::string& caption, const std::string& key = "") const override;
   void write_text(const std::string& path, const std::string& text) const override;
 };
 
