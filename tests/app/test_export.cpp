@@ -388,3 +388,23 @@ TEST_CASE("record --species-color: any species' colour, the paper's two included
   CHECK(hex.code == 2);
   CHECK(hex.output.find("the colour is not #rrggbb") != std::string::npos);
 }
+
+TEST_CASE("record --panel-title names each panel of a comparison, one each, in order", "[app][record]") {
+  const fs::path d = temp_dir("panel_title");
+  const auto ok =
+      cli("record " + kScene + " --duration 0.5 --size 320x180 --quiet --compare mu=1 --panel-title " +
+          "'no magnets' --panel-title 'magnets on' --out " + (d / "a").string());
+  INFO(ok.output);
+  REQUIRE(ok.code == 0);
+  CHECK(slurp(d / "a" / "metadata.toml").find("panel_labels = [\"no magnets\", \"magnets on\"]") !=
+        std::string::npos);
+  const auto one = cli("record " + kScene + " --duration 0.5 --quiet --compare mu=1 --panel-title x --out " +
+                       (d / "b").string());
+  CHECK(one.code == 2);
+  CHECK(one.output.find("--panel-title: 1 given for 2 panels (one each, in order)") != std::string::npos);
+  const auto single =
+      cli("record " + kScene + " --duration 0.5 --quiet --panel-title x --out " + (d / "b").string());
+  CHECK(single.code == 2);
+  CHECK(single.output.find("a single movie has no panels to title") != std::string::npos);
+  CHECK(!fs::exists(d / "b"));
+}
