@@ -408,3 +408,22 @@ TEST_CASE("record --panel-title names each panel of a comparison, one each, in o
   CHECK(single.output.find("a single movie has no panels to title") != std::string::npos);
   CHECK(!fs::exists(d / "b"));
 }
+
+TEST_CASE(
+    "frame re-simulates a run written without a trajectory, as far as --at needs, and leaves nothing behind",
+    "[app]") {
+  const fs::path d = temp_dir("frame_resim");
+  REQUIRE(cli("run " + kScene + " --seed 3 --duration 8 --quiet --out " + (d / "r").string()).code == 0);
+  REQUIRE(!fs::exists(d / "r" / "trajectory.sstraj"));
+  const auto r =
+      cli("frame " + (d / "r").string() + " --at clog:1 --size 320x180 --out " + (d / "f.png").string());
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  CHECK(r.output.find("clog:1 at frame") != std::string::npos);
+  CHECK(fs::file_size(d / "f.png") > 1000);
+  for (const auto& e : fs::directory_iterator(d))
+    CHECK(e.path().filename().string().find("resim") == std::string::npos);
+  const auto bad = cli("frame " + (d / "r").string() + " --at clog:9 --out " + (d / "g.png").string());
+  CHECK(bad.code == 2);
+  CHECK(bad.output.find("--at clog:9: the run has 2 clogs (numbered from 1)") != std::string::npos);
+}

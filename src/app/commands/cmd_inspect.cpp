@@ -16,10 +16,13 @@
 #include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "app/services/session.h"
+#include "app/services/sinks.h"
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/physics.h"
+#include "io/events_csv.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/trajectory.h"
@@ -120,17 +123,54 @@ struct FrameOptions {
 
 // siloscope frame RUN --at ...: one picture of a recorded run at an event, as the inspector's script makes it
 // (the same lines: zoom, color, overlay, goto, snapshot), so a figure for a talk is one command.
+// A run written without a trajectory (run without --trajectory-fps) is simulated again from its metadata
+// (runs are deterministic), as far as --at needs, at 30 frames a second, into `tmp`; the re-simulation must
+// give the run's own exits up to there. Progress on a terminal.
+fs::path resimulate_for_frame(const fs::path& run, const std::string& kind, const std::string& value,
+                              const fs::path& tmp) {
+  for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
+    if (fs::exists(run / f)) io::verify_listed(run / f, "frame: run");
+  const core::Model model = core::compile(core::load_scene((run / "metadata.toml").string()));
+  const core::Events ev = io::read_events(run, model.setup.species_names());
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end || !std::isfinite(v) || v < 0)
+    throw core::InputError("--at " + kind + ":" + value + ": expected clog:K, rule:K, t:SECONDS or frame:N");
+  double until = 0;
+  if (kind == "clog") {
+    if (v < 1 || v > static_cast<double>(ev.clogs.size()) || v != std::floor(v))
+      throw core::InputError("--at clog:" + value + ": the run has " + std::to_string(ev.clogs.size()) +
+                             " clogs (numbered from 1)");
+    until = ev.clogs[static_cast<size_t>(v) - 1].end + 0.2;
+  } else if (kind == "rule") {
+    if (v < 1 || v > static_cast<double>(ev.arches.size()) || v != std::floor(v))
+      throw core::InputError("--at rule:" + value + ": the run has " + std::to_string(ev.arches.size()) +
+                             " long-lasting arches (numbered from 1)");
+    until = ev.arches[static_cast<size_t>(v) - 1].t + 0.1;
+  } else {
+    until = (kind == "frame" ? (v + 1) / 30.0 : v) + 0.1;
+  }
+  const double stop = std::min(model.scene.duration, until);
+  const FrameClock clock = FrameClock::every(model.scene.dt, 1.0 / 30, "frame");
+  fs::create_directories(tmp);
+  Session session({model});
+  io::RunInfo info{command_line(), {}, {}};
+  TrajectorySink sink(tmp / "trajectory.sstraj", trajectory_info(session.world(0), clock.frame_interval,
+                                                                 io::metadata_toml(model, info)));
+  Progress progress("frame: re-simulating the run (it has no trajectory)", stop, true);
+  session.run(stop, clock, {&sink}, {}, [&](double t) { progress.update(t); });
+  session.finish({&sink});
+  sink.close();
+  progress.finish();
+  const auto& again = session.world(0).events().exits;
+  for (size_t k = 0; k < again.size() && k < ev.exits.size(); ++k)
+    if (again[k].id != ev.exits[k].id || std::fabs(again[k].t - ev.exits[k].t) > 1e-6)
+      throw core::RuntimeFault("frame: re-simulating " + run.string() + " did not give its exits (exit " +
+                               std::to_string(k + 1) + "): a different build or physics?");
+  return tmp / "trajectory.sstraj";
+}
+
 int frame(const FrameOptions& o) {
-  io::Trajectory traj(trajectory_path(o.path));
-  const core::Model& model = run_model(traj, o.path);
-  std::unique_ptr<io::Contacts> contacts;
-  const fs::path contacts_path = trajectory_path(o.path).parent_path() / "contacts.sscon";
-  if (fs::exists(contacts_path))
-    contacts = std::make_unique<io::Contacts>(contacts_path, traj.info().n_particles);
-  const TrajectoryFrames frames(traj, contacts.get());
-  const RecordFiles files;
-  ui::Inspector insp(frames, model, &files);
-  title_imported(insp, traj);
   // --at: clog:K (where clog K's final arch first stands), rule:K (the K-th long-lasting arch, the frame
   // before the rule removed it), t:SECONDS or frame:N.
   const size_t colon = o.at.find(':');
@@ -150,6 +190,30 @@ int frame(const FrameOptions& o) {
   const std::string ext = fs::path(o.out).extension().string();
   if (ext != ".png" && ext != ".svg" && ext != ".pdf")
     throw core::InputError("--out " + o.out + ": the frame is .png, .svg or .pdf");
+  // A run without a trajectory is simulated again into a temporary directory beside the output.
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      if (!p.empty()) fs::remove_all(p, ec);
+    }
+  } cleanup;
+  fs::path source = o.path;
+  if (fs::is_directory(source) && !fs::exists(source / "trajectory.sstraj") &&
+      fs::exists(source / "metadata.toml")) {
+    cleanup.p = fs::absolute(fs::path(o.out)).parent_path() / (".frame-resim-" + std::to_string(::getpid()));
+    source = resimulate_for_frame(o.path, kind, value, cleanup.p);
+  }
+  io::Trajectory traj(trajectory_path(source.string()));
+  const core::Model& model = run_model(traj, source.string());
+  std::unique_ptr<io::Contacts> contacts;
+  const fs::path contacts_path = trajectory_path(source.string()).parent_path() / "contacts.sscon";
+  if (fs::exists(contacts_path))
+    contacts = std::make_unique<io::Contacts>(contacts_path, traj.info().n_particles);
+  const TrajectoryFrames frames(traj, contacts.get());
+  const RecordFiles files;
+  ui::Inspector insp(frames, model, &files);
+  title_imported(insp, traj);
   int w = 0, h = 0;
   render::parse_size(o.size, "--size", w, h, 64, 64);
   render::OffscreenContext ctx;
@@ -318,7 +382,10 @@ void add_inspect_command(CLI::App& app, Action& action) {
       "frame",
       "one high-resolution picture of a recorded run at a clog, a rule removal or a time (PNG, SVG, PDF)");
   fc->set_version_flag("--version", io::version_string());
-  fc->add_option("run", fo->path, "a recording (or a run written with --trajectory-fps)")->required();
+  fc->add_option("run", fo->path,
+                 "a recording, or any run (one without a trajectory is simulated again from its metadata, as "
+                 "far as --at needs)")
+      ->required();
   fc->add_option("--at", fo->at,
                  "clog:K (where clog K's final arch first stands), rule:K (the K-th long-lasting arch just "
                  "before the rule removed it), t:SECONDS or frame:N")
