@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/stats.h"
 #include "sim/clog.h"
 
 namespace lab {
@@ -23,13 +24,6 @@ struct Track {
   int start() const { return points.front().frame; }
   int end() const { return points.back().frame; }
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The track ends where a grain leaves through the outlet: within a diameter above the outlet line, inside the
 // opening (or already below it).
@@ -99,7 +93,7 @@ Imported import_tracks(const Tracks& tracks, const core::Model& model, const Imp
   {
     std::vector<double> dt;
     for (int k = 1; k < nf; ++k) dt.push_back(t[k] - t[k - 1]);
-    rep.interval_median = median(dt);
+    rep.interval_median = core::median(dt);
     if (!dt.empty()) {
       rep.interval_min = *std::min_element(dt.begin(), dt.end());
       rep.interval_max = *std::max_element(dt.begin(), dt.end());
@@ -160,7 +154,7 @@ Imported import_tracks(const Tracks& tracks, const core::Model& model, const Imp
     std::vector<double> r;
     std::vector<int> count(model.setup.species.size(), 0);
     for (const Point& p : grains[g].points) r.push_back(p.d.r), ++count[static_cast<size_t>(p.d.species)];
-    out.radius[g] = median(r);
+    out.radius[g] = core::median(r);
     out.species[g] = static_cast<core::Species>(std::max_element(count.begin(), count.end()) - count.begin());
     out.track_id[g] = grains[g].id;
     rmax = std::max(rmax, out.radius[g]);

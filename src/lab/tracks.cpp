@@ -87,6 +87,21 @@ ColumnMap parse_column_map(const std::string& text, const std::string& option) {
   return m;
 }
 
+void parse_origin(const std::string& text, double& x, double& y) {
+  const size_t comma = text.find(',');
+  char* end = nullptr;
+  bool ok = comma != std::string::npos;
+  if (ok) {
+    const std::string a = text.substr(0, comma), b = text.substr(comma + 1);
+    x = std::strtod(a.c_str(), &end);
+    ok = !a.empty() && *end == '\0' && std::isfinite(x);
+    y = std::strtod(b.c_str(), &end);
+    ok = ok && !b.empty() && *end == '\0' && std::isfinite(y);
+  }
+  if (!ok)
+    throw core::InputError("--origin '" + text + "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
+}
+
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo) {
   const io::CsvTable t = io::CsvTable::read(path, "tracked particles");

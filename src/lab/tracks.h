@@ -53,6 +53,9 @@ struct Tracks {
   long rows = 0;
 };
 
+// --origin "X,Y" (the outlet centre, in the file's or the picture's units). Throws core::InputError.
+void parse_origin(const std::string& text, double& x, double& y);
+
 // Reads and checks `path`: the needed columns present (the error names what was looked for and how to map
 // it), numbers where numbers belong, no particle id twice in one frame, no position outside the container
 // (a centre beyond its walls or above its top by more than a grain's diameter: a wrong scale or origin; the

@@ -12,6 +12,7 @@
 #include "core/format.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "lab/tracks.h"
 
 namespace app {
 
@@ -56,19 +57,8 @@ int detect(const DetectCliOptions& o) {
     if (!(o.scale > 0) || o.origin.empty())
       throw core::InputError(
           "--scale and --origin go together (metres per pixel, and the outlet centre's pixel X,Y)");
-    // The two numbers parsed from strings that outlive the check of where parsing stopped.
-    const size_t comma = o.origin.find(',');
-    const std::string xs = comma == std::string::npos ? "" : o.origin.substr(0, comma);
-    const std::string ys = comma == std::string::npos ? "" : o.origin.substr(comma + 1);
-    char* e1 = nullptr;
-    char* e2 = nullptr;
     job.cal.scale = o.scale;
-    job.cal.origin_x = std::strtod(xs.c_str(), &e1);
-    job.cal.origin_y = std::strtod(ys.c_str(), &e2);
-    if (xs.empty() || ys.empty() || *e1 || *e2 || !std::isfinite(job.cal.origin_x) ||
-        !std::isfinite(job.cal.origin_y))
-      throw core::InputError("--origin '" + o.origin +
-                             "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
+    lab::parse_origin(o.origin, job.cal.origin_x, job.cal.origin_y);
     job.cal.from = "command line";
   } else if (!o.points.empty()) {
     job.cal = two_point_calibration(o.points, "--points");

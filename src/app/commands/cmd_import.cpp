@@ -35,22 +35,6 @@ struct ImportCliOptions {
   lab::ImportOptions import;
 };
 
-// "X,Y" in the file's units.
-void parse_origin(const std::string& text, double& x, double& y) {
-  const size_t comma = text.find(',');
-  char* end = nullptr;
-  bool ok = comma != std::string::npos;
-  if (ok) {
-    const std::string a = text.substr(0, comma), b = text.substr(comma + 1);
-    x = std::strtod(a.c_str(), &end);
-    ok = !a.empty() && *end == '\0' && std::isfinite(x);
-    y = std::strtod(b.c_str(), &end);
-    ok = ok && !b.empty() && *end == '\0' && std::isfinite(y);
-  }
-  if (!ok)
-    throw core::InputError("--origin '" + text + "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
-}
-
 // detect's metadata beside its CSV (TRACKS.meta.toml): the calibration it used, when the command line gives
 // none.
 fs::path detect_metadata(const fs::path& tracks) {
@@ -161,7 +145,7 @@ int import_run(ImportCliOptions o) {
   units.y_up = o.y_up;
   units.fps = o.fps;
   std::string calibration = "command line";
-  if (!o.origin.empty()) parse_origin(o.origin, units.origin_x, units.origin_y);
+  if (!o.origin.empty()) lab::parse_origin(o.origin, units.origin_x, units.origin_y);
   const fs::path meta = detect_metadata(o.tracks);
   if (o.scale == 0 && fs::exists(meta)) {
     // The calibration detect used (pixels of a siloscope movie or of --scale/--origin given to detect).

@@ -12,6 +12,7 @@
 #include "app/services/lab.h"
 #include "core/arch.h"
 #include "core/error.h"
+#include "core/stats.h"
 #include "io/output.h"
 #include "io/trajectory.h"
 #include "lab/import.h"
@@ -22,12 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median_of(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 double quantile_of(std::vector<double> v, double q) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
@@ -151,7 +146,7 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
   }
   row.recall = tp + fn > 0 ? static_cast<double>(tp) / static_cast<double>(tp + fn) : NAN;
   row.precision = tp + fp > 0 ? static_cast<double>(tp) / static_cast<double>(tp + fp) : NAN;
-  row.error_median_d = median_of(errors);
+  row.error_median_d = core::median(errors);
   row.error_p95_d = quantile_of(errors, 0.95);
   row.switches_per_1000 =
       grain_frames > 0 ? 1000.0 * static_cast<double>(row.id_switches) / grain_frames : NAN;
@@ -203,13 +198,13 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
       break;
     }
   }
-  row.start_error_s = median_of(dstart);
-  row.end_error_s = median_of(dend);
+  row.start_error_s = core::median(dstart);
+  row.end_error_s = core::median(dend);
   row.member_recall = members_true > 0 ? static_cast<double>(members_both) / members_true : NAN;
   row.member_precision = members_found > 0 ? static_cast<double>(members_both) / members_found : NAN;
-  row.span_error_d = median_of(span_err);
-  row.rise_error_d = median_of(rise_err);
-  row.theta_error_deg = median_of(theta_err);
+  row.span_error_d = core::median(span_err);
+  row.rise_error_d = core::median(rise_err);
+  row.theta_error_deg = core::median(theta_err);
   return row;
 }
 
