@@ -73,14 +73,17 @@ void estimate_point(Point& p, const Estimate& qp) {
     SpeciesEstimate e;
     e.name = st.species[k].name;
     e.count = st.species[k].count;
-    std::vector<double> q, frac;
+    std::vector<double> q, frac, rank;
     for (const Run* r : p.runs) {
       const long n = k < r->m.exits_by_species.size() ? r->m.exits_by_species[k] : 0;
       q.push_back(r->m.duration > 0 ? n / r->m.duration : NAN);
       frac.push_back(r->m.exits > 0 ? static_cast<double>(n) / r->m.exits : NAN);
+      if (k < r->m.column_rank.size() && std::isfinite(r->m.column_rank[k]))
+        rank.push_back(r->m.column_rank[k]);
     }
     e.q = estimate(q);
     e.exit_fraction = estimate(frac);
+    e.column_rank = estimate(rank);
     p.species.push_back(e);
   }
   std::vector<Duration> durations;
@@ -325,6 +328,24 @@ std::string clog_survival_csv(const std::vector<Point>& points) {
            core::format_g(step.lo) + "," + core::format_g(step.hi) + "," + std::to_string(step.at_risk) +
            "," + std::to_string(p.clogs) + "," + std::to_string(broken) + "," + std::to_string(p.clogs_rule) +
            "," + std::to_string(p.clogs_run_end) + "\n";
+  }
+  return s;
+}
+
+std::string column_csv(const std::vector<Point>& points) {
+  bool any = false;
+  for (const auto& p : points)
+    for (const Run* r : p.runs) any = any || r->m.column_frames > 0;
+  if (!any) return "";
+  std::string s =
+      key_header(points) + "species,count,n_runs,n_runs_measured,frames,column_rank,column_rank_ci95\n";
+  for (const auto& p : points) {
+    long frames = 0, measured = 0;
+    for (const Run* r : p.runs) frames += r->m.column_frames, measured += r->m.column_frames > 0;
+    for (const auto& e : p.species)
+      s += key_values(p) + e.name + "," + std::to_string(e.count) + "," + std::to_string(p.runs.size()) +
+           "," + std::to_string(measured) + "," + std::to_string(frames) + "," +
+           core::format_g(e.column_rank.mean) + "," + core::format_g(e.column_rank.half_width) + "\n";
   }
   return s;
 }

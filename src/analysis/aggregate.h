@@ -34,6 +34,7 @@ struct SpeciesEstimate {
   long count = 0;          // grains of the species in the scene
   Estimate q;              // its exits per second
   Estimate exit_fraction;  // its share of all exits
+  Estimate column_rank;    // its mean height rank in the column (analysis/column.h), over the runs measured
 };
 
 struct Point {
@@ -74,6 +75,11 @@ std::string drain_csv(const std::vector<Point>& points);
 // Per point, the Kaplan-Meier survival S(t) of the clogs' durations with its 95% band; clogs the rule removed
 // or the run's end cut short are censored (clog_survival.csv). With the rule on, S stops at clog_timeout.
 std::string clog_survival_csv(const std::vector<Point>& points);
+// Per point and species, where the species sits in the column (analysis/column.h): its mean height rank (0
+// the bottom, 1/2 spread evenly, 1 the top) with its 95% interval over the realizations that kept a
+// trajectory (n_runs_measured of n_runs; the unit: one realization), and the frames measured. Empty when no
+// run kept a trajectory (column.csv is then not written).
+std::string column_csv(const std::vector<Point>& points);
 // P(S >= s) of the avalanche sizes S (disks between two clogs) pooled over each point's realizations, at
 // s = 1..10 and then about 20 sizes per decade up to the largest; `avalanches` is the number pooled.
 std::string pooled_avalanches_csv(const std::vector<Point>& points);

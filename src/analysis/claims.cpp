@@ -239,14 +239,35 @@ Claim c4(const Data& d) {
                                fr > 0 ? d.sizes() : std::vector<double>{}, 0, 10,
                                "chi_eff change with mu, pooled over every r", -1,
                                [&](double r) { return with_mu(d, r, fr, "chi_eff", "chi_eff", -1); }));
-  Part floats{"magnetic disks float on top of the column"};
-  floats.verdict = Verdict::NotTested;
-  floats.why =
-      "a campaign records exits, not where each species sits in the column; `siloscope run "
-      "--trajectory-fps` gives the positions to measure it";
+  // C4.2 from the runs' trajectories (column.csv): the added disks' mean height rank in the column at the
+  // largest F/W against F/W = 0 at the same r (the non-magnetic small disks show where the size alone puts
+  // them), per r and pooled; "on top" read as rising with mu, the level (1/2: spread evenly) reported.
+  Part floats = range_part(
+      "magnetic disks float on top of the column (the added disks' mean height rank rises with mu)",
+      fr > 0 && d.has_column() ? d.sizes() : std::vector<double>{}, 0, 10,
+      "added disks' height rank change with mu, pooled over every r", +1, [&](double r) {
+        return compare("added disks' height rank at r = " + g3(r) + ", F/W = " + g3(fr) + " against 0",
+                       d.column_rank(d.at(r, fr), "added"), d.column_rank(d.at(r, 0), "added"), +1);
+      });
+  if (floats.comparisons.empty()) {
+    floats.verdict = Verdict::NotTested;
+    floats.why =
+        fr == 0 ? "the campaign has no dipoles"
+        : !d.has_column()
+            ? "the runs kept no trajectories, so where each species sits is not measured: a campaign "
+              "with trajectory_fps = 2 (or `siloscope run --trajectory-fps`) gives analyze's "
+              "column.csv"
+            : "column.csv has no r measured both with and without dipoles";
+  } else {
+    floats.why =
+        "a species' height rank: its grains' mean rank by height along gravity among the grains in the "
+        "column, "
+        "averaged over each run's frames (0 the bottom, 1/2 spread evenly, 1 the top; analyze's column.csv)";
+  }
   c.parts.push_back(floats);
   conclude(c);
-  if (c.parts[0].verdict != Verdict::NotTested) c.parts[0].verdict = by_pool(c.parts[0]);
+  for (auto& part : c.parts)
+    if (part.verdict != Verdict::NotTested) part.verdict = by_pool(part);
   return c;
 }
 
@@ -485,11 +506,12 @@ std::vector<std::string> causes(const Data& d) {
 
 using namespace detail;
 
-Preset judge(const std::string& label, const std::string& dir) {
-  const Data d(dir);
+Preset judge(const std::string& label, const std::string& dir, const std::string& column_dir) {
+  const Data d(dir, column_dir);
   Preset p;
   p.label = label;
   p.dir = dir;
+  p.column_dir = column_dir;
   p.n_min = std::numeric_limits<long>::max();
   for (const auto& pt : d.points()) {
     p.n_min = std::min(p.n_min, pt.n);

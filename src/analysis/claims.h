@@ -96,6 +96,7 @@ struct Control {
 
 struct Preset {
   std::string label, dir;  // dir: the analysis directory
+  std::string column_dir;  // where column.csv came from when not `dir` (judge's `column_dir`)
   long n_min = 0, n_max = 0;
   std::string refused;  // points with realizations the health monitor refused, as text (may be empty)
   std::vector<Claim> claims;
@@ -105,7 +106,9 @@ struct Preset {
 
 // Judges the campaign whose `siloscope analyze` output is in `analysis_dir` (points.csv; realizations.csv for
 // the bootstrap parts). Throws core::InputError for a missing or malformed table.
-Preset judge(const std::string& label, const std::string& analysis_dir);
+// `column_dir`: an analysis directory whose column.csv (where each species sits, from trajectories) stands
+// for this campaign's at the same points (empty: `analysis_dir`'s own, when it has one).
+Preset judge(const std::string& label, const std::string& analysis_dir, const std::string& column_dir = "");
 
 // The report: claims.md (summary table, each part with its evidence, controls, what stands between each
 // verdict and the paper) and claims.csv (one row per comparison or located quantity).

@@ -30,7 +30,8 @@ struct Point {
 
 class Data {
  public:
-  explicit Data(const std::string& dir);
+  // `column_dir`: where column.csv is read from instead of `dir` (empty: `dir`, when it holds one).
+  explicit Data(const std::string& dir, const std::string& column_dir = "");
   const std::vector<Point>& points() const { return pts_; }
   const io::CsvTable& table() const { return points_; }
   // The point at size ratio r and dipole strength F/W = fr, chi = 0.4 (null if the grid lacks it).
@@ -64,6 +65,10 @@ class Data {
     return out;
   }
   bool has_samples(const std::string& col) const { return reals_ && reals_->has(col); }
+  // Where `species` sits in the column at `p` (column.csv, written by analyze from the runs' trajectories):
+  // its mean height rank over the realizations measured; Est::none() without the table or the row.
+  Est column_rank(const Point* p, const std::string& species) const;
+  bool has_column() const { return column_.has_value(); }
   // Sizes of the non-magnetic chi = 0.4 grid, ascending; the dipole strengths, ascending.
   std::vector<double> sizes() const {
     std::vector<double> out;
@@ -89,6 +94,7 @@ class Data {
   }
   io::CsvTable points_;
   std::optional<io::CsvTable> reals_;
+  std::optional<io::CsvTable> column_;
   std::vector<Point> pts_;
 };
 

@@ -42,7 +42,7 @@ std::string g3(double v) {
   return core::format_g(v, 3);
 }
 
-Data::Data(const std::string& dir)
+Data::Data(const std::string& dir, const std::string& column_dir)
     : points_(io::CsvTable::read(dir + "/points.csv", "points.csv of `siloscope analyze`")) {
   for (const char* key : {"size_ratio", "chi", "mu", "kick_impulse_max", "n_runs"})
     if (!points_.has(key))
@@ -66,6 +66,18 @@ Data::Data(const std::string& dir)
             line() + key + " = " + points_.text(i, key) + " is not " +
             (std::string(key) == "n_runs" ? "a whole number from 1" : "a whole number from 0"));
     }
+    // Rates, sizes, shares and their intervals: finite and >= 0, or NaN (not measured at this point), as the
+    // Python package's read_campaign checks them.
+    for (const char* key : {"q_per_s", "q_tilde_per_s", "q_p_per_s", "long_arches_per_min",
+                            "added_per_long_arch", "avalanche_mean", "q_tilde_over_qp", "chi_eff",
+                            "fraction_broken_by_vibration", "airborne_fraction"})
+      for (const std::string col : {std::string(key), std::string(key) + "_ci95"}) {
+        if (!points_.has(col)) continue;
+        const double v = points_.num(i, col);
+        if (!std::isnan(v) && !(std::isfinite(v) && v >= 0))
+          throw core::InputError(line() + col + " = " + points_.text(i, col) +
+                                 " is not a finite number >= 0");
+      }
     for (const char* key : {"size_ratio", "chi", "mu"})
       if (!std::isfinite(points_.num(i, key)) || points_.num(i, key) < 0)
         throw core::InputError(line() + key + " = " + points_.text(i, key) + " is not a finite number >= 0");
@@ -81,6 +93,39 @@ Data::Data(const std::string& dir)
       if (it != by_key.end()) pts_[it->second].reals.push_back(i);
     }
   }
+  const std::string cpath = (column_dir.empty() ? dir : column_dir) + "/column.csv";
+  if (!column_dir.empty() && !std::filesystem::exists(cpath))
+    throw core::InputError("claims: --column " + column_dir +
+                           " holds no column.csv (analyze writes it from runs that kept a trajectory)");
+  if (std::filesystem::exists(cpath)) {
+    column_.emplace(io::CsvTable::read(cpath, "column.csv of `siloscope analyze`"));
+    for (const char* col : {"species", "n_runs_measured", "column_rank", "column_rank_ci95"})
+      if (!column_->has(col))
+        throw core::InputError(cpath + ": no column '" + col + "' (written by siloscope analyze?)");
+    for (size_t i = 0; i < column_->rows(); ++i) {
+      const double rank = column_->num(i, "column_rank"), n = column_->num(i, "n_runs_measured");
+      const std::string at = cpath + ":" + std::to_string(i + 2) + ": ";
+      if (!(n >= 0) || n != std::floor(n))
+        throw core::InputError(at + "n_runs_measured = " + column_->text(i, "n_runs_measured") +
+                               " is not a whole number from 0");
+      if (!std::isnan(rank) && !(rank >= 0 && rank <= 1))
+        throw core::InputError(at + "column_rank = " + column_->text(i, "column_rank") +
+                               " is outside [0, 1] (a height rank)");
+    }
+  }
+}
+
+Est Data::column_rank(const Point* p, const std::string& species) const {
+  if (!p || !column_) return Est::none();
+  const std::string k = key(points_, p->row);
+  for (size_t i = 0; i < column_->rows(); ++i) {
+    if (column_->text(i, "species") != species || key(*column_, i) != k) continue;
+    const long n = static_cast<long>(column_->num(i, "n_runs_measured"));
+    const double m = column_->num(i, "column_rank"), h = column_->num(i, "column_rank_ci95");
+    if (n < 1 || !std::isfinite(m)) return Est::none();
+    return {m, n >= 2 && std::isfinite(h) ? h : std::numeric_limits<double>::infinity(), n};
+  }
+  return Est::none();
 }
 
 double mean_of(const std::vector<double>& v, const std::vector<size_t>& idx) {

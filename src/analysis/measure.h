@@ -51,6 +51,10 @@ struct Measurements {
   std::string drain_outcome;
   double drain_end_s = 0;
   int drain_remaining = 0;
+  // Where each species sits in the column (analysis/column.h), from the run's trajectory: each species' mean
+  // height rank and the frames measured; empty when the run kept no trajectory. Set by the caller.
+  std::vector<double> column_rank;
+  long column_frames = 0;
 };
 
 // `clog_min_gap`: the scene's shortest exit gap that counts as a clog, which delimits avalanches;

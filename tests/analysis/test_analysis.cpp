@@ -8,12 +8,53 @@
 #include <sstream>
 
 #include "analysis/aggregate.h"
+#include "analysis/column.h"
 #include "analysis/measure.h"
 #include "analysis/stats.h"
 #include "core/error.h"
+#include "core/physics.h"
 #include "io/events_csv.h"
 
 using core::Species;
+
+TEST_CASE("where each species sits in the column: mean height ranks along gravity, by hand", "[analysis]") {
+  // Four grains in a column: original at heights 1 and 2, added at 3 and 4 (ranks 1/8, 3/8 and 5/8, 7/8); one
+  // below the outlet (falling out) is not in the column.
+  core::Frame f;
+  f.t = 1;
+  auto grain = [](float x, float y, core::Species s) {
+    core::Particle p{};
+    p.x = x, p.y = y, p.species = s;
+    return p;
+  };
+  f.particles = {grain(0, 1, core::Species::Original), grain(0, 3, core::Species::Added),
+                 grain(0, 2, core::Species::Original), grain(0, 4, core::Species::Added),
+                 grain(0, -0.5f, core::Species::Added)};
+  analysis::ColumnMeter m(0, 2);
+  m.add(f);
+  CHECK(m.ranks()[0] == Approx(0.25));
+  CHECK(m.ranks()[1] == Approx(0.75));
+  // Frames before the aperture opened are not measured; a second frame with the order reversed averages.
+  f.t = -1;
+  m.add(f);
+  CHECK(m.frames() == 1);
+  f.t = 2;
+  std::swap(f.particles[0].species, f.particles[3].species);
+  std::swap(f.particles[2].species, f.particles[1].species);
+  m.add(f);
+  CHECK(m.frames() == 2);
+  CHECK(m.ranks()[0] == Approx(0.5));
+  CHECK(m.ranks()[1] == Approx(0.5));
+  // Tilted 90 degrees (gravity along -x): heights are x, so the same grains laid along x rank the same way.
+  analysis::ColumnMeter tilted(core::kPi / 2, 2);
+  core::Frame g;
+  g.t = 0;
+  g.particles = {grain(1, 5, core::Species::Added), grain(2, -5, core::Species::Original)};
+  tilted.add(g);
+  CHECK(tilted.ranks()[1] == Approx(0.25));
+  CHECK(tilted.ranks()[0] == Approx(0.75));
+  CHECK(std::isnan(analysis::ColumnMeter(0, 3).ranks()[2]));
+}
 
 TEST_CASE("Student t critical values match tables", "[analysis]") {
   CHECK(analysis::student_t_critical(0.95, 4) == Approx(2.776445).epsilon(1e-6));

@@ -75,6 +75,8 @@ TEST_CASE("every committed campaign analyses to its committed points.csv", "[app
       CHECK(slurp(d / name / "analysis/clog_survival.csv") == slurp(e.path() / "analysis/clog_survival.csv"));
     if (fs::exists(e.path() / "analysis/drain.csv"))  // a drain campaign's jamming probabilities
       CHECK(slurp(d / name / "analysis/drain.csv") == slurp(e.path() / "analysis/drain.csv"));
+    if (fs::exists(e.path() / "analysis/column.csv"))  // where each species sits, from kept trajectories
+      CHECK(slurp(d / name / "analysis/column.csv") == slurp(e.path() / "analysis/column.csv"));
   }
   CHECK(campaigns >= 3);  // kicks, paper, paper-vibrated
 }

@@ -5,17 +5,20 @@
 #include <filesystem>
 
 #include "analysis/aggregate.h"
+#include "analysis/column.h"
 #include "app/services/cli.h"
 #include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/physics.h"
 #include "core/setup.h"
 #include "io/events_csv.h"
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/trajectory.h"
 
 namespace app {
 
@@ -52,6 +55,23 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs:
   }
   std::sort(children.begin(), children.end());
   for (const auto& c : children) find_runs(c, out, refused);
+}
+
+// Where each species sits in the column, from the run's trajectory when it kept one (run --trajectory-fps,
+// record, or a campaign's trajectory_fps); checked against the run's manifest like its other files.
+void measure_column(const fs::path& d, analysis::Run& r) {
+  const fs::path file = d / "trajectory.sstraj";
+  if (!fs::exists(file)) return;
+  io::verify_listed(file, "analyze: run");
+  const io::Trajectory traj(file);
+  analysis::ColumnMeter meter(r.scene.tilt * core::kPi / 180.0, static_cast<int>(r.setup.species.size()));
+  for (long k = 0; k < traj.size(); ++k) {
+    const core::Frame f = traj.frame(k);
+    if (f.t > r.m.duration) break;
+    meter.add(f);
+  }
+  r.m.column_rank = meter.ranks();
+  r.m.column_frames = meter.frames();
 }
 
 }  // namespace
@@ -119,6 +139,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     r.m.drain_outcome = rec.drain_outcome;
     r.m.drain_end_s = rec.drain_end_s;
     r.m.drain_remaining = static_cast<int>(rec.drain_remaining);
+    measure_column(d, r);
     runs.push_back(std::move(r));
   }
   for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
@@ -147,6 +168,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   io::write_file_atomic(out.file("clog_survival.csv"), analysis::clog_survival_csv(points));
   const std::string drain = analysis::drain_csv(points);
   if (!drain.empty()) io::write_file_atomic(out.file("drain.csv"), drain);
+  const std::string column = analysis::column_csv(points);
+  if (!column.empty()) io::write_file_atomic(out.file("column.csv"), column);
   io::RunInfo info{command_line(),
                    {{"runs", runs.size()},
                     {"by", o.by},
@@ -189,6 +212,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     }
     if (!drain.empty())
       std::printf("drain outcomes and the jamming probability J: %s/drain.csv\n", o.out.c_str());
+    if (!column.empty())
+      std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
+                  o.out.c_str());
     return 0;
   }
   std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
@@ -202,6 +228,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     std::printf("%-32s %4zu %s %s %14s\n", label, p.runs.size(), pm(p.q_tilde, "no exits").c_str(),
                 pm(p.q_tilde_over_qp, "no pure point").c_str(), chi_eff.c_str());
   }
+  if (!column.empty())
+    std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
+                o.out.c_str());
   return 0;
 }
 

@@ -2,9 +2,11 @@
 // (src/figures/figures.py) so users can restyle them without touching C++.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 
 #include "analysis/claims.h"
 #include "app/services/cli.h"
@@ -13,6 +15,7 @@
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -63,7 +66,7 @@ int figures(const FiguresOptions& o) {
 
 namespace {
 struct ClaimsOptions {
-  std::vector<std::string> results;
+  std::vector<std::string> results, columns;
   std::string out;
   bool force = false;
 };
@@ -80,12 +83,34 @@ int claims(const ClaimsOptions& o) {
     if (!fs::exists(dir / "points.csv"))
       throw core::InputError("claims: " + r.substr(eq + 1) +
                              " holds no points.csv (run `siloscope analyze` first)");
+    // Checked against the analysis' manifest first: a table cut or edited after analyze wrote it is refused
+    // naming it, not judged.
+    for (const char* f : {"points.csv", "realizations.csv", "column.csv"})
+      if (fs::exists(dir / f)) io::verify_listed(dir / f, "claims: analysis table");
     specs.push_back(r.substr(0, eq) + "=" + dir.string());
+  }
+  // --column LABEL=DIR: where each species sits, measured by another campaign at the same points.
+  std::map<std::string, std::string> column_of;
+  for (const auto& c : o.columns) {
+    const auto eq = c.find('=');
+    const std::string label = eq == std::string::npos ? "" : c.substr(0, eq);
+    if (label.empty() || std::none_of(specs.begin(), specs.end(), [&](const std::string& s) {
+          return s.compare(0, label.size() + 1, label + "=") == 0;
+        }))
+      throw core::InputError("claims: --column '" + c +
+                             "': expected LABEL=RESULTS with LABEL one of the presets "
+                             "given (e.g. --column literal=docs/campaigns/column)");
+    fs::path dir = c.substr(eq + 1);
+    if (!fs::exists(dir / "column.csv") && fs::exists(dir / "analysis" / "column.csv")) dir /= "analysis";
+    if (fs::exists(dir / "column.csv")) io::verify_listed(dir / "column.csv", "claims: analysis table");
+    column_of[label] = dir.string();
   }
   std::vector<analysis::claims::Preset> presets;
   for (const auto& spec : specs) {
     const auto eq = spec.find('=');
-    presets.push_back(analysis::claims::judge(spec.substr(0, eq), spec.substr(eq + 1)));
+    const std::string label = spec.substr(0, eq);
+    presets.push_back(analysis::claims::judge(label, spec.substr(eq + 1),
+                                              column_of.count(label) ? column_of[label] : std::string()));
   }
   const fs::path out = o.out;
   fs::path table = out;
@@ -116,6 +141,10 @@ void add_claims_command(CLI::App& app, Action& action) {
                   "LABEL=RESULTS (a campaign's results or analysis directory), one per preset")
       ->required();
   cmd->add_option("--out", o->out, "the Markdown table, e.g. docs/campaigns/paper/claims.md")->required();
+  cmd->add_option(
+      "--column", o->columns,
+      "LABEL=RESULTS: where each species sits in the column (C4.2) from another campaign at the same "
+      "points whose runs kept trajectories (its analysis' column.csv); repeatable, one per preset");
   cmd->add_flag("--force", o->force, "replace an earlier claims table");
   cmd->callback([o, &action] { action = [o] { return claims(*o); }; });
 }

@@ -225,6 +225,10 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
                 "--record-refusal",
                 "--out",
                 j.dir};
+      if (c.trajectory_fps > 0) {
+        j.argv.push_back("--trajectory-fps");
+        j.argv.push_back(core::format_g(c.trajectory_fps));
+      }
       for (const auto& a : j.argv) j.line += (j.line.empty() ? "" : " ") + core::shell_quote(a);
       jobs.push_back(j);
     }

@@ -98,12 +98,14 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
     throw core::InputError(path + ":" + std::to_string(e.source().begin.line) +
                            ": malformed TOML: " + std::string(e.description()));
   }
-  static const std::set<std::string> known = {"name",     "scene", "seed",  "realizations",
-                                              "duration", "grid",  "points"};
+  static const std::set<std::string> known = {"name",     "scene", "seed",   "realizations",
+                                              "duration", "grid",  "points", "trajectory_fps"};
   for (auto&& [k, v] : t)
     if (!known.count(std::string(k.str())))
-      throw core::InputError(path + ": unknown key '" + std::string(k.str()) +
-                             "'; known keys: name, scene, seed, realizations, duration, grid, points");
+      throw core::InputError(
+          path + ": unknown key '" + std::string(k.str()) +
+          "'; known keys: name, scene, seed, realizations, duration, trajectory_fps, grid, "
+          "points");
   c.name = t["name"].value_or(std::string(fs::path(path).stem()));
   for (char ch : c.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_'))
@@ -136,6 +138,14 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
   }
   if (!(c.duration <= 1e6)) throw core::InputError(path + ": duration must be at most 1e6 s");
   if (!(c.duration > 0)) throw core::InputError(path + ": duration must be > 0 s");
+  if (const toml::node* n = t.get("trajectory_fps")) {
+    const auto f = n->value<double>();
+    if (!f || !(*f > 0 && *f <= 1000))
+      throw core::InputError(path +
+                             ": trajectory_fps must be a number of frames per second in (0, 1000] (each "
+                             "realization keeps a trajectory at this rate; leave it out for none)");
+    c.trajectory_fps = *f;
+  }
 
   // The grid: a Cartesian product, keys in file order.
   std::vector<std::pair<std::string, std::vector<std::string>>> axes;

@@ -36,6 +36,9 @@ struct Campaign {
   std::uint64_t seed = 1;
   int realizations = 1;
   double duration = 0;
+  // > 0: every realization keeps a trajectory at this many frames per second (run --trajectory-fps), for
+  // measurements the events cannot give (where each species sits in the column: analyze's column.csv).
+  double trajectory_fps = 0;
   std::vector<CampaignPoint> points;
 
   // Seed of realization k of point p: a hash of (campaign seed, point label, k), so it does not depend on the
