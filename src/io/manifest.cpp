@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include "core/error.h"
@@ -28,22 +29,35 @@ const char* dir_kind_name(DirKind k) {
   return "?";
 }
 
-std::string file_hash(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw core::InputError(path.string() + ": cannot be read");
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  std::vector<char> buf(1 << 16);
-  while (in) {
-    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    const auto n = static_cast<size_t>(in.gcount());
-    for (size_t i = 0; i < n; ++i) {
-      h ^= static_cast<unsigned char>(buf[i]);
-      h *= 0x100000001b3ULL;
-    }
+namespace {
+std::uint64_t fnv1a(std::uint64_t h, const char* data, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 0x100000001b3ULL;
   }
+  return h;
+}
+std::string hex16(std::uint64_t h) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return hex;
+}
+constexpr std::uint64_t kFnvBasis = 0xcbf29ce484222325ULL;
+// The manifest's own hash: its last line, `self = "HASH"`, the FNV-1a 64 of every byte before that line, so
+// that an edited manifest is told apart from an edited file it lists.
+constexpr const char* kSelfKey = "self = \"";
+}  // namespace
+
+std::string file_hash(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw core::InputError(path.string() + ": cannot be read");
+  std::uint64_t h = kFnvBasis;
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    h = fnv1a(h, buf.data(), static_cast<size_t>(in.gcount()));
+  }
+  return hex16(h);
 }
 
 namespace {
@@ -86,6 +100,7 @@ void write_manifest(const fs::path& dir, DirKind kind) {
     s += "  [\"" + quoted + "\", " + std::to_string(size) + ", \"" + file_hash(path) + "\"],\n";
   }
   s += "]\n";
+  s += std::string(kSelfKey) + hex16(fnv1a(kFnvBasis, s.data(), s.size())) + "\"\n";
   write_file_atomic(dir / kManifestName, s);
 }
 
@@ -98,11 +113,24 @@ bool read_manifest(const fs::path& dir, Manifest& out) {
     throw core::InputError(p.string() + ": not a regular file (a manifest is one)");
   if (fs::file_size(p, ec) > kMaxManifestBytes)
     throw core::InputError(p.string() + ": larger than any manifest siloscope writes");
+  std::string text;
+  {
+    std::ifstream in(p, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   toml::table t;
   try {
-    t = toml::parse_file(p.string());
+    t = toml::parse(text, p.string());
   } catch (const toml::parse_error& e) {
     throw core::InputError(p.string() + ": malformed TOML: " + std::string(e.description()));
+  }
+  // Manifests since the self line check themselves; older ones are taken as they are.
+  if (const auto self = t["self"].value<std::string>()) {
+    const size_t at = text.rfind(std::string("\n") + kSelfKey);
+    if (at == std::string::npos || hex16(fnv1a(kFnvBasis, text.data(), at + 1)) != *self)
+      throw core::InputError(p.string() +
+                             ": the manifest itself was changed after siloscope wrote it (its own "
+                             "hash differs), so the files it lists cannot be checked against it");
   }
   out = {};
   const auto kind = t["kind"].value<std::string>();

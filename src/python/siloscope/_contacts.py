@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from ._errors import SiloscopeError
+from ._manifest import verify_listed
 from ._tables import regular_file
 
 
@@ -17,6 +18,7 @@ def read_contacts(path, n_particles=None):
     if os.path.isdir(path):
         path = os.path.join(path, "contacts.sscon")
     regular_file(path, "contacts file")
+    verify_listed(path)
     raw = open(path, "rb").read()
     if len(raw) < 16 or raw[:8] != b"SILOCONT":
         raise SiloscopeError(f"{path}: not a siloscope contacts file (no SILOCONT header)")

@@ -2,11 +2,13 @@
 import tomllib
 
 from ._errors import SiloscopeError
+from ._manifest import verify_listed
 from ._tables import regular_file
 
 
 def read_metadata(path):
     real = regular_file(path, "metadata file")
+    verify_listed(path)
     try:
         with open(real, "rb") as f:
             meta = tomllib.load(f)

@@ -7,6 +7,7 @@ import numpy as np
 import pandas as pd
 
 from ._errors import SiloscopeError
+from ._manifest import verify_listed
 
 # The most bytes any table siloscope writes may hold (a 10^6-exit run is ~30 MB): an input that is a device or
 # grows without end is refused instead of read.
@@ -30,12 +31,14 @@ def regular_file(path, what):
 
 def read_table(path, first_columns=(), counts=(), finite=(), optional=False, nonnegative=(), fractions=()):
     """The CSV at `path` as a DataFrame. `first_columns`: the header must start with these; `counts`: columns of
-    whole numbers >= 0; `finite`: columns that may not hold NaN or infinity; `nonnegative`: numbers >= 0 (NaN
-    allowed: not measured), `fractions`: numbers in [0, 1] (NaN allowed), each checked where the column exists.
+    whole numbers >= 0; `finite`: columns that may not hold NaN or infinity; `nonnegative`: finite numbers >= 0
+    (NaN allowed: not measured), `fractions`: numbers in [0, 1] (NaN allowed), each checked where the column
+    exists.
     optional: None if the file is absent."""
     if optional and not os.path.exists(path):
         return None
     regular_file(path, "table")
+    verify_listed(path)
     with open(path, "rb") as f:
         data = f.read()
     if data and not data.endswith(b"\n"):
@@ -57,13 +60,13 @@ def read_table(path, first_columns=(), counts=(), finite=(), optional=False, non
             row = int(np.flatnonzero(bad.to_numpy())[0])
             raise SiloscopeError(f"{path}:{row + 2}: {col} = {table[col].iloc[row]!r} is not a whole number >= 0")
         table[col] = values.astype(np.int64)
-    for col, low, high, what in ([(c, 0.0, math.inf, "a number >= 0") for c in nonnegative] +
+    for col, low, high, what in ([(c, 0.0, math.inf, "a finite number >= 0") for c in nonnegative] +
                                  [(c, 0.0, 1.0, "a fraction from 0 to 1") for c in fractions]):
         if col not in table.columns:
             continue
         values = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
         raw = table[col].astype(str).str.strip().str.lower()
-        bad = ~np.isnan(values) & ~((values >= low) & (values <= high))
+        bad = ~np.isnan(values) & ~((values >= low) & (values <= high) & np.isfinite(values))
         bad |= np.isnan(values) & ~raw.isin(["nan", ""]).to_numpy()  # text that is not a number
         if bad.any():
             row = int(np.flatnonzero(bad)[0])

@@ -6,6 +6,7 @@ import numpy as np
 
 from ._errors import SiloscopeError
 from ._metadata import check_metadata, species_of
+from ._manifest import verify_listed
 from ._tables import regular_file
 
 HEADER = np.dtype([("magic", "S8"), ("version", "<u4"), ("header_bytes", "<u4"), ("n", "<u4"), ("max_arch", "<u4"),
@@ -93,6 +94,7 @@ class Trajectory:
     def __init__(self, path):
         self.path = path
         real = regular_file(path, "trajectory file")
+        verify_listed(path)
         size = os.path.getsize(real)
         if size < HEADER.itemsize:
             raise SiloscopeError(f"{path}: truncated trajectory header ({size} bytes)")
@@ -111,6 +113,10 @@ class Trajectory:
         self.n_species = int(head["n_species"]) if self.version >= 2 else 2
         if not 1 <= self.n_species <= 16:
             raise SiloscopeError(f"{path}: corrupted trajectory header ({self.n_species} species; allowed: 1 to 16)")
+        # Checked before any array is sized from them: a header may promise more than the file holds.
+        if HEADER.itemsize + 5 * self.n > size or self.header_bytes > size or not 0 < self.max_arch <= 1024:
+            raise SiloscopeError(f"{path}: corrupted trajectory header (it promises {self.n} grains and a "
+                                 f"{self.header_bytes}-byte header; the file holds {size} bytes)")
         dtype = frame_dtype(self.n, self.max_arch, self.version, self.n_species)
         if int(head["frame_bytes"]) != dtype.itemsize or self.header_bytes > size:
             raise SiloscopeError(f"{path}: corrupted trajectory header (frame size or header size)")
