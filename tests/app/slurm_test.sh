@@ -8,7 +8,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d /tmp/siloscope_slurm.XXXXXX)
 chmod 755 "$work"  # the munge and slurm daemons reach their files in it
 cluster=$work/cluster
-cleanup() { bash "$here/slurm_cluster.sh" stop "$cluster" >/dev/null 2>&1 || true; }
+cleanup() { bash "$here/slurm_cluster.sh" stop "$cluster" >/dev/null 2>&1 || true; rm -rf "$work"; }
 trap cleanup EXIT
 if ! command -v sbatch >/dev/null || ! command -v munged >/dev/null; then
   echo "SKIPPED: slurm-wlm and munge are not installed (.ci/bootstrap installs them)"; exit 77
@@ -74,3 +74,38 @@ leftovers=$(find "$work/cancel/runs" -name '*.partial-*' | wc -l)
 [ "$leftovers" -eq 0 ] || { echo "FAIL: $leftovers partial directories left"; exit 1; }
 echo "ok: task $victim cancelled, 5 of 6 kept, the resubmission ran only the missing one"
 rm -rf "$work/local" "$work/cluster_run" "$work/cancel"
+
+# 3. The paper campaign's own grid and 1700 realizations (34 points x 50), each shortened (50 grains, 0.2 s of
+#    discharge), as docs/cluster.md runs it: a first pass of one realization per point measures the wall time,
+#    --emit-jobs groups the rest into tasks of --task-minutes, SLURM runs them, and the aggregates equal a local
+#    sweep's. Without a first pass the grouping still keeps under SLURM's default MaxArraySize (1001): 850
+#    tasks of 2, which SLURM accepts, where one realization per task (1700) is refused.
+printf 'settle_time = 0.6\nn_total = 50\nsilo_height = 1.5\n' > "$work/short1700.toml"
+sed -e 's#^scene = .*#scene = "short1700.toml"#' -e 's#^duration = .*#duration = 0.2#' \
+  -e 's#^name = .*#name = "paper-short"#' "$here/../../assets/campaigns/paper.toml" > "$work/paper-short.toml"
+grep -q '^realizations = 50$' "$work/paper-short.toml" || { echo "FAIL: paper.toml no longer has 50 realizations"; exit 1; }
+"$bin" sweep "$work/paper-short.toml" --emit-jobs --results "$work/cold" > "$work/cold.txt"
+cold=$(grep -c '' "$work/cold/jobs.txt")
+tasks=$(grep -o 'sbatch --array=1-[0-9]*' "$work/cold/jobs.slurm" | head -n 1 | grep -o '[0-9]*$')
+[ "$cold" -eq 1700 ] && [ "$tasks" -le 1000 ] || { echo "FAIL: $cold jobs in $tasks tasks (want 1700 in <= 1000)"; exit 1; }
+job=$(cd "$work/cold" && sbatch --parsable --hold --array=1-"$tasks" jobs.slurm) ||
+  { echo "FAIL: SLURM refused the array of $tasks tasks"; exit 1; }
+scancel "$job"
+if (cd "$work/cold" && sbatch --hold --array=1-1700 jobs.slurm > /dev/null 2>&1); then
+  echo "FAIL: SLURM accepted 1700 array tasks: this cluster's MaxArraySize is not the default"; exit 1
+fi
+echo "ok: with nothing measured, 1700 realizations in $tasks tasks (accepted; 1700 tasks refused by MaxArraySize)"
+"$bin" sweep "$work/paper-short.toml" --quiet --results "$work/local1700"
+"$bin" sweep "$work/paper-short.toml" --quiet --up-to 1 --no-analyze --results "$work/slurm1700"
+"$bin" sweep "$work/paper-short.toml" --emit-jobs --task-minutes 0.05 --results "$work/slurm1700" > "$work/emit.txt"
+n=$(grep -c '' "$work/slurm1700/jobs.txt")
+tasks=$(grep -o 'sbatch --array=1-[0-9]*' "$work/slurm1700/jobs.slurm" | head -n 1 | grep -o '[0-9]*$')
+[ "$n" -eq 1666 ] && [ "$tasks" -le 1000 ] && [ "$tasks" -lt "$n" ] ||
+  { echo "FAIL: after the first pass $n jobs in $tasks tasks (want 1666 grouped)"; exit 1; }
+(cd "$work/slurm1700" && sbatch --wait --array=1-"$tasks" jobs.slurm > /dev/null)
+"$bin" analyze "$work/slurm1700/runs" --out "$work/slurm1700/analysis" > /dev/null
+if ! diff -q "$work/local1700/analysis/points.csv" "$work/slurm1700/analysis/points.csv"; then
+  echo "FAIL: the 1700 realizations through SLURM aggregate differently from the local sweep"; exit 1
+fi
+echo "ok: the paper campaign's 1700 realizations (shortened) through $tasks array tasks give the local aggregates"
+rm -rf "$work/cold" "$work/local1700" "$work/slurm1700"
