@@ -274,6 +274,22 @@ TEST_CASE("keys that do nothing in this scene and species rounded to no grains a
   }
 }
 
+TEST_CASE("scene FILE makes the checks run makes before its discharge: it settles the grains",
+          "[trust][app]") {
+  // A settle too short for the grains to fall below the top: run refuses it after settling, and so does
+  // scene.
+  auto r = cli("scene " + kScene + " --set settle_time=0.05");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("after settle_time = 0.05 s grain") &&
+                           Catch::Matchers::Contains("is still above the top of the container"));
+  r = cli("scene " + kScene + " --set settle_time=0.05 --no-settle");
+  CHECK(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("is valid (not settled: --no-settle)"));
+  r = cli("scene " + kScene);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("is valid (deposited and settled as run does"));
+}
+
 TEST_CASE("an output path is resolved as the kernel resolves it: links first, then '..'", "[trust][app]") {
   fs::path d = temp_dir("kernel_paths");
   fs::create_directories(d / "sub" / "deep");
