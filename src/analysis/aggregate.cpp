@@ -20,8 +20,14 @@ const std::vector<std::string> kVaried = {"size_ratio", "chi", "mu", "kick_impul
 bool is_point_key(const std::string& k, const std::vector<std::string>& by) {
   for (const auto& v : kVaried)
     if (k == v) return true;
-  for (const auto& v : by)
+  for (const auto& v : by) {
     if (k == v) return true;
+    // A species' count sets n_total (their sum): told apart by the count, the runs differ in n_total too.
+    const std::string count = ".count";
+    if (k == "n_total" && v.rfind("species.", 0) == 0 && v.size() > count.size() &&
+        v.compare(v.size() - count.size(), count.size(), count) == 0)
+      return true;
+  }
   return k == "seed";
 }
 
@@ -134,21 +140,29 @@ std::vector<Point> aggregate(const std::vector<Run>& runs, const std::vector<Ref
   // Every key a campaign does not vary must agree with the first run's.
   const Run& first = runs.front();
   const auto first_values = core::scene_values(first.scene);
+  // Every key that differs is named in the hint: a campaign gridding a species' count also changes n_total,
+  // and a hint naming one key only led to the same error for the other.
   auto same_campaign = [&](const core::Scene& s, const std::string& source) {
     const auto values = core::scene_values(s);
+    std::string first_diff, hint;
     for (const auto& [k, a] : first_values) {
       if (is_point_key(k, by)) continue;
       auto it = values.find(k);
       const std::string b = it == values.end() ? "(absent)" : it->second;
-      if (a != b)
-        throw core::InputError("analyze: runs of different scenes are mixed: " + first.source + " has " + k +
-                               " = " + a + " but " + source + " has " + k + " = " + b +
-                               " (if your campaign varies " + k + ", analyze with --by " + k + ")");
+      if (a == b) continue;
+      if (first_diff.empty())
+        first_diff = first.source + " has " + k + " = " + a + " but " + source + " has " + k + " = " + b;
+      hint += " --by " + k;
     }
     for (const auto& [k, b] : values)
-      if (!first_values.count(k) && !is_point_key(k, by))
-        throw core::InputError("analyze: runs of different scenes are mixed: " + source + " has " + k +
-                               " = " + b + " but " + first.source + " has no such key");
+      if (!first_values.count(k) && !is_point_key(k, by)) {
+        if (first_diff.empty())
+          first_diff = source + " has " + k + " = " + b + " but " + first.source + " has no such key";
+        hint += " --by " + k;
+      }
+    if (!first_diff.empty())
+      throw core::InputError("analyze: runs of different scenes are mixed: " + first_diff +
+                             " (if your campaign varies them, analyze with" + hint + ")");
   };
   for (const Run& r : runs) same_campaign(r.scene, r.source);
   for (const Refused& r : refused) same_campaign(r.scene, r.source);

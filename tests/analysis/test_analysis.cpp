@@ -290,6 +290,13 @@ TEST_CASE("aggregation groups by point, computes Q~/Q_p and refuses mixed scenes
   auto mixed = runs;
   mixed[3].scene.dt = 5e-4;
   CHECK_THROWS_WITH(analysis::aggregate(mixed), Catch::Matchers::Contains("dt = 0.0005"));
+  // Two keys differ (as a grid of a species' count changes n_total with it): the hint names both, and
+  // following it aggregates.
+  mixed[3].scene.n_total = 300;
+  CHECK_THROWS_WITH(analysis::aggregate(mixed),
+                    Catch::Matchers::Contains("analyze with --by dt --by n_total)") ||
+                        Catch::Matchers::Contains("analyze with --by n_total --by dt)"));
+  CHECK(analysis::aggregate(mixed, {}, {"dt", "n_total"}).size() == 3);
   CHECK_THROWS_AS(analysis::aggregate({}), core::InputError);
 }
 

@@ -411,3 +411,18 @@ TEST_CASE("the committed paper figures are what the current figure script draws 
     CHECK(slurp(d / "f" / f) == slurp(fs::path(pack) / "figures" / f));
   }
 }
+
+TEST_CASE("a campaign gridding a species' count is analysed by that key alone (n_total follows it)",
+          "[campaign][app]") {
+  fs::path d = temp_dir("species_count");
+  std::ofstream(d / "c.toml") << "name = \"count\"\nscene = \"" << SILOSCOPE_SOURCE_DIR
+                              << "/assets/scenes/silo-obstacle.toml\"\nseed = 3\nrealizations = 1\n"
+                                 "duration = 0.5\n[grid]\n\"species.beads.count\" = [100, 120]\n";
+  REQUIRE(sh(kBin + " sweep " + (d / "c.toml").string() + " --quiet --results " + (d / "r").string()) == 0);
+  const std::string points = slurp(d / "r" / "analysis" / "points.csv");
+  CHECK(std::count(points.begin(), points.end(), '\n') == 3);  // the header and two points
+  // The message for runs mixed in two keys names both.
+  auto r = test::cli("analyze " + (d / "r" / "runs").string() + " --out " + (d / "a").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("analyze with --by n_total --by species.beads.count)"));
+}
