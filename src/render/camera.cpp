@@ -86,8 +86,9 @@ CameraSpec parse_camera(const std::string& spec) {
       return c;
     }
   }
-  throw core::InputError("--camera " + spec +
-                         ": expected hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)");
+  throw core::InputError(
+      "camera '" + spec +
+      "': expected hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)");
 }
 
 std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h) {
@@ -172,27 +173,27 @@ CameraPath parse_camera_path(const std::string& spec) {
   for (const auto& item : items) {
     const size_t colon = item.find(':');
     if (colon == std::string::npos || colon == 0)
-      throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
+      throw core::InputError("camera path '" + spec + "': key '" + item + "': " + allowed);
     char* end = nullptr;
     const std::string time = item.substr(0, colon);  // alive while `end` points into it
     const double t = std::strtod(time.c_str(), &end);
     if (*end != '\0' || !std::isfinite(t))
-      throw core::InputError("--camera-path '" + spec + "': key '" + item + "': " + allowed);
+      throw core::InputError("camera path '" + spec + "': key '" + item + "': " + allowed);
     CameraSpec cam;
     try {
       cam = parse_camera(item.substr(colon + 1));
     } catch (const core::InputError& e) {
-      throw core::InputError("--camera-path key '" + item + "': " + e.what());
+      throw core::InputError("camera path key '" + item + "': " + e.what());
     }
     if (cam.kind == CameraSpec::Kind::Split)
-      throw core::InputError("--camera-path key '" + item +
+      throw core::InputError("camera path key '" + item +
                              "': split shows two views and a path moves one; use hopper, outlet or window");
     if (!path.keys.empty() && !(t > path.keys.back().t))
-      throw core::InputError("--camera-path key '" + item + "': times must increase (the key before is at " +
+      throw core::InputError("camera path key '" + item + "': times must increase (the key before is at " +
                              core::format_g(path.keys.back().t, 6) + " s)");
     path.keys.push_back({t, cam});
   }
-  if (path.keys.empty()) throw core::InputError("--camera-path '" + spec + "': " + allowed);
+  if (path.keys.empty()) throw core::InputError("camera path '" + spec + "': " + allowed);
   return path;
 }
 

@@ -106,7 +106,7 @@ OverlayOptions parse_overlay(const std::string& spec) {
       o.ids = true;
     else
       throw core::InputError(
-          "--overlay " + spec + ": '" + item +
+          "overlay '" + spec + "': '" + item +
           "' is not one of all, all+plot, none, time, counts, rate, timer, arch, legend, scale, "
           "events, zoombox, plot, colorbar, ids");
   }

@@ -11,21 +11,21 @@ namespace render {
 Palette parse_palette(const std::string& s) {
   if (s == "paper") return Palette::Paper;
   if (s == "colorblind") return Palette::ColorBlind;
-  throw core::InputError("--palette " + s + ": expected paper or colorblind");
+  throw core::InputError("palette '" + s + "': expected paper or colorblind");
 }
 
 ColorMode parse_color_mode(const std::string& s) {
   for (ColorMode m : {ColorMode::Species, ColorMode::Speed, ColorMode::Force, ColorMode::Displacement,
                       ColorMode::Coordination, ColorMode::Id})
     if (s == color_mode_name(m)) return m;
-  throw core::InputError("--color " + s +
+  throw core::InputError("color '" + s + "'" +
                          ": expected species, speed, force, displacement, coordination or id");
 }
 
 Colormap parse_colormap(const std::string& s) {
   for (Colormap m : {Colormap::Viridis, Colormap::Magma, Colormap::Inferno, Colormap::Cividis})
     if (s == colormap_name(m)) return m;
-  throw core::InputError("--colormap " + s + ": expected viridis, magma, inferno or cividis");
+  throw core::InputError("colormap '" + s + "': expected viridis, magma, inferno or cividis");
 }
 
 const char* color_mode_name(ColorMode m) {

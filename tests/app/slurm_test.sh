@@ -97,7 +97,7 @@ fi
 echo "ok: with nothing measured, 1700 realizations in $tasks tasks (accepted; 1700 tasks refused by MaxArraySize)"
 "$bin" sweep "$work/paper-short.toml" --quiet --results "$work/local1700"
 "$bin" sweep "$work/paper-short.toml" --quiet --up-to 1 --no-analyze --results "$work/slurm1700"
-"$bin" sweep "$work/paper-short.toml" --emit-jobs --task-minutes 0.05 --results "$work/slurm1700" > "$work/emit.txt"
+"$bin" sweep "$work/paper-short.toml" --emit-jobs --task-minutes 0.1 --results "$work/slurm1700" > "$work/emit.txt"
 n=$(grep -c '' "$work/slurm1700/jobs.txt")
 tasks=$(grep -o 'sbatch --array=1-[0-9]*' "$work/slurm1700/jobs.slurm" | head -n 1 | grep -o '[0-9]*$')
 [ "$n" -eq 1666 ] && [ "$tasks" -le 1000 ] && [ "$tasks" -lt "$n" ] ||

@@ -84,7 +84,7 @@ TEST_CASE("bad scenes and outputs: one clear line, exit 2, nothing written", "[a
   CHECK_THAT(r.output, Catch::Matchers::Contains("even"));
   r = cli("record " + kScene + " --camera sideways --out " + (d / "movie").string());
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Matchers::Contains("--camera sideways"));
+  CHECK_THAT(r.output, Catch::Matchers::Contains("--camera: camera 'sideways'"));
   std::ofstream(d / "file") << "x";
   r = cli("run " + kScene + " --out " + (d / "file" / "sub").string());
   CHECK(r.code == 2);

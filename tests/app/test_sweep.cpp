@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -301,6 +302,14 @@ TEST_CASE("sweep --status says how far a campaign got and what is left, and writ
   r = test::cli("sweep " + other.string() + " --status --results " + res.string());
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Matchers::Contains("holds another campaign"));
+  // The results' own copy cut short: named as the results' copy, not as the campaign file given.
+  const std::string stamp = slurp(res / "campaign.toml");
+  std::ofstream(res / "campaign.toml") << stamp.substr(0, 40);
+  r = test::cli("sweep " + c.string() + " --status --results " + res.string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Matchers::Contains("its copy of the campaign does not parse (" +
+                                                 (res / "campaign.toml").string() + ":"));
+  std::ofstream(res / "campaign.toml") << stamp;
 }
 
 TEST_CASE("figures draws what the grid allows, avalanche sizes included, and names what it skipped",

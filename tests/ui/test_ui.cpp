@@ -135,6 +135,14 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "range.txt").string()),
                     Contains("range.txt:3") && Contains("out of range (0 to 4)"));
   CHECK_THROWS_WITH(insp.execute("goto clog 2"), Contains("1 clogs"));
+  // A value the command cannot take is blamed on the script's line, not on a command-line flag.
+  std::ofstream(d / "zoom.txt") << "zoom sideways\n";
+  CHECK_THROWS_WITH(
+      ui::run_script(insp, painter, (d / "zoom.txt").string()),
+      Contains("zoom.txt:1: 'zoom sideways': camera 'sideways': expected hopper") && !Contains("--camera"));
+  std::ofstream(d / "colors.txt") << "colormap rainbow\n";
+  CHECK_THROWS_WITH(ui::run_script(insp, painter, (d / "colors.txt").string()),
+                    Contains("colors.txt:1:") && Contains("colormap 'rainbow'") && !Contains("--colormap"));
   // The window's "go to" field: a frame, a time or a step.
   ui::go_to(insp, " 3 ");
   CHECK(insp.frame_index() == 3);
@@ -147,7 +155,7 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK_THROWS_WITH(ui::go_to(insp, "soon"), Contains("give a frame (120), a time (4.5 s) or a step"));
   CHECK_THROWS_WITH(ui::go_to(insp, "99"), Contains("out of range"));
   CHECK_THROWS_WITH(insp.execute("step -9"), Contains("out of range"));
-  CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("--color rainbow"));
+  CHECK_THROWS_WITH(insp.execute("color rainbow"), Contains("color 'rainbow'") && !Contains("--color"));
   insp.execute("color displacement 0.5 from 0.1");
   CHECK(insp.style.color == render::ColorMode::Displacement);
   CHECK(insp.style.displacement_max == 0.5);

@@ -146,7 +146,7 @@ int gallery(const GalleryOptions& o) {
   } cleanup{tmp};
 
   render::Style style;
-  style.palette = render::parse_palette(o.palette);
+  style.palette = for_flag("--palette", [&] { return render::parse_palette(o.palette); });
   if (!o.chains.empty()) render::set_chains(style, o.chains, "--force-chains");  // as record's
   const core::Geometry& geo = setup.geo;
   // The outlet camera of a square tile: the window each tile shows.

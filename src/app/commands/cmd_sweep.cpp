@@ -116,9 +116,15 @@ std::string stamped_campaign(const Campaign& c, const fs::path& dir) {
   };
   Campaign prev;
   try {
-    prev = parse_campaign(old, c.path);
+    prev = parse_campaign(old, c.path);  // anchored where the campaign file is: its scene path is relative
   } catch (const core::InputError& e) {
-    throw refuse(std::string("its campaign.toml no longer parses here (") + e.what() + ")");
+    // The results' own copy is what failed to parse (cut or edited), not the campaign file given: named so.
+    std::string why = e.what();
+    if (why.rfind(c.path, 0) == 0) why = stamp.string() + why.substr(c.path.size());
+    throw core::InputError(
+        "results directory " + dir.string() + ": its copy of the campaign does not parse (" + why +
+        "): cut or edited after sweep wrote it? Restore it (a copy of the campaign file the results were "
+        "made with) or choose another --results directory");
   }
   if (prev.seed != c.seed)
     throw refuse("seed " + std::to_string(prev.seed) + " there, " + std::to_string(c.seed) + " here");

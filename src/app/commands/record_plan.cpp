@@ -1,5 +1,6 @@
 // record's options turned into panels and a plan (app/commands/record_plan.h).
 #include "app/commands/record_plan.h"
+#include "app/services/cli.h"
 
 #include <cmath>
 #include <cstdio>
@@ -121,10 +122,10 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0)
     throw core::InputError("--no-movie without --png-every would record nothing");
-  plan.style.palette = render::parse_palette(o.palette);
-  plan.style.color = render::parse_color_mode(o.color);
+  plan.style.palette = for_flag("--palette", [&] { return render::parse_palette(o.palette); });
+  plan.style.color = for_flag("--color", [&] { return render::parse_color_mode(o.color); });
   plan.style.transparent = o.transparent;
-  plan.overlay = render::parse_overlay(o.overlay);
+  plan.overlay = for_flag("--overlay", [&] { return render::parse_overlay(o.overlay); });
   const core::Setup& setup = panels.front().model.setup;
   o.looks.apply(setup.n_total, o.transparent, plan.style, plan.overlay);
   // The information box goes to the corner of each panel that covers the least of the container and its
@@ -132,8 +133,9 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
   // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
   plan.overlay.place_clear = !plan.overlay.plot;
-  const render::CameraSpec camera = render::parse_camera(o.camera);
-  if (!o.camera_path.empty()) plan.path = render::parse_camera_path(o.camera_path);
+  const render::CameraSpec camera = for_flag("--camera", [&] { return render::parse_camera(o.camera); });
+  if (!o.camera_path.empty())
+    plan.path = for_flag("--camera-path", [&] { return render::parse_camera_path(o.camera_path); });
   if (!o.freeze.empty()) {
     const size_t colon = o.freeze.find(':');
     plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
@@ -143,7 +145,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
       throw core::InputError(
           "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
   }
-  plan.style.colormap = render::parse_colormap(o.colormap);
+  plan.style.colormap = for_flag("--colormap", [&] { return render::parse_colormap(o.colormap); });
   if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
     throw core::InputError("--displacement-from " + num6(o.displacement_from) +
                            ": allowed range is 0 to 1e6 s");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/model.h"
 #include "core/scene.h"
 
@@ -67,5 +68,16 @@ void add_bench_stability_command(CLI::App& bench, Action& action);
 void add_bench_sweep_command(CLI::App& bench, Action& action);
 void add_bench_record_command(CLI::App& bench, Action& action);
 void add_bench_roundtrip_command(CLI::App& bench, Action& action);
+
+// A value parsed for a command-line flag: a parser's error (which names the value, not how it was given, so
+// that an inspector script can name its own line) gets the flag in front.
+template <class F>
+auto for_flag(const char* flag, F&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const core::InputError& e) {
+    throw core::InputError(std::string(flag) + ": " + e.what());
+  }
+}
 
 }  // namespace app

@@ -1,4 +1,5 @@
 #include "app/services/looks.h"
+#include "app/services/cli.h"
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +87,9 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
   if (arch_halo != "on" && arch_halo != "off")
     throw core::InputError("--arch-halo " + arch_halo + ": expected on or off");
   style.show_arch = arch_halo == "on";
-  if (!chain_colormap.empty()) style.chain_colormap = render::parse_colormap(chain_colormap);
+  if (!chain_colormap.empty())
+    style.chain_colormap =
+        for_flag("--chain-colormap", [&] { return render::parse_colormap(chain_colormap); });
   (void)notes();  // every note's form checked now, before any work
   overlay.info_at = render::parse_corner(overlay_at, "--overlay-at");
   if (transparent && style.dark)
