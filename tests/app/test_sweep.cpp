@@ -406,6 +406,13 @@ TEST_CASE("emit-jobs groups realizations into array tasks of --task-minutes and 
   // Options that only mean something for a job list are refused without it.
   CHECK(sh(kBin + " sweep " + c.string() + " --max-array 5 --results " + (d / "x").string() +
            " 2> /dev/null") == 2);
+  // Bounds printed as written, not as CLI11's "0.100000 to 10000.000000".
+  auto bad =
+      test::cli("sweep " + c.string() + " --emit-jobs --task-minutes 0.01 --results " + (d / "y").string());
+  CHECK(bad.code != 0);
+  CHECK_THAT(bad.output,
+             Catch::Matchers::Contains("--task-minutes: 0.01 is out of range; expected a number from "
+                                       "0.1 to 10000 minutes"));
 }
 
 TEST_CASE("the committed paper figures are what the current figure script draws from the committed analysis",

@@ -597,7 +597,7 @@ void add_sweep_command(CLI::App& app, Action& action) {
                   "with --emit-jobs: realizations per array task to fill this many minutes at the finished "
                   "ones' median wall time")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 10000.0))
+      ->check(number_in(0.1, 10000, "minutes"))
       ->needs(emit);
   cmd->add_option("--max-array", o->max_array,
                   "with --emit-jobs: at most this many array tasks (SLURM's default MaxArraySize is 1001)")

@@ -1,7 +1,9 @@
 // The command line's shared pieces: scene options, integer checks, "did you mean", the command line itself.
 #include "app/services/cli.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -85,6 +87,21 @@ CLI::Validator whole_number(long double lo, long double hi) {
         return "";
       },
       "INT", "whole_number");
+}
+
+CLI::Validator number_in(double lo, double hi, const std::string& unit) {
+  const std::string allowed =
+      "a number from " + core::format_g(lo) + " to " + core::format_g(hi) + (unit.empty() ? "" : " " + unit);
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+          return "'" + s + "' is not allowed; expected " + allowed;
+        if (v < lo || v > hi) return s + " is out of range; expected " + allowed;
+        return "";
+      },
+      "NUMBER", "number_in");
 }
 
 }  // namespace app

@@ -19,6 +19,9 @@ namespace app {
 // A CLI11 check for integer options: digits only (a sign only where negatives are allowed), within [lo, hi].
 // "--seed -1" is refused with the allowed range instead of wrapping to 2^64 - 1.
 CLI::Validator whole_number(long double lo, long double hi);
+// A finite number in [lo, hi]; the message prints the bounds as a person writes them (CLI11's own Range
+// printed "0.100000 to 10000.000000").
+CLI::Validator number_in(double lo, double hi, const std::string& unit = "");
 // Levenshtein distance (for "did you mean").
 size_t edit_distance(const std::string& a, const std::string& b);
 
