@@ -131,6 +131,7 @@ RunRecord read_run_record(const std::string& path) {
       throw core::InputError(path + ": no " + table + "." + key +
                              " (a run's metadata.toml always has it: truncated or cut by hand?)");
   RunRecord r;
+  r.command = t["siloscope"]["command"].value_or(std::string());
   r.health_warnings = t["health"]["warnings"].value_or<std::int64_t>(0);
   r.ballistic = t["health"]["ballistic"].value_or(false);
   r.airborne_fraction = t["health"]["airborne_fraction_mean"].value_or(0.0);

@@ -49,6 +49,7 @@ struct RunRecord {
   std::string drain_outcome;
   double drain_end_s = 0;
   long drain_remaining = 0;
+  std::string command;  // the command line that made it ([siloscope] command)
 };
 // Throws core::InputError naming the file when it is not valid TOML.
 RunRecord read_run_record(const std::string& metadata_path);

@@ -437,6 +437,16 @@ TEST_CASE("a campaign gridding a species' count is analysed by that key alone (n
   REQUIRE(sh(kBin + " sweep " + (d / "c.toml").string() + " --quiet --results " + (d / "r").string()) == 0);
   const std::string points = slurp(d / "r" / "analysis" / "points.csv");
   CHECK(std::count(points.begin(), points.end(), '\n') == 3);  // the header and two points
+  // A run copied in by hand under the campaign's runs/ is not counted as one of its realizations.
+  fs::copy(d / "r" / "runs" / "p001" / "r000", d / "r" / "runs" / "p000" / "r001",
+           fs::copy_options::recursive);
+  auto copied = test::cli("analyze " + (d / "r" / "runs").string() + " --out " + (d / "a0").string() +
+                          " --by species.beads.count");
+  CHECK(copied.code == 2);
+  CHECK_THAT(copied.output,
+             Catch::Matchers::Contains("p000/r001 is not the campaign's realization runs/p000/r001") &&
+                 Catch::Matchers::Contains("a run copied in by hand?"));
+  fs::remove_all(d / "r" / "runs" / "p000" / "r001");
   // The message for runs mixed in two keys names both.
   auto r = test::cli("analyze " + (d / "r" / "runs").string() + " --out " + (d / "a").string());
   CHECK(r.code == 2);

@@ -57,6 +57,23 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs:
   for (const auto& c : children) find_runs(c, out, refused);
 }
 
+// A run under a campaign's RESULTS/runs/pPPP/rRRR must be the realization sweep made there: its command line
+// runs scenes/pPPP.toml into runs/pPPP/rRRR. A run copied in by hand (another seed, scene or campaign) would
+// otherwise be counted as one of the campaign's realizations.
+void check_campaign_member(const fs::path& d, const io::RunRecord& rec) {
+  const fs::path point = d.parent_path(), runs = point.parent_path();
+  if (runs.filename() != "runs" || !fs::exists(runs.parent_path() / "campaign.toml")) return;
+  const std::string rel = "runs/" + point.filename().string() + "/" + d.filename().string();
+  const std::string cmd = rec.command + " ";
+  if (cmd.find(" --out " + rel + " ") == std::string::npos ||
+      cmd.find(" scenes/" + point.filename().string() + ".toml ") == std::string::npos)
+    throw core::InputError(
+        "analyze: " + d.string() + " is not the campaign's realization " + rel + ": its command line (" +
+        (rec.command.empty() ? "none" : rec.command) + ") does not run scenes/" + point.filename().string() +
+        ".toml into " + rel +
+        " (a run copied in by hand?); move it out of the campaign's runs/ to analyse the campaign");
+}
+
 // Where each species sits in the column, from the run's trajectory when it kept one (run --trajectory-fps,
 // record, or a campaign's trajectory_fps); checked against the run's manifest like its other files.
 void measure_column(const fs::path& d, analysis::Run& r) {
@@ -111,6 +128,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
     }
     const core::Setup& setup = r.setup;
     const io::RunRecord rec = io::read_run_record(meta);
+    check_campaign_member(d, rec);
     r.events = io::read_events(d, setup.species_names());
     // A run counts for the discharge time it covered, not the time it planned.
     double covered = rec.covered_s >= 0 ? std::min(rec.covered_s, r.scene.duration) : r.scene.duration;
