@@ -24,6 +24,11 @@ namespace app {
 namespace {
 namespace fs = std::filesystem;
 
+// DIR itself, or DIR/analysis when only that holds `file`: a campaign's results directory or its analysis.
+fs::path analysis_holding(const fs::path& dir, const char* file) {
+  return !fs::exists(dir / file) && fs::exists(dir / "analysis" / file) ? dir / "analysis" : dir;
+}
+
 struct FiguresOptions {
   std::string dir, out;
   bool force = false;
@@ -31,8 +36,7 @@ struct FiguresOptions {
 
 int figures(const FiguresOptions& o) {
   // DIR may be a campaign's results directory (with analysis/) or an analysis directory itself.
-  fs::path src = o.dir;
-  if (!fs::exists(src / "points.csv") && fs::exists(src / "analysis" / "points.csv")) src /= "analysis";
+  const fs::path src = analysis_holding(o.dir, "points.csv");
   if (!fs::exists(src / "points.csv"))
     throw core::InputError("figures: " + o.dir +
                            " holds no points.csv (run `siloscope analyze` or `sweep` first)");
@@ -78,8 +82,7 @@ int claims(const ClaimsOptions& o) {
     if (eq == std::string::npos || eq == 0)
       throw core::InputError("claims: '" + r +
                              "': expected LABEL=RESULTS, e.g. literal=docs/campaigns/paper");
-    fs::path dir = r.substr(eq + 1);
-    if (!fs::exists(dir / "points.csv") && fs::exists(dir / "analysis" / "points.csv")) dir /= "analysis";
+    const fs::path dir = analysis_holding(r.substr(eq + 1), "points.csv");
     if (!fs::exists(dir / "points.csv"))
       throw core::InputError("claims: " + r.substr(eq + 1) +
                              " holds no points.csv (run `siloscope analyze` first)");
@@ -100,8 +103,7 @@ int claims(const ClaimsOptions& o) {
       throw core::InputError("claims: --column '" + c +
                              "': expected LABEL=RESULTS with LABEL one of the presets "
                              "given (e.g. --column literal=docs/campaigns/column)");
-    fs::path dir = c.substr(eq + 1);
-    if (!fs::exists(dir / "column.csv") && fs::exists(dir / "analysis" / "column.csv")) dir /= "analysis";
+    const fs::path dir = analysis_holding(c.substr(eq + 1), "column.csv");
     if (fs::exists(dir / "column.csv")) io::verify_listed(dir / "column.csv", "claims: analysis table");
     column_of[label] = dir.string();
   }
