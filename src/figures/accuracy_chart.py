@@ -51,7 +51,7 @@ def ratio(r, ks, crit):
 
 
 def main(src, out):
-    rows = [r for r in read(src) if isinstance(r["sim_per_wall"], float) and math.isfinite(r["sim_per_wall"])]
+    rows = [r for r in read(src) if isinstance(r["sim_per_cpu"], float) and math.isfinite(r["sim_per_cpu"])]
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     measures = [("overlap", "mean overlap [% of the smaller radius]"),
                 ("aval", "KS(avalanche sizes) / 95% critical"),
@@ -71,7 +71,7 @@ def main(src, out):
                 else:
                     v = ratio(r, "gap_ks_distance", "gap_ks_critical")
                 if math.isfinite(v):
-                    pts.append((r["sim_per_wall"], v, r["setting"]))
+                    pts.append((r["sim_per_cpu"], v, r["setting"]))
             for speed, err, name in pts:
                 ax.scatter([speed], [err], s=90 if name == "default" else 40, zorder=3,
                            color="#D55E00" if name == "default" else ("#000000" if name == "reference" else "#0072B2"))
@@ -82,7 +82,7 @@ def main(src, out):
                 ax.axhline(1.0, color="grey", lw=1, ls=":")
                 ax.set_ylim(bottom=0)
             ax.set_xscale("log")
-            ax.set_xlabel("speed [simulated s per wall s, one core]")
+            ax.set_xlabel("speed [simulated s per CPU s of one core]")
             ax.set_ylabel(label, fontsize=8)
             ax.grid(alpha=0.3)
             if j == 0:

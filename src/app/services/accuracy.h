@@ -28,7 +28,7 @@ struct NumericSetting {
 };
 
 struct SettingResult {
-  double sim_seconds = 0, wall_seconds = 0;
+  double sim_seconds = 0, cpu_seconds = 0;  // simulated, and the discharges' CPU time
   std::vector<analysis::Measurements> runs;
   std::vector<double> clog_durations;  // every clog's duration, pooled over realizations
   std::vector<double>
