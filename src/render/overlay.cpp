@@ -38,6 +38,28 @@ int parse_corner(const std::string& text, const std::string& option) {
                          ": expected auto, top-right, top-left, bottom-right or bottom-left");
 }
 
+void parse_placement(const std::string& text, const std::string& option, OverlayOptions& o) {
+  if (text.find('=') == std::string::npos) {
+    o.info_at = parse_corner(text, option);
+    return;
+  }
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    const size_t eq = item.find('=');
+    const std::string what = item.substr(0, eq == std::string::npos ? item.size() : eq);
+    int* slot = what == "info"       ? &o.info_at
+                : what == "plot"     ? &o.plot_at
+                : what == "colorbar" ? &o.colorbar_at
+                : what == "scale"    ? &o.scale_at
+                                     : nullptr;
+    if (eq == std::string::npos || !slot)
+      throw core::InputError(option + " " + text + ": '" + item +
+                             "': expected ELEMENT=CORNER with ELEMENT info, plot, colorbar or scale (or one "
+                             "corner, for the information box)");
+    *slot = parse_corner(item.substr(eq + 1), option + " " + what + "=");
+  }
+}
+
 TimedNote parse_note(const std::string& spec, const std::string& option) {
   // T0:T1:X,Y:TEXT (the text may hold colons)
   auto fail = [&](const std::string& why) -> TimedNote {
@@ -162,7 +184,7 @@ Overlay::~Overlay() {
 }
 
 void Overlay::ensure_font(int h, double scale) {
-  const int px = std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(scale, 0.25, 8.0))));
+  const int px = static_cast<int>(overlay_em(h, scale));
   if (px == font_px_) return;
   ImGuiIO& io = ImGui::GetIO();
   io.Fonts->Clear();
@@ -215,9 +237,13 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   // out once without drawing it, so the boxes are sized and placed for this picture's own contents (sized
   // from the previous picture, a legend that grew by a row lost it, and a snapshot after a shorter one lost
   // its colour bar).
-  ImGui::NewFrame();
-  build(f, d, o, views, style, w, h, geo, marks);
-  ImGui::EndFrame();
+  // A window ImGui has not drawn before learns its size only at the end of its first frame: a fresh overlay
+  // lays the picture out twice (the boxes are placed by their true sizes, not ImGui's 32-pixel start).
+  for (int pass = 0; pass < (laid_out_ ? 1 : 2); ++pass) {
+    ImGui::NewFrame();
+    build(f, d, o, views, style, w, h, geo, marks);
+    ImGui::EndFrame();
+  }
   laid_out_ = true;
   ImGui::NewFrame();
   build(f, d, o, views, style, w, h, geo, marks);
@@ -239,12 +265,24 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   if (o.events) draw_events(notes, views, em);
   if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   if (o.ids || notes.selected >= 0) draw_ids(f, views, o.ids, notes.selected, em);
-  // The information box first: the plot, the colour bar and the scale bar are placed clear of it.
+  // What the boxes keep off: the container as this picture shows it (where a vibrating one is now), the
+  // grains, and each box placed before the next. The information box first: the plot, the colour bar and
+  // the scale bar are placed clear of it.
+  panel_x0_ = static_cast<float>(d.panel_x);
+  panel_x1_ = d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w);
+  panel_y1_ = 0;  // of the lowest view: a window's timeline may lie below
+  for (const auto& v : views) panel_y1_ = std::max(panel_y1_, static_cast<float>(v.rect.y + v.rect.h));
+  if (panel_y1_ <= 0) panel_y1_ = static_cast<float>(h);
+  space_ = std::make_unique<FreeSpace>(Box{panel_x0_, 0, panel_x1_, panel_y1_}, std::max(2.0f, 0.25f * em));
+  if (geo) space_->block_container(views, *geo, f.container_x, f.container_y);
+  space_->block_grains(f, views);
   info_shown_ = false;
+  plot_rect_ = scale_rect_ = {};
+  boxes_clear_ = true;
   draw_info(f, d, o, views, style, w, h, geo, em);
-  if (o.plot) plot(f, d, views, style);
+  if (o.plot) plot(f, d, o, views, style);
   draw_colorbar(o, views, style, em);
-  if (o.scale) draw_scale(d, views, em);
+  if (o.scale) draw_scale(d, o, views, em);
   // A bold line between panels of a comparison, thin separators between views.
   if (d.panel_x > 0)
     dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0),

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/model.h"
 #include "core/scene.h"
 #include "render/camera.h"
+#include "render/free_space.h"
 #include "render/palette.h"
 
 namespace render {
@@ -36,6 +38,9 @@ struct OverlayOptions {
   // Where the information box goes: -1 as above (place_clear's choice, or top-right); else the user's corner,
   // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (record --overlay-at).
   int info_at = -1;
+  // The other boxes' corners, the same way (-1: the clear spot nearest their own corner): the discharge plot
+  // and the colour bar in the panel, the scale bar in the view whose scale it shows.
+  int plot_at = -1, colorbar_at = -1, scale_at = -1;
   static OverlayOptions none() {
     OverlayOptions o;
     o.time = o.counts = o.rate = o.timer = o.arch = o.legend = o.scale = o.events = o.zoombox = false;
@@ -49,6 +54,10 @@ struct OverlayOptions {
 // "auto", "top-right", "top-left", "bottom-right" or "bottom-left" into OverlayOptions::info_at. Throws
 // core::InputError naming `option`.
 int parse_corner(const std::string& text, const std::string& option);
+// Where the user puts the boxes (record --overlay-at): a corner for the information box as above, or a comma
+// list of ELEMENT=CORNER with ELEMENT info, plot, colorbar or scale (e.g. "info=top-left,plot=bottom-left").
+// Throws core::InputError naming `option`, the item and what is allowed.
+void parse_placement(const std::string& text, const std::string& option, OverlayOptions& o);
 // Parse "all", "none" or a comma list of
 // time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,colorbar,ids
 // ("all+plot" is all of the default elements and the plot). Throws core::InputError.
@@ -87,6 +96,9 @@ struct OverlayData {
   double diameter = 0.13;        // m, of an original disk (the scale bar's unit)
   std::string title;             // e.g. "r = 0.4, chi = 0.4, mu = 0 A m^2"
   int panel_x = 0, panel_w = 0;  // the panel this overlay belongs to, pixels (panel_w = 0: the whole image)
+  // Pixels at the right of the panel kept free for the overlay's boxes, beside the container (record adds
+  // this margin when the container leaves no clear space, render/free_space.h); 0: none.
+  int margin_w = 0;
   // The scene's species, by index: names for the legend, and their own colours (alpha 0: the palette's).
   std::vector<std::string> species_names = {"original", "added"};
   std::vector<Rgba> species_colors;
@@ -126,6 +138,12 @@ class Overlay {
                        : std::array<float, 4>{};
   }
   std::array<float, 4> colorbar_rect() const { return bar_rect_; }
+  // ... and the discharge plot's and the scale bar's boxes (empty if not drawn).
+  std::array<float, 4> plot_rect() const { return plot_rect_; }
+  // Every box of the last picture found clear space (none had to be put over the container or a grain);
+  // a box the user placed (--overlay-at) counts as clear.
+  bool boxes_clear() const { return boxes_clear_; }
+  std::array<float, 4> scale_rect() const { return scale_rect_; }
 
  private:
   void ensure_font(int h, double scale);
@@ -133,7 +151,8 @@ class Overlay {
   void build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
              const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
              const Annotations& notes);
-  void plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views, const Style& style);
+  void plot(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+            const std::vector<View>& views, const Style& style);
   void draw_zoombox(const std::vector<View>& views, int h);
   void draw_events(const Annotations& notes, const std::vector<View>& views, float em);
   void draw_texts(const Annotations& notes, const std::vector<View>& views, float em);
@@ -141,7 +160,7 @@ class Overlay {
   void draw_info(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                  const std::vector<View>& views, const Style& style, int w, int h, const core::Geometry* geo,
                  float em);
-  void draw_scale(const OverlayData& d, const std::vector<View>& views, float em);
+  void draw_scale(const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views, float em);
   void draw_ids(const core::Frame& f, const std::vector<View>& views, bool arch_ids, int selected, float em);
   void* ctx_ = nullptr;
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
@@ -159,6 +178,11 @@ class Overlay {
   bool info_shown_ = false;        // drawn in this frame's picture
   float bar_w_ = 0, bar_h_ = 0;    // the colour bar's size in the last frame
   std::array<float, 4> bar_rect_{};
+  std::array<float, 4> plot_rect_{}, scale_rect_{};
+  bool boxes_clear_ = true;
+  // What this picture's boxes must keep off (the container, grains, boxes already placed); made in build().
+  std::unique_ptr<FreeSpace> space_;
+  float panel_x0_ = 0, panel_x1_ = 0, panel_y1_ = 0;  // the panel's region, pixels
   int info_corner_ = 0;     // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
   bool info_left_ = false;  // see info_left()
 };

@@ -15,24 +15,20 @@ using overlay_detail::colour_bar;
 using overlay_detail::most_zoomed;
 using overlay_detail::to_u32;
 
-namespace {
-// A world point on the container as the information box must not cover it: inside the walls (and a tenth of
-// a diameter beyond, for the walls' lines) or in the column below the aperture that exiting disks fall
-// through (four diameters deep).
-bool in_container(const core::Geometry& g, core::Vec2 p) {
-  const double m = 0.1 * g.grain_diameter;
-  if (p.y < 0) return p.y > -4 * g.grain_diameter && std::abs(p.x) < g.half_aperture + m;
-  if (p.y > g.total_height + m) return false;
-  return p.x > g.left_at(p.y) - m && p.x < g.right_at(p.y) + m;
-}
-}  // namespace
-
 // The information box's lines, into the current ImGui window.
 void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOptions& o, const Style& given,
                    float em) {
   Style style = given;  // the scene's own species colours, wherever the box is drawn (a window's side panel)
   if (!d.species_colors.empty()) style.species_colors = d.species_colors;
-  if (!d.title.empty()) ImGui::TextUnformatted(d.title.c_str());
+  if (!d.title.empty()) {
+    // Wrapped at 18 em (a long scene's title would make the box as wide as the picture), or at the margin
+    // kept for the box.
+    float wrap = 18 * em;
+    if (d.margin_w > 0) wrap = std::min(wrap, d.margin_w - 1.2f * em - 2 * ImGui::GetStyle().WindowPadding.x);
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(8 * em, wrap));
+    ImGui::TextUnformatted(d.title.c_str());
+    ImGui::PopTextWrapPos();
+  }
   if (o.time) ImGui::Text("t = %.2f s", f.t);
   const bool shorthand = d.species_names.size() == 2 && d.species_names[0] == "original";
   auto colored = [&](core::Species sp, const std::string& text) {
@@ -117,22 +113,31 @@ void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& vi
   bar_rect_ = {};
   if (o.colorbar && !o.legend && (!color_scale_label(style).empty() || style.chains)) {
     const View& zoom = most_zoomed(views);
-    // Top-right of the outlet view; with the information box placed by free space, beside it in the same free
-    // corner (below a top box, above a bottom one); where it would meet the box, just below it.
+    const float bw = bar_w_ > 0 ? bar_w_ : 16 * em, bh = bar_h_ > 0 ? bar_h_ : 2 * em;
+    // Top-right of the outlet view; with the information box drawn, beside it on the side it stands (below
+    // a top box, above a bottom one); in either case the clear spot nearest to there.
     float right = zoom.rect.x + zoom.rect.w - 0.6f * em;
     float top = zoom.rect.y + 0.6f * em;
-    const float bw = bar_w_ > 0 ? bar_w_ : 16 * em, bh = bar_h_ > 0 ? bar_h_ : 2 * em;
     ImVec2 pivot(1.0f, 0.0f);
-    if (info_shown_ && o.place_clear) {
-      const bool left_corner = info_corner_ % 2 == 1, bottom_corner = info_corner_ >= 2;
-      right = left_corner ? info_x_ : info_x_ + info_w_;
-      pivot.x = left_corner ? 0.0f : 1.0f;
-      top = bottom_corner ? info_y_ - 0.4f * em - bh : info_y_ + info_h_ + 0.4f * em;
-    } else if (info_shown_ && right - bw < info_x_ + info_w_ && right > info_x_ && top < info_y_ + info_h_ &&
-               top + bh > info_y_) {
-      top = info_y_ + info_h_ + 0.4f * em;
+    if (info_shown_) {
+      const bool left_side = info_corner_ % 2 == 1, bottom = info_corner_ >= 2;
+      right = left_side ? info_x_ : info_x_ + info_w_;
+      pivot = ImVec2(left_side ? 0.0f : 1.0f, bottom ? 1.0f : 0.0f);
+      top = bottom ? info_y_ - 0.4f * em : info_y_ + info_h_ + 0.4f * em;
     }
-    ImGui::SetNextWindowPos(ImVec2(right, top), 0, pivot);
+    const Box region{panel_x0_, 0, panel_x1_, panel_y1_};
+    if (o.colorbar_at >= 0) {  // the user's corner of the panel, whatever it covers
+      const float pad = 0.6f * em;
+      right = o.colorbar_at % 2 == 0 ? region.x1 - pad : region.x0 + pad;
+      pivot = ImVec2(o.colorbar_at % 2 == 0 ? 1.0f : 0.0f, 0.0f);
+      top = o.colorbar_at >= 2 ? region.y1 - pad - bh : pad;
+    } else if (const auto b = space_->place(bw, bh, region, right, top, pivot.x, pivot.y)) {
+      right = b->x0, top = b->y0, pivot = ImVec2(0, 0);
+    } else {
+      boxes_clear_ = false;
+      if (pivot.y > 0) top -= bh, pivot.y = 0;
+    }
+    ImGui::SetNextWindowPos(ImVec2(right, top), 0, ImVec2(pivot.x, 0));
     ImGui::SetNextWindowBgAlpha(0.82f);
     ImGui::Begin("colorbar", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
@@ -144,93 +149,73 @@ void Overlay::draw_colorbar(const OverlayOptions& o, const std::vector<View>& vi
     bar_rect_ = {ImGui::GetWindowPos().x, ImGui::GetWindowPos().y, ImGui::GetWindowPos().x + bar_w_,
                  ImGui::GetWindowPos().y + bar_h_};
     ImGui::End();
+    space_->block({bar_rect_[0], bar_rect_[1], bar_rect_[2], bar_rect_[3]}, 0.4f * em);
   }
 }
 
 void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
                         const std::vector<View>& views, const Style& style, int w, int h,
                         const core::Geometry* geo, float em) {
-  // The information panel, top-left of the first view.
   const bool panel = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
-  if (panel) {
-    // Top-right corner: the outlet view leaves room there beside the hopper wall; the silo's top stays
-    // visible.
-    const float right = d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w);
-    const float left = static_cast<float>(d.panel_x), pad = 0.6f * em;
-    // Corner k: its anchor and pivot. In a window, move to the corner covering the fewest disk centres
-    // (within a radius); stay where the box is unless another corner is strictly better, so it does not jump.
-    float bottom = 0;  // of the lowest view: a window's timeline may lie below
-    for (const auto& v : views) bottom = std::max(bottom, static_cast<float>(v.rect.y + v.rect.h));
-    if (bottom <= 0) bottom = static_cast<float>(h);
-    auto anchor = [&](int k) {
-      return ImVec2(k % 2 == 0 ? right - pad : left + pad, k < 2 ? pad : bottom - pad);
-    };
-    auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
-    if (o.info_at >= 0 && o.info_at < 4) {
-      info_corner_ = o.info_at;  // the user's corner
-    } else if (o.place_clear && info_w_ > 0) {
-      // Cost of corner k: the container under the box first (sampled every few pixels), then arch members,
-      // then other disks.
+  if (!panel) return;
+  const float pad = 0.6f * em;
+  const Box region{panel_x0_, 0, panel_x1_, panel_y1_};
+  // Corner k's anchor and pivot (the user's corner, and the fallback).
+  auto anchor = [&](int k) {
+    return ImVec2(k % 2 == 0 ? region.x1 - pad : region.x0 + pad, k < 2 ? pad : region.y1 - pad);
+  };
+  auto pivot = [](int k) { return ImVec2(k % 2 == 0 ? 1.0f : 0.0f, k < 2 ? 0.0f : 1.0f); };
+  auto box_at = [&](int k) {
+    const ImVec2 a = anchor(k), pv = pivot(k);
+    const float x0 = a.x - pv.x * info_w_, y0 = a.y - pv.y * info_h_;
+    return Box{x0, y0, x0 + info_w_, y0 + info_h_};
+  };
+  ImVec2 pos = anchor(0), piv = pivot(0);
+  if (o.info_at >= 0 && o.info_at < 4) {
+    info_corner_ = o.info_at;  // the user's corner, whatever it covers
+    pos = anchor(info_corner_), piv = pivot(info_corner_);
+  } else if (info_w_ > 0) {
+    // The clear spot nearest to the corner the box is in (a window's box does not jump between corners;
+    // a movie's starts top-right): off the container, its grains and its arch, measured on this picture.
+    const int preferred = o.place_clear ? info_corner_ : 0;
+    if (const auto b = space_->place_at_corner(info_w_, info_h_, region, preferred, pad)) {
+      pos = ImVec2(b->x0, b->y0), piv = ImVec2(0, 0);
+      const float cx = 0.5f * (b->x0 + b->x1), cy = 0.5f * (b->y0 + b->y1);
+      info_corner_ = (cx < 0.5f * (region.x0 + region.x1) ? 1 : 0) + (cy > 0.5f * region.y1 ? 2 : 0);
+    } else {
+      // No clear spot: the corner covering the least (the container counts above any number of grains),
+      // or, in a window, beside the picture.
+      FreeSpace walls(region, std::max(2.0f, 0.25f * em));
+      if (geo) walls.block_container(views, *geo, f.container_x, f.container_y);
       constexpr long kContainer = 1000000;
-      auto covered = [&](int k) {
-        const ImVec2 a = anchor(k), pv = pivot(k);
-        const float x0 = a.x - pv.x * info_w_, y0 = a.y - pv.y * info_h_;
-        long n = 0;
-        if (geo) {
-          const float step = std::max(3.0f, 0.25f * em);
-          for (float py = y0; py <= y0 + info_h_; py += step)
-            for (float px = x0; px <= x0 + info_w_; px += step)
-              for (const auto& v : views)
-                if (px >= v.rect.x && px < v.rect.x + v.rect.w && py >= v.rect.y &&
-                    py < v.rect.y + v.rect.h && in_container(*geo, v.pixel_to_world({px, py}))) {
-                  n += kContainer;
-                  break;
-                }
-        }
-        std::vector<char> in_arch(f.particles.size(), 0);
-        for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
-        for (const auto& v : views) {
-          for (size_t i = 0; i < f.particles.size(); ++i) {
-            const auto& p = f.particles[i];
-            const core::Vec2 c = v.world_to_pixel({p.x, p.y});
-            const double r = 1.3 * p.radius * v.px_per_m();  // with the arch's ring
-            if (c.x < v.rect.x || c.x > v.rect.x + v.rect.w || c.y < v.rect.y || c.y > v.rect.y + v.rect.h)
-              continue;
-            // Covering an arch member is worst: it is what the inspector is for.
-            if (c.x + r > x0 && c.x - r < x0 + info_w_ && c.y + r > y0 && c.y - r < y0 + info_h_)
-              n += in_arch[i] ? 100 : 1;
-          }
-        }
-        return n;
-      };
-      // The discharge plot (on request) owns the bottom-right of the outlet view: the box keeps out of it.
-      long best = covered(info_corner_);
-      for (int k = 0; k < 4 && best > 0; ++k) {
-        const long n = covered(k);
-        if (n < best) best = n, info_corner_ = k;
-      }
+      auto cost = [&](int k) { return kContainer * walls.covered(box_at(k)) + space_->covered(box_at(k)); };
+      long best = cost(info_corner_);
+      for (int k = 0; k < 4; ++k)
+        if (const long c = cost(k); c < best) best = c, info_corner_ = k;
       info_left_ = o.may_leave && best >= kContainer;
-    } else if (!o.place_clear) {
-      info_corner_ = 0;
+      boxes_clear_ = boxes_clear_ && (info_left_ || best == 0);
+      pos = anchor(info_corner_), piv = pivot(info_corner_);
     }
-    // Left out of the picture, the box is still laid out (off-screen) so its size follows the options.
-    if (info_left_)
-      ImGui::SetNextWindowPos(ImVec2(static_cast<float>(w) + 100 * em, 0));
-    else
-      ImGui::SetNextWindowPos(anchor(info_corner_), 0, pivot(info_corner_));
-    ImGui::SetNextWindowBgAlpha(0.82f);
-    ImGui::Begin("info", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
-                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
-    info_contents(f, d, o, style, em);
-    info_w_ = ImGui::GetWindowSize().x;
-    info_h_ = ImGui::GetWindowSize().y;
-    info_x_ = ImGui::GetWindowPos().x;
-    info_y_ = ImGui::GetWindowPos().y;
-    info_shown_ = !info_left_;
-    ImGui::End();
   }
+  // Left out of the picture, the box is still laid out (off-screen) so its size follows the options.
+  if (info_left_)
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(w) + 100 * em, 0));
+  else
+    ImGui::SetNextWindowPos(pos, 0, piv);
+  (void)h;
+  ImGui::SetNextWindowBgAlpha(0.82f);
+  ImGui::Begin("info", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav);
+  info_contents(f, d, o, style, em);
+  info_w_ = ImGui::GetWindowSize().x;
+  info_h_ = ImGui::GetWindowSize().y;
+  info_x_ = ImGui::GetWindowPos().x;
+  info_y_ = ImGui::GetWindowPos().y;
+  info_shown_ = !info_left_;
+  ImGui::End();
+  if (info_shown_) space_->block({info_x_, info_y_, info_x_ + info_w_, info_y_ + info_h_}, 0.4f * em);
 }
 
 }  // namespace render

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "render/overlay.h"
 #include "render/overlay_detail.h"
@@ -60,26 +61,45 @@ using overlay_detail::boxed_text;
 using overlay_detail::most_zoomed;
 using overlay_detail::to_u32;
 
-void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector<View>& views,
-                   const Style& style) {
+void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
+                   const std::vector<View>& views, const Style& style) {
   // The discharge staircase: cumulative exits of each species against time, clogs shaded. Bottom-right of the
   // most zoomed view, below the outlet where there are no disks.
   if (!history_.empty() && f.t < history_.back().t) history_.clear();  // a new run or a jump back (inspector)
   // One sample per picture (each is laid out, then drawn; a window redraws a still frame many times).
   if (history_.empty() || f.t != history_.back().t)
     history_.push_back({f.t, f.exits, f.clog_open, f.clog_start});
-  const float em = static_cast<float>(font_px_);
+  const float em = static_cast<float>(font_px_), pad = 0.6f * em;
   const View& v = most_zoomed(views);
-  const float pw = 0.42f * v.rect.w, ph = 0.2f * v.rect.h;
-  const float x1 = v.rect.x + v.rect.w - 0.8f * em;
-  float y1 = v.rect.y + v.rect.h - 1.6f * em;
-  // Where the information box took the bottom-right, the plot sits just above it.
-  if (info_shown_ && x1 + 0.4f * em > info_x_ && x1 - pw - 2.6f * em < info_x_ + info_w_ &&
-      y1 + 1.4f * em > info_y_ && y1 - ph - 1.5f * em < info_y_ + info_h_)
-    y1 = info_y_ - 1.8f * em;
-  const float x0 = x1 - pw, y0 = y1 - ph;
+  // The clear spot nearest to the panel's bottom-right (below the outlet where there are no grains): at
+  // full size, else as wide as the margin kept beside the container, else smaller.
+  const Box region{panel_x0_, 0, panel_x1_, panel_y1_};
+  std::optional<Box> spot;
+  if (o.plot_at >= 0) {  // the user's corner of the panel, whatever it covers
+    const auto [bw, bh] = plot_box_size(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em);
+    const bool right = o.plot_at % 2 == 0, bottom = o.plot_at >= 2;
+    const float x0 = right ? region.x1 - pad - bw : region.x0 + pad;
+    const float y0 = bottom ? region.y1 - pad - bh : region.y0 + pad;
+    spot = Box{x0, y0, x0 + bw, y0 + bh};
+  }
+  if (!spot)
+    for (const auto& [bw, bh] : plot_box_sizes(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em,
+                                               static_cast<float>(d.margin_w)))
+      if ((spot = space_->place_at_corner(bw, bh, region, 2, pad))) break;
+  if (!spot) {  // nowhere clear: bottom-right of the outlet view, as ever
+    boxes_clear_ = false;
+    const auto [bw, bh] = plot_box_size(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em);
+    const float right = v.rect.x + v.rect.w - 0.4f * em, bottom = v.rect.y + v.rect.h - 0.2f * em;
+    spot = Box{right - bw, bottom - bh, right, bottom};
+  }
+  space_->block(*spot, 0.4f * em);
+  plot_rect_ = {spot->x0, spot->y0, spot->x1, spot->y1};
+  // The axes inside the box: the largest count left of them, the caption below.
+  const float x0 = spot->x0 + 2.6f * em, x1 = spot->x1 - 0.4f * em;
+  const float y0 = spot->y0 + 1.5f * em, y1 = spot->y1 - 1.4f * em;
+  const float pw = x1 - x0, ph = y1 - y0;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-  dl->AddRectFilled(ImVec2(x0 - 2.6f * em, y0 - 1.5f * em), ImVec2(x1 + 0.4f * em, y1 + 1.4f * em),
+  dl->AddRectFilled(ImVec2(spot->x0, spot->y0), ImVec2(spot->x1, spot->y1),
                     style.dark ? IM_COL32(30, 30, 36, 215) : IM_COL32(255, 255, 255, 215), 0.3f * em);
   const double tmax = std::max(1.0, history_.back().t);
   // One staircase per species, on one scale.
@@ -118,6 +138,8 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const std::vector
   std::snprintf(text, sizeof text, "%ld", nmax);
   dl->AddText(ImVec2(x0 - 2.3f * em, y0 - 0.5f * em), axis, text);
   std::snprintf(text, sizeof text, "exits vs t (0-%.0f s), clogs grey", tmax);
+  if (ImGui::CalcTextSize(text).x > spot->x1 - x0)
+    std::snprintf(text, sizeof text, "exits, 0-%.0f s", tmax);  // a narrow plot (in a margin)
   dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
 }
 
@@ -245,27 +267,41 @@ void Overlay::draw_ids(const core::Frame& f, const std::vector<View>& views, boo
   }
 }
 
-void Overlay::draw_scale(const OverlayData& d, const std::vector<View>& views, float em) {
+void Overlay::draw_scale(const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views,
+                         float em) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-  // Scale bar: one original diameter, bottom-left of the most zoomed view.
-  {
-    const View* v = &views.front();
-    for (const auto& c : views)
-      if (c.px_per_m() > v->px_per_m()) v = &c;
-    const float len = static_cast<float>(d.diameter * v->px_per_m());
-    const float x0 = v->rect.x + em;
-    float y0 = v->rect.y + v->rect.h - 1.2f * em;
-    // Clear of the information box: just above it where the box took the bottom of this view.
-    const float tw = std::max(len, ImGui::CalcTextSize("1 d = 100 cm").x);
-    if (info_shown_ && x0 < info_x_ + info_w_ && x0 + tw > info_x_ && y0 > info_y_ &&
-        y0 - 1.45f * em < info_y_ + info_h_)
-      y0 = info_y_ - 0.4f * em;
-    const ImU32 ink = dark_ ? IM_COL32(235, 235, 235, 255) : IM_COL32(20, 20, 20, 255);
-    dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
-    char text[64];
-    std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
-    dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
+  // Scale bar: one original diameter, at the clear spot nearest the bottom-left of the most zoomed view
+  // (whose scale it shows); else anywhere clear in the panel, saying which view it measures.
+  const View& v = most_zoomed(views);
+  const float len = static_cast<float>(d.diameter * v.px_per_m());
+  char text[96];
+  std::snprintf(text, sizeof text, "1 d = %.0f cm", 100 * d.diameter);
+  float tw = std::max(len, ImGui::CalcTextSize(text).x);
+  const Box view{static_cast<float>(v.rect.x), static_cast<float>(v.rect.y),
+                 static_cast<float>(v.rect.x + v.rect.w), static_cast<float>(v.rect.y + v.rect.h)};
+  std::optional<Box> spot;
+  if (o.scale_at >= 0) {  // the user's corner of the view, whatever it covers
+    const bool right = o.scale_at % 2 == 0, bottom = o.scale_at >= 2;
+    const float x0 = right ? view.x1 - em - tw : view.x0 + em;
+    const float y0 = bottom ? view.y1 - em - 1.7f * em : view.y0 + em;
+    spot = Box{x0, y0, x0 + tw, y0 + 1.7f * em};
+  } else {
+    spot = space_->place_at_corner(tw, 1.7f * em, view, 3, em);
   }
+  if (!spot && views.size() > 1) {
+    std::snprintf(text, sizeof text, "1 d = %.0f cm (%s view)", 100 * d.diameter, v.name.c_str());
+    tw = std::max(len, ImGui::CalcTextSize(text).x);
+  }
+  if (!spot) spot = space_->place_at_corner(tw, 1.7f * em, {panel_x0_, 0, panel_x1_, panel_y1_}, 3, em);
+  if (!spot) boxes_clear_ = false;
+  if (!spot)
+    spot = Box{view.x0 + em, view.y1 - 1.2f * em - 1.7f * em, view.x0 + em + tw, view.y1 - 1.2f * em};
+  space_->block(*spot, 0.4f * em);
+  scale_rect_ = {spot->x0, spot->y0, spot->x1, spot->y1};
+  const float x0 = spot->x0, y0 = spot->y1 - 0.25f * em;
+  const ImU32 ink = dark_ ? IM_COL32(235, 235, 235, 255) : IM_COL32(20, 20, 20, 255);
+  dl->AddRectFilled(ImVec2(x0, y0 - 0.25f * em), ImVec2(x0 + len, y0), ink);
+  dl->AddText(ImVec2(x0, y0 - 1.45f * em), ink, text);
 }
 
 }  // namespace render

@@ -65,6 +65,14 @@ class Painter {
   // tracked grains their trails (Overlay::reset). Snapshots and clips of the inspector start so.
   void start_afresh();
   const PaintTiming& timing() const { return timing_; }
+  // Every panel's boxes found clear space in the last picture (Overlay::boxes_clear).
+  bool boxes_clear() const {
+    for (const auto& o : overlays_)
+      if (!o->boxes_clear()) return false;
+    return true;
+  }
+  // Panel k's overlay as last drawn (where its boxes went), or null if it drew none.
+  const Overlay* overlay(size_t k) const { return k < overlays_.size() ? overlays_[k].get() : nullptr; }
   // The last draw left the first panel's information box out of the picture (OverlayOptions::may_leave).
   bool info_left() const { return info_left_; }
 

@@ -83,14 +83,22 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   o.may_leave = false;
   const core::Frame ref = reference_frame();
   const core::Frame f = current();
-  const auto vs = views(w, h);
+  // Where the container (zoomed as it is) leaves the boxes no clear space, the picture keeps a margin on its
+  // right for them, as record's movies do.
+  render::OverlayData od = overlay_data;
+  if (o.any())
+    od.margin_w =
+        render::overlay_margin(
+            [&](int width) { return std::vector<std::vector<render::View>>{views(width, h)}; }, geo_, o, 0, w,
+            h, od.species_names, od.title, !render::color_scale_label(style).empty() || style.chains)
+            .width;
+  const auto vs = views(w - od.margin_w, h);
   render::Annotations marks;
   marks.selected = static_cast<int>(selected);
   for (const auto& n : notes)
     if (f.t >= n.t0 - 1e-9 && f.t <= n.t1 + 1e-9)
       marks.texts.push_back({static_cast<float>(n.x), static_cast<float>(n.y), n.text});
-  return p.paint({{&f, &geo_, &vs, &overlay_data, &marks, ref.particles.empty() ? nullptr : &ref}}, style, o,
-                 w, h);
+  return p.paint({{&f, &geo_, &vs, &od, &marks, ref.particles.empty() ? nullptr : &ref}}, style, o, w, h);
 }
 
 long Inspector::in_range(long k) const {

@@ -266,6 +266,17 @@ TEST_CASE("the overlay draws into the frame and a clean frame has none", "[rende
   CHECK(render::parse_overlay("none").any() == false);
   CHECK(render::parse_overlay("time,scale").time);
   CHECK_THROWS_WITH(render::parse_overlay("time,clock"), Catch::Matchers::Contains("'clock'"));
+  // --overlay-at: one corner for the information box, or each box its own.
+  render::OverlayOptions at;
+  render::parse_placement("top-left", "--overlay-at", at);
+  CHECK(at.info_at == 1);
+  render::parse_placement("plot=bottom-left,scale=top-right,info=auto", "--overlay-at", at);
+  CHECK((at.plot_at == 3 && at.scale_at == 0 && at.info_at == -1 && at.colorbar_at == -1));
+  CHECK_THROWS_WITH(render::parse_placement("legend=top-left", "--overlay-at", at),
+                    Catch::Matchers::Contains("'legend=top-left'") &&
+                        Catch::Matchers::Contains("info, plot, colorbar or scale"));
+  CHECK_THROWS_WITH(render::parse_placement("plot=middle", "--overlay-at", at),
+                    Catch::Matchers::Contains("--overlay-at plot=") && Catch::Matchers::Contains("middle"));
   // The colour bar without the legend, beside the information box: never under it (two frames, the second
   // with the sizes of the first, as a movie's frames are).
   style.color = render::ColorMode::Speed;

@@ -408,52 +408,6 @@ TEST_CASE("the inspector's clog bars start at each clog's start_s in clogs.csv, 
   CHECK(matched >= 2);
 }
 
-TEST_CASE("a comparison movie's information boxes and scale bars cover no grain at a clog: below the outlet",
-          "[ui][render]") {
-  // Two panels at 1280x720: each panel's top-right corner lies over its funnel, the space below the outlet is
-  // free (the issue's complaint: the boxes covered the funnels). Frame 240 (7.92 s) is clogged in both
-  // panels.
-  fs::path d = temp_dir("overlay_free");
-  const std::string common =
-      "record " + test::kScene +
-      " --compare size_ratio=1.0 --duration 8 --size 1280x720 --no-movie --png-every 240 "
-      "--quiet --out ";
-  REQUIRE(test::cli(common + (d / "with").string() + " --overlay time,counts,rate,timer,arch,legend,scale")
-              .code == 0);
-  REQUIRE(test::cli(common + (d / "without").string() + " --overlay none").code == 0);
-  const Png a = read_png(d / "with" / "frames" / "frame_000240.png");
-  const Png b = read_png(d / "without" / "frames" / "frame_000240.png");
-  REQUIRE(a.w == 1280);
-  long overlay_px = 0, on_grains = 0;
-  for (int panel = 0; panel < 2; ++panel) {
-    io::Trajectory t(d / "with" / ("panel" + std::to_string(panel)) / "trajectory.sstraj");
-    REQUIRE(t.size() > 240);
-    const core::Frame f = t.frame(240);
-    core::Scene scene;
-    if (panel == 1) scene.size_ratio = 1.0;
-    const core::Geometry geo = core::make_geometry(scene);
-    auto views = render::layout_views(render::parse_camera("split"), geo, 640, 720);
-    for (auto& v : views) v.rect.x += 640 * panel;
-    for (int y = 0; y < a.h; ++y)
-      for (int x = 640 * panel; x < 640 * (panel + 1); ++x) {
-        if (std::memcmp(a.at(x, y), b.at(x, y), 3) == 0) continue;
-        ++overlay_px;
-        for (const auto& v : views) {
-          if (x < v.rect.x || x >= v.rect.x + v.rect.w || y < v.rect.y || y >= v.rect.y + v.rect.h) continue;
-          const core::Vec2 w = v.pixel_to_world({x + 0.5, y + 0.5});
-          for (const auto& p : f.particles)
-            if (std::hypot(w.x - p.x, w.y - p.y) < p.radius) {
-              ++on_grains;
-              break;
-            }
-        }
-      }
-  }
-  INFO(overlay_px << " overlay pixels, " << on_grains << " on grains");
-  CHECK(overlay_px > 10000);  // the boxes are there
-  CHECK(on_grains == 0);
-}
-
 TEST_CASE("an inspector snapshot at 3000x2000 places its information box clear of the grains",
           "[ui][render]") {
   // The first picture of a size used to keep the box top-right (its size was not yet known), over the funnel.

@@ -97,7 +97,8 @@ class MovieSink : public Sink {
         notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
         pf.notes.push_back(std::move(notes));
         if (!plan_.path.empty()) {
-          render::View v = plan_.path.view_at(tick.frames[0].t, panels_[i].geo, panel_w_, height_);
+          render::View v = plan_.path.view_at(tick.frames[0].t, panels_[i].geo,
+                                              panel_w_ - panels_[i].odata.margin_w, height_);
           v.rect.x += static_cast<int>(i) * panel_w_;
           pf.views.push_back({v});
         }
@@ -107,7 +108,8 @@ class MovieSink : public Sink {
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
       if (!plan_.path.empty()) {
-        render::View v = plan_.path.view_at(tick.frames[i].t, panels_[i].geo, panel_w_, height_);
+        render::View v = plan_.path.view_at(tick.frames[i].t, panels_[i].geo,
+                                            panel_w_ - panels_[i].odata.margin_w, height_);
         v.rect.x += static_cast<int>(i) * panel_w_;
         pf.views.push_back({v});
       }
@@ -358,6 +360,13 @@ int record_movie(const RecordOptions& o) {
   if (!o.quiet)
     print_recording(o, st, encoded, movie->last_t, wall, was_interrupted, pipeline.gl_renderer(), panels,
                     *session, ms, movie_path, base);
+  if (!o.quiet && pipeline.covered_frames() > 0)
+    std::fprintf(
+        stderr,
+        "siloscope: in %ld of %ld pictures a box of the overlay found no clear space and covers part "
+        "of the container or its grains: a larger --size, a smaller --font-scale, fewer elements "
+        "(--overlay) or --overlay-at would give them room\n",
+        pipeline.covered_frames(), encoded);
   return was_interrupted ? 130 : 0;
 }
 }  // namespace

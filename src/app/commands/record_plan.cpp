@@ -168,8 +168,6 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
     p.geo = p.model.setup.geo;
-    p.views = render::layout_views(camera, p.geo, panel_w, video.height);
-    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
     p.odata = render::overlay_data_for(p.model);
     o.looks.color_species(p.odata);
     if (n_panels > 1) {
@@ -178,6 +176,46 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
       p.odata.panel_w = panel_w;
     }
   }
+  // Where the container leaves the overlay's boxes no clear space (a flat silo fills its outlet view; large
+  // text), every panel gets the same margin on its right for them, the widest any panel needs.
+  auto views_in = [&](const Panel& p, size_t k, int width) {
+    std::vector<std::vector<render::View>> sets;
+    if (plan.path.empty()) {
+      sets.push_back(render::layout_views(camera, p.geo, width, video.height));
+    } else {  // each key, and half-way between keys
+      const auto& keys = plan.path.keys;
+      for (size_t i = 0; i < keys.size(); ++i) {
+        sets.push_back({plan.path.view_at(keys[i].t, p.geo, width, video.height)});
+        if (i + 1 < keys.size())
+          sets.push_back({plan.path.view_at(0.5 * (keys[i].t + keys[i + 1].t), p.geo, width, video.height)});
+      }
+    }
+    for (auto& views : sets)
+      for (auto& v : views) v.rect.x += static_cast<int>(k) * panel_w;
+    return sets;
+  };
+  const bool colour_rows = !render::color_scale_label(plan.style).empty() || plan.style.chains;
+  int margin = 0;
+  for (size_t k = 0; k < n_panels; ++k) {
+    const Panel& p = panels[k];
+    const auto need = render::overlay_margin([&](int width) { return views_in(p, k, width); }, p.geo,
+                                             plan.overlay, static_cast<int>(k) * panel_w, panel_w,
+                                             video.height, p.odata.species_names, p.odata.title, colour_rows);
+    margin = std::max(margin, need.width);
+  }
+  for (size_t k = 0; k < n_panels; ++k) {
+    Panel& p = panels[k];
+    p.odata.margin_w = margin;
+    p.views = render::layout_views(camera, p.geo, panel_w - margin, video.height);
+    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
+  }
+  // (Whether the boxes then find room is known when each picture is drawn: record counts the pictures where
+  // they could not.)
+  if (!o.quiet && margin > 0)
+    std::fprintf(stderr,
+                 "siloscope: the overlay takes a %d-pixel column on the right of %s (the container leaves it "
+                 "no clear space)\n",
+                 margin, n_panels > 1 ? "each panel" : "the picture");
   // The look-ahead last: everything it could be refused for has been checked.
   if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.

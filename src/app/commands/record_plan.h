@@ -66,6 +66,9 @@ struct Plan {
   render::CameraPath path;               // a camera move (empty: the camera stands)
   render::Freeze freeze;                 // --freeze EVENT:SECONDS (off: none)
   std::vector<render::TimedNote> notes;  // --annotate
+  // The overlay's boxes find clear space beside the container (with the margin the plan added, if any);
+  // false: the picture is too small for the text size (the plan said so on standard error).
+  bool overlay_fits = true;
 };
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels);

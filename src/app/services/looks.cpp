@@ -47,8 +47,9 @@ void LookOptions::add_to(CLI::App& cmd) {
                  "0,0), shown from T0 to T1 s (repeatable; e.g. 2:6:0,0.2:the arch forms)");
   cmd.add_option(
          "--overlay-at", overlay_at,
-         "the information box's corner: auto (where it covers the fewest grains), top-right, top-left, "
-         "bottom-right or bottom-left")
+         "where the boxes go: auto (each at the clear spot nearest its own corner, off the grains, walls "
+         "and arch), or the information box's corner (top-right, top-left, bottom-right, bottom-left), or "
+         "ELEMENT=CORNER,... for info, plot, colorbar and scale, e.g. plot=bottom-left,scale=top-left")
       ->capture_default_str();
   cmd.add_option("--species-color", species_color,
                  "NAME=#rrggbb: a species' colour, the paper's original and added too (repeatable; e.g. "
@@ -91,7 +92,7 @@ void LookOptions::apply(int n_grains, bool transparent, render::Style& style,
     style.chain_colormap =
         for_flag("--chain-colormap", [&] { return render::parse_colormap(chain_colormap); });
   (void)notes();  // every note's form checked now, before any work
-  overlay.info_at = render::parse_corner(overlay_at, "--overlay-at");
+  render::parse_placement(overlay_at, "--overlay-at", overlay);
   if (transparent && style.dark)
     throw core::InputError(
         "--background dark and --transparent: choose one (a transparent frame has no background)");

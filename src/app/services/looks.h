@@ -18,7 +18,7 @@ namespace app {
 
 struct LookOptions {
   std::string background = "white";  // white | dark
-  std::string overlay_at = "auto";   // the information box's corner, or auto (where it covers least)
+  std::string overlay_at = "auto";   // where the boxes go: auto, a corner, or ELEMENT=CORNER,... (render)
   double font_scale = 1.0;
   std::string chains;              // "": off; "MIN" or "MIN:MAX" in N
   std::string chain_colormap;      // "": render::chain_colormap's choice; else viridis|magma|inferno|cividis

@@ -65,6 +65,7 @@ void FramePipeline::render_stage() {
       }
       painter.paint(img, in, style_, overlay_, width_, height_);
       draw_ = painter.timing().draw_s;
+      covered_ += !painter.boxes_clear();
       readback_ = painter.timing().readback_s;
       if (!images_.push(std::move(img))) break;
     }

@@ -4,6 +4,7 @@
 // finish() waits for both threads and rethrows the first error.
 #pragma once
 
+#include <atomic>
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -63,6 +64,8 @@ class FramePipeline {
   long frames_written() const { return encoded_; }
   const std::string& gl_renderer() const { return gl_renderer_; }
   double draw_seconds() const { return draw_; }
+  // Pictures in which a box of the overlay found no clear space and covers part of the subject.
+  long covered_frames() const { return covered_; }
   double readback_seconds() const { return readback_; }
   double png_seconds() const { return png_; }
 
@@ -85,6 +88,7 @@ class FramePipeline {
   std::string gl_renderer_;
   long encoded_ = 0;
   double draw_ = 0, readback_ = 0, png_ = 0;
+  std::atomic<long> covered_{0};
   std::thread render_thread_, encode_thread_;
   bool finished_ = false;
 };

@@ -1,0 +1,286 @@
+#include "render/free_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render/overlay.h"
+
+namespace render {
+
+namespace {
+// The container as the boxes must keep off it, in the container's own frame (m): inside the walls, a grain
+// diameter above its top (grains poured in), and the column below the aperture that exiting grains fall
+// through (four diameters deep); `m` widens it by the walls' drawn half-thickness and a safety.
+bool in_container(const core::Geometry& g, core::Vec2 p, double m) {
+  const double d = g.grain_diameter;
+  if (p.y < -4 * d) return false;
+  if (p.y < m) {  // the outlet's level and below
+    if (std::abs(p.x) < g.half_aperture + m) return true;
+    // A flat silo's floor with its thickness (a hopper's walls meet the outlet's edges).
+    return g.kind == core::ContainerKind::Flat && p.y > -m && p.x > g.x_left - m && p.x < g.x_right + m;
+  }
+  if (p.y > g.total_height + d + m) return false;
+  return p.x > g.left_at(p.y) - m && p.x < g.right_at(p.y) + m;
+}
+}  // namespace
+
+FreeSpace::FreeSpace(Box region, float cell) : region_(region), cell_(std::max(1.0f, cell)) {
+  nx_ = std::max(1, static_cast<int>(std::ceil(region_.w() / cell_)));
+  ny_ = std::max(1, static_cast<int>(std::ceil(region_.h() / cell_)));
+  blocked_.assign(static_cast<size_t>(nx_) * ny_, 0);
+}
+
+void FreeSpace::mark_cell(int i, int j) {
+  if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return;
+  blocked_[static_cast<size_t>(j) * nx_ + i] = 1;
+  dirty_ = true;
+}
+
+void FreeSpace::block_container(const std::vector<View>& views, const core::Geometry& geo, double dx,
+                                double dy) {
+  // Each cell is tested at its corners and centre (a wall thinner than a cell is still found: the margin
+  // is at least a cell wide in metres).
+  for (const auto& v : views) {
+    const double px_m = v.px_per_m();
+    if (!(px_m > 0)) continue;
+    // The walls' drawn half-thickness (0.012 m, at least a pixel), two pixels of anti-aliasing and a cell.
+    const double m = (0.5 * 0.012 * px_m + 2.0 + cell_) / px_m;
+    const int i0 = std::max(0, static_cast<int>((v.rect.x - region_.x0) / cell_));
+    const int i1 = std::min(nx_, static_cast<int>(std::ceil((v.rect.x + v.rect.w - region_.x0) / cell_)));
+    const int j0 = std::max(0, static_cast<int>((v.rect.y - region_.y0) / cell_));
+    const int j1 = std::min(ny_, static_cast<int>(std::ceil((v.rect.y + v.rect.h - region_.y0) / cell_)));
+    for (int j = j0; j < j1; ++j)
+      for (int i = i0; i < i1; ++i) {
+        bool hit = false;
+        for (int s = 0; s < 5 && !hit; ++s) {
+          const float fx = s == 4 ? 0.5f : static_cast<float>(s % 2),
+                      fy = s == 4 ? 0.5f : static_cast<float>(s / 2);
+          const float px = std::clamp(region_.x0 + (i + fx) * cell_, static_cast<float>(v.rect.x),
+                                      static_cast<float>(v.rect.x + v.rect.w));
+          const float py = std::clamp(region_.y0 + (j + fy) * cell_, static_cast<float>(v.rect.y),
+                                      static_cast<float>(v.rect.y + v.rect.h));
+          const core::Vec2 w = v.pixel_to_world({px, py});
+          hit = in_container(geo, {w.x - dx, w.y - dy}, m);
+        }
+        if (hit) mark_cell(i, j);
+      }
+  }
+}
+
+void FreeSpace::block_grains(const core::Frame& f, const std::vector<View>& views) {
+  for (const auto& v : views) {
+    const double s = v.px_per_m();
+    for (const auto& p : f.particles) {
+      const core::Vec2 c = v.world_to_pixel({p.x, p.y});
+      const double r = 1.3 * p.radius * s + 2;  // with the arch's ring and anti-aliasing
+      if (c.x + r < v.rect.x || c.x - r > v.rect.x + v.rect.w || c.y + r < v.rect.y ||
+          c.y - r > v.rect.y + v.rect.h)
+        continue;
+      Box b{static_cast<float>(std::max<double>(c.x - r, v.rect.x)),
+            static_cast<float>(std::max<double>(c.y - r, v.rect.y)),
+            static_cast<float>(std::min<double>(c.x + r, v.rect.x + v.rect.w)),
+            static_cast<float>(std::min<double>(c.y + r, v.rect.y + v.rect.h))};
+      block(b);
+    }
+  }
+}
+
+void FreeSpace::block(const Box& b, float pad) {
+  const int i0 = static_cast<int>(std::floor((b.x0 - pad - region_.x0) / cell_));
+  const int i1 = static_cast<int>(std::ceil((b.x1 + pad - region_.x0) / cell_));
+  const int j0 = static_cast<int>(std::floor((b.y0 - pad - region_.y0) / cell_));
+  const int j1 = static_cast<int>(std::ceil((b.y1 + pad - region_.y0) / cell_));
+  for (int j = std::max(0, j0); j < std::min(ny_, j1); ++j)
+    for (int i = std::max(0, i0); i < std::min(nx_, i1); ++i) mark_cell(i, j);
+}
+
+void FreeSpace::update() const {
+  if (!dirty_) return;
+  sum_.assign(static_cast<size_t>(nx_ + 1) * (ny_ + 1), 0);
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i)
+      sum_[static_cast<size_t>(j + 1) * (nx_ + 1) + i + 1] =
+          blocked_[static_cast<size_t>(j) * nx_ + i] + sum_[static_cast<size_t>(j) * (nx_ + 1) + i + 1] +
+          sum_[static_cast<size_t>(j + 1) * (nx_ + 1) + i] - sum_[static_cast<size_t>(j) * (nx_ + 1) + i];
+  dirty_ = false;
+}
+
+long FreeSpace::covered(const Box& b) const {
+  update();
+  // Cells the box touches (a box edge on a cell boundary does not touch the next cell).
+  const int i0 = static_cast<int>(std::floor((b.x0 - region_.x0) / cell_ + 1e-4f));
+  const int i1 = static_cast<int>(std::ceil((b.x1 - region_.x0) / cell_ - 1e-4f));
+  const int j0 = static_cast<int>(std::floor((b.y0 - region_.y0) / cell_ + 1e-4f));
+  const int j1 = static_cast<int>(std::ceil((b.y1 - region_.y0) / cell_ - 1e-4f));
+  long outside = 0;
+  const int ci0 = std::clamp(i0, 0, nx_), ci1 = std::clamp(i1, 0, nx_);
+  const int cj0 = std::clamp(j0, 0, ny_), cj1 = std::clamp(j1, 0, ny_);
+  const long all = static_cast<long>(std::max(0, i1 - i0)) * std::max(0, j1 - j0);
+  const long in = static_cast<long>(ci1 - ci0) * (cj1 - cj0);
+  outside = all - in;
+  auto S = [&](int i, int j) { return sum_[static_cast<size_t>(j) * (nx_ + 1) + i]; };
+  const long blocked = in > 0 ? S(ci1, cj1) - S(ci0, cj1) - S(ci1, cj0) + S(ci0, cj0) : 0;
+  return blocked + outside;
+}
+
+std::optional<Box> FreeSpace::place(float w, float h, const Box& within, float tx, float ty, float ax,
+                                    float ay) const {
+  if (!(w > 0 && h > 0)) return std::nullopt;
+  const Box lim{std::max(within.x0, region_.x0), std::max(within.y0, region_.y0),
+                std::min(within.x1, region_.x1), std::min(within.y1, region_.y1)};
+  if (lim.w() < w || lim.h() < h) return std::nullopt;
+  // Candidate top-left corners on the cell grid, plus the limits' own edges (a box flush with the panel).
+  std::vector<float> xs, ys;
+  for (float x = lim.x0; x <= lim.x1 - w + 1e-3f; x += cell_) xs.push_back(x);
+  xs.push_back(lim.x1 - w);
+  for (float y = lim.y0; y <= lim.y1 - h + 1e-3f; y += cell_) ys.push_back(y);
+  ys.push_back(lim.y1 - h);
+  std::optional<Box> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (float y : ys)
+    for (float x : xs) {
+      const double ddx = x + ax * w - tx, ddy = y + ay * h - ty;
+      const double d = ddx * ddx + ddy * ddy;
+      if (d >= best_d) continue;
+      const Box b{x, y, x + w, y + h};
+      if (covered(b) == 0) best = b, best_d = d;
+    }
+  return best;
+}
+
+std::optional<Box> FreeSpace::place_at_corner(float w, float h, const Box& within, int k, float pad) const {
+  const Box in{within.x0 + pad, within.y0 + pad, within.x1 - pad, within.y1 - pad};
+  const float ax = k % 2 == 0 ? 1.0f : 0.0f, ay = k < 2 ? 0.0f : 1.0f;
+  return place(w, h, in, ax > 0 ? in.x1 : in.x0, ay > 0 ? in.y1 : in.y0, ax, ay);
+}
+
+float overlay_em(int h, double font_scale) {
+  return static_cast<float>(
+      std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(font_scale, 0.25, 8.0)))));
+}
+
+std::pair<float, float> info_box_estimate(const OverlayOptions& o, float em,
+                                          const std::vector<std::string>& species, const std::string& title,
+                                          bool colour_rows, float wrap) {
+  // ImGui's default style: 8 px window padding, 4 px between items, a progress bar 6 px taller than text.
+  // Characters of the sans-serif font average under half an em (measured: 0.46 em on the rate line); the
+  // title wraps at `wrap` (words do not fill rows: 15% more than its length).
+  const float ch = 0.5f * em;
+  float w = 0, h = 16;
+  int items = 0;
+  auto line = [&](size_t chars, float extra_h = 0) {
+    w = std::max(w, chars * ch);
+    h += em + extra_h;
+    ++items;
+  };
+  size_t names = 0, first = species.empty() ? 8 : species.front().size();
+  for (const auto& n : species) names += n.size() + 6;  // "1234 name "
+  if (!title.empty()) {
+    const float tw = title.size() * ch;
+    const int rows = static_cast<int>(std::ceil(1.15f * tw / wrap));
+    w = std::max(w, std::min(tw, wrap));
+    h += rows * em;
+    ++items;
+  }
+  if (o.time) line(12);
+  if (o.counts) line(names + 8);  // "52 exits: 30 a, 22 b" or "40 original 12 added exits"
+  if (o.rate) line(24 + first);   // "Q~ = 12.34 /s (originals, so far)"
+  if (o.timer) line(0, 6), w = std::max(w, 14 * em);
+  if (o.arch) line(24);
+  if (o.legend) {
+    h += 1;
+    ++items;           // the separator
+    line(names + 16);  // the species' swatches and the arch's, on one row
+    if (colour_rows) line(20, 0), w = std::max(w, 8 * em + 20 * ch), line(20, 0);
+  }
+  h += 4.0f * std::max(0, items - 1);
+  return {w + 16, 1.02f * h};
+}
+
+std::pair<float, float> plot_box_size(float view_w, float view_h, float em, float max_w, float height) {
+  // The plot's axes 0.42 x 0.2 of the view, with room for the count left of it, the caption below (at
+  // least its width) and a little above and right.
+  const float caption = 0.5f * em * 34;
+  float pw = std::max(0.42f * view_w, caption);
+  pw = std::min(pw, max_w - 3.0f * em);
+  const float ph = std::max(3.0f * em, height * view_h);
+  return {pw + 3.0f * em, ph + 2.9f * em};
+}
+
+std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w) {
+  std::vector<std::pair<float, float>> out = {plot_box_size(view_w, view_h, em)};
+  const float pad = 0.6f * em;
+  for (float limit : {margin_w - 2 * pad, 0.3f * view_w})
+    if (limit > 10 * em)
+      for (float height : {0.2f, 0.12f}) out.push_back(plot_box_size(view_w, view_h, em, limit, height));
+  return out;
+}
+
+MarginNeed overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
+                          const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
+                          const std::vector<std::string>& species, const std::string& title,
+                          bool colour_rows) {
+  const float em = overlay_em(h, o.font_scale), pad = 0.6f * em;
+  const bool info = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
+  // The title wraps at 18 em, or inside a margin (info_contents).
+  auto estimate = [&](int margin) {
+    float wrap = 18 * em;
+    if (margin > 0) wrap = std::min(wrap, margin - 1.2f * em - 16);
+    return info_box_estimate(o, em, species, title, colour_rows, std::max(8 * em, wrap));
+  };
+  // Every set of views must leave the boxes clear space.
+  auto fits = [&](int margin) {
+    const Box panel{static_cast<float>(panel_x), 0, static_cast<float>(panel_x + panel_w),
+                    static_cast<float>(h)};
+    const auto [iw, ih] = estimate(margin);
+    for (const auto& views : views_of(panel_w - margin)) {
+      FreeSpace fs(panel, std::max(2.0f, 0.25f * em));
+      fs.block_container(views, geo);
+      if (info && o.info_at < 0) {
+        const auto b = fs.place_at_corner(iw, ih, panel, 0, pad);
+        if (!b) return false;
+        fs.block(*b, 0.4f * em);
+      }
+      const View* zoom = &views.front();
+      for (const auto& v : views)
+        if (v.px_per_m() > zoom->px_per_m()) zoom = &v;
+      if (o.plot && o.plot_at < 0) {
+        bool placed = false;
+        for (const auto& [pw, ph] :
+             plot_box_sizes(static_cast<float>(zoom->rect.w), static_cast<float>(zoom->rect.h), em,
+                            static_cast<float>(margin))) {
+          if (const auto b = fs.place_at_corner(pw, ph, panel, 2, pad)) {
+            fs.block(*b, 0.4f * em);
+            placed = true;
+            break;
+          }
+        }
+        if (!placed) return false;
+      }
+      if (o.colorbar && !o.legend && colour_rows && o.colorbar_at < 0) {
+        const auto b = fs.place_at_corner(8 * em + 24 * 0.5f * em, 2 * em + 24, panel, 0, pad);
+        if (!b) return false;
+        fs.block(*b, 0.4f * em);
+      }
+      if (o.scale && o.scale_at < 0) {
+        const float sw = std::max(static_cast<float>(geo.grain_diameter * zoom->px_per_m()), 7 * em);
+        const Box view{static_cast<float>(zoom->rect.x), static_cast<float>(zoom->rect.y),
+                       static_cast<float>(zoom->rect.x + zoom->rect.w),
+                       static_cast<float>(zoom->rect.y + zoom->rect.h)};
+        if (!fs.place_at_corner(sw, 1.7f * em, view, 3, em) &&
+            !fs.place_at_corner(sw, 1.7f * em, panel, 3, em))
+          return false;
+      }
+    }
+    return true;
+  };
+  MarginNeed need;
+  if (!(info || o.plot || o.scale || o.colorbar) || fits(0)) return need;
+  // A column as wide as the information box (the plot wraps into it), at most half the panel.
+  need.width = std::min(static_cast<int>(std::ceil(estimate(0).first + 2 * pad)), panel_w / 2);
+  need.fits = fits(need.width);
+  return need;
+}
+
+}  // namespace render

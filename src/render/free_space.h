@@ -1,0 +1,95 @@
+// Where the overlay's boxes may go: a grid over the picture that marks what they must not cover (the
+// container with its walls, the column below the outlet the exiting grains fall through, the obstacle, every
+// grain and every box already placed), and the search for the clear spot nearest to where a box would like to
+// be. Pure math on the picture's pixels, no GL: the overlay uses it on the picture it draws, and `record`
+// uses it before the first frame to decide whether a panel needs a margin beside its container.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/frame.h"
+#include "core/geometry.h"
+#include "render/camera.h"
+
+namespace render {
+
+struct OverlayOptions;
+
+struct Box {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // pixels, top-left origin
+  float w() const { return x1 - x0; }
+  float h() const { return y1 - y0; }
+  bool empty() const { return !(x1 > x0 && y1 > y0); }
+  bool overlaps(const Box& b) const { return x0 < b.x1 && b.x0 < x1 && y0 < b.y1 && b.y0 < y1; }
+  bool inside(const Box& b) const { return x0 >= b.x0 && y0 >= b.y0 && x1 <= b.x1 && y1 <= b.y1; }
+};
+
+class FreeSpace {
+ public:
+  // The region boxes may use (a panel of the picture), in cells of `cell` pixels.
+  FreeSpace(Box region, float cell);
+  // The container as the views show it, shifted by (dx, dy) m (a vibrating container's displacement): its
+  // inside, its walls (with their drawn thickness) and the outlet's column, four grain diameters deep.
+  void block_container(const std::vector<View>& views, const core::Geometry& geo, double dx = 0,
+                       double dy = 0);
+  // Every grain of the frame, with the arch's ring around it, where a view shows it.
+  void block_grains(const core::Frame& f, const std::vector<View>& views);
+  // A box already placed, with `pad` pixels around it.
+  void block(const Box& b, float pad = 0);
+  // Cells of b that are blocked (0: b is clear). Parts of b outside the region count as blocked.
+  long covered(const Box& b) const;
+  // A clear box of w x h pixels inside `within` (and the region), whose point at fractions (ax, ay) of its
+  // size lies nearest to `target` (e.g. its top-right corner nearest the panel's top-right corner: ax = 1,
+  // ay = 0); none if no clear spot exists.
+  std::optional<Box> place(float w, float h, const Box& within, float tx, float ty, float ax, float ay) const;
+  // The same towards corner k of `within` (0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left), `pad`
+  // pixels in from its edges.
+  std::optional<Box> place_at_corner(float w, float h, const Box& within, int k, float pad) const;
+  const Box& region() const { return region_; }
+
+ private:
+  void mark_cell(int i, int j);
+  void update() const;  // the summed-area table after marks
+  Box region_;
+  float cell_;
+  int nx_, ny_;
+  std::vector<char> blocked_;
+  mutable std::vector<long> sum_;  // (nx+1) x (ny+1) summed-area table of blocked_
+  mutable bool dirty_ = true;
+};
+
+// The text height the overlay uses in a picture h pixels tall at a font scale (the same rule as its font).
+float overlay_em(int h, double font_scale);
+
+// What record needs to know before the first frame: the width of a margin, in pixels, to add on the right
+// of a panel so that the overlay's boxes, at the sizes they can reach (the information box with a clog's
+// rows, the discharge plot, the scale bar), find clear space beside the container; 0 when the views already
+// leave it. `views_of(width)` lays the panel's views out in `width` pixels from the panel's left edge (with a
+// camera path, one set per key: each must leave the space).
+struct MarginNeed {
+  int width = 0;     // pixels
+  bool fits = true;  // the boxes find clear space with this margin
+};
+MarginNeed overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
+                          const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
+                          const std::vector<std::string>& species, const std::string& title,
+                          bool colour_rows);
+
+// The information box's size estimated from its contents (before ImGui lays it out), in pixels: width and
+// height, its title wrapped at `wrap` pixels (as info_contents wraps it). Used by overlay_margin; the box
+// itself is measured when drawn.
+std::pair<float, float> info_box_estimate(const OverlayOptions& o, float em,
+                                          const std::vector<std::string>& species, const std::string& title,
+                                          bool colour_rows, float wrap);
+// The discharge plot's outer box in a view of `view_w` x `view_h` (pixels), at most `max_w` wide, its axes
+// `height` of the view tall.
+std::pair<float, float> plot_box_size(float view_w, float view_h, float em, float max_w = 1e9f,
+                                      float height = 0.2f);
+// The sizes the plot tries, in order, until one finds clear space: whole, as wide as a margin of `margin_w`
+// pixels (0: none) allows, then lower.
+std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w);
+
+}  // namespace render
