@@ -71,7 +71,7 @@ Data::Data(const std::string& dir, const std::string& column_dir)
     for (const char* key : {"q_per_s", "q_tilde_per_s", "q_p_per_s", "long_arches_per_min",
                             "added_per_long_arch", "avalanche_mean", "q_tilde_over_qp", "chi_eff",
                             "fraction_broken_by_vibration", "airborne_fraction"})
-      for (const std::string col : {std::string(key), std::string(key) + "_ci95"}) {
+      for (const std::string& col : {std::string(key), std::string(key) + "_ci95"}) {
         if (!points_.has(col)) continue;
         const double v = points_.num(i, col);
         if (!std::isnan(v) && !(std::isfinite(v) && v >= 0))
