@@ -155,6 +155,12 @@ std::optional<Box> FreeSpace::place_at_corner(float w, float h, const Box& withi
   return place(w, h, in, ax > 0 ? in.x1 : in.x0, ay > 0 ? in.y1 : in.y0, ax, ay);
 }
 
+float info_title_wrap(float em, int margin_w) {
+  float wrap = 18 * em;
+  if (margin_w > 0) wrap = std::min(wrap, margin_w - 1.2f * em - 2 * 8.0f);  // ImGui's window padding: 8 px
+  return std::max(8 * em, wrap);
+}
+
 float overlay_em(int h, double font_scale) {
   return static_cast<float>(
       std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(font_scale, 0.25, 8.0)))));
@@ -217,17 +223,14 @@ std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, 
   return out;
 }
 
-MarginNeed overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
-                          const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
-                          const std::vector<std::string>& species, const std::string& title,
-                          bool colour_rows) {
+int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
+                   const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
+                   const std::vector<std::string>& species, const std::string& title, bool colour_rows) {
   const float em = overlay_em(h, o.font_scale), pad = 0.6f * em;
   const bool info = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   // The title wraps at 18 em, or inside a margin (info_contents).
   auto estimate = [&](int margin) {
-    float wrap = 18 * em;
-    if (margin > 0) wrap = std::min(wrap, margin - 1.2f * em - 16);
-    return info_box_estimate(o, em, species, title, colour_rows, std::max(8 * em, wrap));
+    return info_box_estimate(o, em, species, title, colour_rows, info_title_wrap(em, margin));
   };
   // Every set of views must leave the boxes clear space.
   auto fits = [&](int margin) {
@@ -275,12 +278,9 @@ MarginNeed overlay_margin(const std::function<std::vector<std::vector<View>>(int
     }
     return true;
   };
-  MarginNeed need;
-  if (!(info || o.plot || o.scale || o.colorbar) || fits(0)) return need;
+  if (!(info || o.plot || o.scale || o.colorbar) || fits(0)) return 0;
   // A column as wide as the information box (the plot wraps into it), at most half the panel.
-  need.width = std::min(static_cast<int>(std::ceil(estimate(0).first + 2 * pad)), panel_w / 2);
-  need.fits = fits(need.width);
-  return need;
+  return std::min(static_cast<int>(std::ceil(estimate(0).first + 2 * pad)), panel_w / 2);
 }
 
 }  // namespace render

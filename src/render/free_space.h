@@ -61,6 +61,10 @@ class FreeSpace {
   mutable bool dirty_ = true;
 };
 
+// Where the information box's title wraps, pixels: at 18 em (a long scene's title would make the box as wide
+// as the picture), or inside a margin of margin_w pixels (0: none) with the box's padding.
+float info_title_wrap(float em, int margin_w);
+
 // The text height the overlay uses in a picture h pixels tall at a font scale (the same rule as its font).
 float overlay_em(int h, double font_scale);
 
@@ -69,14 +73,9 @@ float overlay_em(int h, double font_scale);
 // rows, the discharge plot, the scale bar), find clear space beside the container; 0 when the views already
 // leave it. `views_of(width)` lays the panel's views out in `width` pixels from the panel's left edge (with a
 // camera path, one set per key: each must leave the space).
-struct MarginNeed {
-  int width = 0;     // pixels
-  bool fits = true;  // the boxes find clear space with this margin
-};
-MarginNeed overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
-                          const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
-                          const std::vector<std::string>& species, const std::string& title,
-                          bool colour_rows);
+int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
+                   const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
+                   const std::vector<std::string>& species, const std::string& title, bool colour_rows);
 
 // The information box's size estimated from its contents (before ImGui lays it out), in pixels: width and
 // height, its title wrapped at `wrap` pixels (as info_contents wraps it). Used by overlay_margin; the box

@@ -21,11 +21,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
   Style style = given;  // the scene's own species colours, wherever the box is drawn (a window's side panel)
   if (!d.species_colors.empty()) style.species_colors = d.species_colors;
   if (!d.title.empty()) {
-    // Wrapped at 18 em (a long scene's title would make the box as wide as the picture), or at the margin
-    // kept for the box.
-    float wrap = 18 * em;
-    if (d.margin_w > 0) wrap = std::min(wrap, d.margin_w - 1.2f * em - 2 * ImGui::GetStyle().WindowPadding.x);
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(8 * em, wrap));
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + info_title_wrap(em, d.margin_w));
     ImGui::TextUnformatted(d.title.c_str());
     ImGui::PopTextWrapPos();
   }

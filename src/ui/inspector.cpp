@@ -87,11 +87,9 @@ core::Image Inspector::render_current(Painter& p, int w, int h) const {
   // right for them, as record's movies do.
   render::OverlayData od = overlay_data;
   if (o.any())
-    od.margin_w =
-        render::overlay_margin(
-            [&](int width) { return std::vector<std::vector<render::View>>{views(width, h)}; }, geo_, o, 0, w,
-            h, od.species_names, od.title, !render::color_scale_label(style).empty() || style.chains)
-            .width;
+    od.margin_w = render::overlay_margin(
+        [&](int width) { return std::vector<std::vector<render::View>>{views(width, h)}; }, geo_, o, 0, w, h,
+        od.species_names, od.title, !render::color_scale_label(style).empty() || style.chains);
   const auto vs = views(w - od.margin_w, h);
   render::Annotations marks;
   marks.selected = static_cast<int>(selected);

@@ -198,10 +198,10 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   int margin = 0;
   for (size_t k = 0; k < n_panels; ++k) {
     const Panel& p = panels[k];
-    const auto need = render::overlay_margin([&](int width) { return views_in(p, k, width); }, p.geo,
-                                             plan.overlay, static_cast<int>(k) * panel_w, panel_w,
-                                             video.height, p.odata.species_names, p.odata.title, colour_rows);
-    margin = std::max(margin, need.width);
+    const int need = render::overlay_margin([&](int width) { return views_in(p, k, width); }, p.geo,
+                                            plan.overlay, static_cast<int>(k) * panel_w, panel_w,
+                                            video.height, p.odata.species_names, p.odata.title, colour_rows);
+    margin = std::max(margin, need);
   }
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
