@@ -79,6 +79,18 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+// Makes an output directory one written before manifests (as older versions did): its manifest removed and
+// the line of its metadata.toml that declares one taken out (without it, the missing manifest is refused).
+inline void strip_manifest(const std::filesystem::path& dir) {
+  std::filesystem::remove(dir / "manifest.toml");
+  std::string meta = slurp(dir / "metadata.toml");
+  const std::string line = "manifest = \"manifest.toml\"\n";
+  const size_t at = meta.find(line);
+  if (at == std::string::npos) return;
+  meta.erase(at, line.size());
+  std::ofstream(dir / "metadata.toml", std::ios::binary) << meta;
+}
+
 }  // namespace test
 
 #include <signal.h>

@@ -15,7 +15,8 @@ mkdir -p "$dest/runs" "$dest/analysis"
 list=$(mktemp)
 cp "$src/campaign.toml" "$dest/"
 # A campaign that kept trajectories (trajectory_fps) is analysed from them too (column.csv); analyze then checks
-# them (manifests are not packed: pack.sh rewrites each metadata.toml's command line).
+# them (manifests are not packed: pack.sh rewrites each metadata.toml's command line, and takes out the line
+# that declares a manifest, which a reader would otherwise miss).
 traj=()
 grep -q '^trajectory_fps' "$src/campaign.toml" && traj=(-o -name trajectory.sstraj)
 (cd "$src" && find runs \( -name metadata.toml -o -name exits.csv -o -name clogs.csv -o -name arches.csv \
@@ -23,7 +24,8 @@ grep -q '^trajectory_fps' "$src/campaign.toml" && traj=(-o -name trajectory.sstr
 # Staged, so that each realization's command line names the program, not where this machine keeps it.
 stage=$(mktemp -d)
 (cd "$src" && cp --parents $(cat "$list") "$stage/")
-find "$stage" -name metadata.toml -exec sed -i -E 's#^command = "[^" ]*/(siloscope[^" ]*) #command = "siloscope #' {} +
+find "$stage" -name metadata.toml -exec sed -i -E -e 's#^command = "[^" ]*/(siloscope[^" ]*) #command = "siloscope #' \
+  -e '/^manifest = "manifest.toml"$/d' {} +
 tar -C "$stage" -cf - --owner=0 --group=0 --numeric-owner --mtime=2026-01-01 -T "$list" \
   | xz -9e > "$dest/runs/runs.tar.xz.partial"
 rm -rf "$list" "$stage"
@@ -37,6 +39,7 @@ done
 abs=$(cd "$src" && pwd)
 sed -i "s#,$abs/runs/#,runs/#" "$dest/analysis/realizations.csv"
 # ... and the analysis' own command line names the program and a results folder, not this machine's paths.
-sed -i -E "s#^command = \"[^\" ]*/(siloscope[^\" ]*) #command = \"siloscope #; s#$abs#results/$(basename "$dest")#g" \
+sed -i -E -e '/^manifest = "manifest.toml"$/d' \
+  -e "s#^command = \"[^\" ]*/(siloscope[^\" ]*) #command = \"siloscope #; s#$abs#results/$(basename "$dest")#g" \
   "$dest/analysis/metadata.toml"
 echo "packed $(tar -tJf "$dest/runs/runs.tar.xz" | grep -c metadata.toml) realizations into $dest ($(du -sh "$dest" | cut -f1))"

@@ -104,6 +104,38 @@ void write_manifest(const fs::path& dir, DirKind kind) {
   write_file_atomic(dir / kManifestName, s);
 }
 
+namespace {
+constexpr const char* kSiloscopeTable = "\n[siloscope]\n";
+// The head of DIR/metadata.toml, where its [siloscope] table is ("" when there is none).
+std::string metadata_head(const fs::path& dir, size_t bytes) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(dir / "metadata.toml", ec))) return "";
+  std::ifstream in(dir / "metadata.toml", std::ios::binary);
+  std::string buf(bytes, '\0');
+  in.read(buf.data(), static_cast<std::streamsize>(bytes));
+  buf.resize(static_cast<size_t>(in.gcount()));
+  return buf;
+}
+}  // namespace
+
+void declare_manifest(const fs::path& dir) {
+  const fs::path meta = dir / "metadata.toml";
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(meta, ec))) return;
+  std::ifstream in(meta, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.eof() && in.fail()) throw core::RuntimeFault(meta.string() + ": cannot be read back");
+  const size_t at = text.find(kSiloscopeTable);
+  if (at == std::string::npos || declares_manifest(dir)) return;
+  text.insert(at + std::char_traits<char>::length(kSiloscopeTable), std::string(kManifestDeclaration) + "\n");
+  write_file_atomic(meta, text);
+}
+
+bool declares_manifest(const fs::path& dir) {
+  return metadata_head(dir, 4096).find(std::string(kSiloscopeTable) + kManifestDeclaration + "\n") !=
+         std::string::npos;
+}
+
 bool read_manifest(const fs::path& dir, Manifest& out) {
   const fs::path p = dir / kManifestName;
   std::error_code ec;
@@ -181,9 +213,20 @@ std::string manifest_mismatch(const fs::path& dir, const Manifest& m, bool hashe
   return "";
 }
 
+namespace {
+std::string missing_why(const fs::path& dir) {
+  return (dir / "").string() +
+         " has no manifest.toml, though its metadata.toml says siloscope wrote one "
+         "(removed after?); what the output holds cannot be checked: make it again";
+}
+}  // namespace
+
 void verify_manifest(const fs::path& dir, const std::string& what, const std::vector<std::string>& only) {
   Manifest m;
-  if (!read_manifest(dir, m)) return;
+  if (!read_manifest(dir, m)) {
+    if (declares_manifest(dir)) throw core::InputError(what + " " + dir.string() + ": " + missing_why(dir));
+    return;
+  }
   for (const auto& e : m.files) {
     if (!only.empty() && std::find(only.begin(), only.end(), e.name) == only.end()) continue;
     const std::string why = entry_mismatch(dir, e, true);
@@ -195,7 +238,11 @@ void verify_listed(const fs::path& file, const std::string& what) {
   fs::path dir = file.parent_path();
   for (int up = 0; up < 2 && !dir.empty(); ++up, dir = dir.parent_path()) {
     Manifest m;
-    if (!read_manifest(dir, m)) continue;
+    if (!read_manifest(dir, m)) {
+      if (declares_manifest(dir))
+        throw core::InputError(what + " " + file.string() + ": " + missing_why(dir));
+      continue;
+    }
     const std::string rel = file.lexically_relative(dir).generic_string();
     for (const auto& e : m.files)
       if (e.name == rel) {

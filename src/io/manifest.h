@@ -38,6 +38,15 @@ std::string file_hash(const std::filesystem::path& path);
 // non-regular entry inside `dir` is a fault too (siloscope writes none).
 void write_manifest(const std::filesystem::path& dir, DirKind kind);
 
+// Every output directory siloscope writes now has a manifest, and its metadata.toml says so in its
+// [siloscope] table (`manifest = "manifest.toml"`), so a reader can tell an output whose manifest was removed
+// from one written before manifests. Adds that line to DIR/metadata.toml (when it has a [siloscope] table),
+// before the manifest is written; throws core::RuntimeFault if it cannot.
+constexpr const char* kManifestDeclaration = "manifest = \"manifest.toml\"";
+void declare_manifest(const std::filesystem::path& dir);
+// Whether DIR/metadata.toml declares a manifest (see declare_manifest).
+bool declares_manifest(const std::filesystem::path& dir);
+
 // Reads DIR/manifest.toml. Returns false when there is none; throws core::InputError naming the file when it
 // is malformed.
 bool read_manifest(const std::filesystem::path& dir, Manifest& out);
@@ -49,14 +58,16 @@ std::string manifest_mismatch(const std::filesystem::path& dir, const Manifest& 
 
 // For readers: if `dir` has a manifest, every file it lists (or only those of `only` that it lists) must be
 // there with its size and hash; throws core::InputError naming `what`, the file and the difference. Files
-// added beside them are allowed (a reader reads only what it knows). A directory without a manifest (written
-// before manifests) passes.
+// added beside them are allowed (a reader reads only what it knows). A directory without a manifest passes
+// when it was written before manifests; when its metadata.toml declares one, the missing manifest is the
+// error.
 void verify_manifest(const std::filesystem::path& dir, const std::string& what,
                      const std::vector<std::string>& only = {});
 
 // For readers of one file: the manifest of the output that holds `file` (in its directory or the one above,
 // where a recording's panels keep theirs) is checked for that file's entry, if it has one; throws
-// core::InputError naming `what`, the file and the difference.
+// core::InputError naming `what`, the file and the difference, or the missing manifest that one of those
+// directories' metadata.toml declares.
 void verify_listed(const std::filesystem::path& file, const std::string& what);
 
 }  // namespace io

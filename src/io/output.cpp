@@ -332,6 +332,7 @@ OutputDir::~OutputDir() {
 }
 
 void OutputDir::commit() {
+  declare_manifest(tmp_);
   write_manifest(tmp_, kind_);
   std::error_code ec;
   fs::path old;

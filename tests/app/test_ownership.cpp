@@ -123,7 +123,7 @@ TEST_CASE("readers check what they read: a truncated file, a cut metadata.toml, 
   CHECK_FALSE(fs::exists(d / "an"));
   // A run without a manifest (as before manifests) whose metadata.toml lost its tail: not read with defaults.
   const fs::path b = make_run(d / "old" / "b");
-  fs::remove(b / "manifest.toml");
+  test::strip_manifest(b);
   std::string meta = slurp(b / "metadata.toml");
   std::ofstream(b / "metadata.toml", std::ios::binary) << meta.substr(0, meta.find("[derived]"));
   r = cli("analyze " + (d / "old").string() + " --out " + (d / "an2").string());
@@ -132,7 +132,7 @@ TEST_CASE("readers check what they read: a truncated file, a cut metadata.toml, 
                            Catch::Matchers::Contains("truncated or cut by hand"));
   // exits.csv a link to /dev/zero: refused at once instead of read forever.
   const fs::path c = make_run(d / "dev" / "c");
-  fs::remove(c / "manifest.toml");
+  test::strip_manifest(c);
   fs::remove(c / "exits.csv");
   fs::create_symlink("/dev/zero", c / "exits.csv");
   r = cli("analyze " + (d / "dev").string() + " --out " + (d / "an3").string());

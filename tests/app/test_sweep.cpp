@@ -353,7 +353,7 @@ TEST_CASE("figures draws what the grid allows, avalanche sizes included, and nam
   std::ofstream(d / "one_r" / "points.csv") << kept << moved << "\n";
   // A table made by hand has no manifest (an analysis' table edited under its manifest is refused:
   // tests/python/test_readers.py).
-  fs::remove(d / "one_r" / "manifest.toml");
+  test::strip_manifest(d / "one_r");
   r = test::cli("figures " + (d / "one_r").string() + " --out " + (d / "f1").string());
   INFO(r.output);
   CHECK(r.code == 0);

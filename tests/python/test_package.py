@@ -74,6 +74,7 @@ def test_bad_files_give_one_line_naming_file_field_and_value(recording, root, tm
     # Without the manifest (a run of an older version), so that the value check itself is what refuses: with it,
     # the manifest refuses first (tests/python/test_readers.py).
     (run / "manifest.toml").unlink()
+    (run / "metadata.toml").write_text(meta.replace('manifest = "manifest.toml"\n', "", 1))
     exits = (run / "exits.csv").read_text().splitlines()
     exits.insert(2, "9.5,3,original")  # time runs backwards after it
     (run / "exits.csv").write_text("\n".join(exits) + "\n")

@@ -2,8 +2,9 @@
 binary's readers (analyze, export, inspect, gallery, timeline, claims, figures) and to the Python package
 (read_run, read_trajectory, read_campaign), and each must fail, not read on. The damage: a file cut short, a
 file edited after siloscope wrote it (the manifest tells), the manifest itself edited, a file copied in from
-another run, a non-finite value (in a file without a manifest, so that the value check itself is what
-refuses), and a header promising more than the file holds or a file beyond any size siloscope writes."""
+another run, the manifest removed (the directory's metadata.toml declares one), a non-finite value (in an output
+without a manifest, as versions before manifests wrote, so that the value check itself is what refuses), and a
+header promising more than the file holds or a file beyond any size siloscope writes."""
 import os
 import shutil
 import subprocess
@@ -55,8 +56,24 @@ def _edit_manifest(path):
     open(m, "w").write(text[:at] + "1" + text[at:])  # its size grows a digit
 
 
-def _non_finite(path):
+DECLARATION = 'manifest = "manifest.toml"\n'
+
+
+def _strip_manifest(directory):
+    """Makes `directory` an output as written before manifests: no manifest, none declared."""
+    os.remove(os.path.join(directory, "manifest.toml"))
+    meta = os.path.join(directory, "metadata.toml")
+    text = open(meta).read()
+    assert DECLARATION in text, "siloscope declares the manifest it writes"
+    open(meta, "w").write(text.replace(DECLARATION, "", 1))
+
+
+def _remove_manifest(path):
     os.remove(os.path.join(os.path.dirname(path), "manifest.toml"))
+
+
+def _non_finite(path):
+    _strip_manifest(os.path.dirname(path))
     lines = open(path).read().splitlines(keepends=True)
     header = lines[0].rstrip("\n").split(",")
     # The first column of a data row that must be a finite number: time in an events file, Q in a table.
@@ -69,7 +86,7 @@ def _non_finite(path):
 
 def _oversized(path):
     if path.endswith(".sstraj"):
-        os.remove(os.path.join(os.path.dirname(path), "manifest.toml"))
+        _strip_manifest(os.path.dirname(path))
         data = bytearray(open(path, "rb").read())
         data[16:20] = (1 << 30).to_bytes(4, "little")  # a header promising 2^30 grains
         open(path, "wb").write(bytes(data))
@@ -78,8 +95,8 @@ def _oversized(path):
             f.truncate(3 << 30)
 
 
-DAMAGE = {"cut": _cut, "edited": _flip_digit, "manifest edited": _edit_manifest, "non-finite": _non_finite,
-          "oversized": _oversized}
+DAMAGE = {"cut": _cut, "edited": _flip_digit, "manifest edited": _edit_manifest,
+          "manifest removed": _remove_manifest, "non-finite": _non_finite, "oversized": _oversized}
 
 # (reader, the file it is given damaged, how the binary or the package reads it)
 RUN_READERS = [
@@ -98,7 +115,7 @@ ANALYSIS_READERS = [
 ]
 
 
-def _expect_refusal(reader, how, target, tmp_path, damaged_file, binary):
+def _expect_refusal(reader, how, target, tmp_path, damaged_file, binary, without_manifest=False):
     (tmp_path / "s.txt").write_text("goto frame 0\n")
     if reader.startswith("read_"):
         with pytest.raises(siloscope.SiloscopeError) as e:
@@ -108,7 +125,10 @@ def _expect_refusal(reader, how, target, tmp_path, damaged_file, binary):
         p = subprocess.run(how(binary, target, str(tmp_path)), capture_output=True, text=True, timeout=120)
         assert p.returncode != 0, f"{reader} read a damaged {damaged_file} and exited 0:\n{p.stdout}"
         message = p.stderr
-    assert damaged_file in message or "manifest.toml" in message, f"{reader}: {message}"
+    if without_manifest:  # the check of the value itself refused, naming the file
+        assert damaged_file in message and "manifest" not in message, f"{reader}: {message}"
+    else:
+        assert damaged_file in message or "manifest.toml" in message, f"{reader}: {message}"
 
 
 @pytest.mark.parametrize("damage", DAMAGE)
@@ -121,7 +141,8 @@ def test_a_run_reader_refuses_a_damaged_file_naming_it(made, tmp_path, binary, r
     run = tmp_path / "run"
     shutil.copytree(made / "runs" / "a", run)
     DAMAGE[damage](str(run / file))
-    _expect_refusal(reader, how, str(run), tmp_path, file, binary)
+    _expect_refusal(reader, how, str(run), tmp_path, file, binary, not (run / "manifest.toml").exists()
+                    and damage != "manifest removed")
 
 
 @pytest.mark.parametrize("reader,file,how", RUN_READERS, ids=[r[0] for r in RUN_READERS])
@@ -138,7 +159,8 @@ def test_an_analysis_reader_refuses_a_damaged_table_naming_it(made, tmp_path, bi
     analysis = tmp_path / "analysis"
     shutil.copytree(made / "analysis", analysis)
     DAMAGE[damage](str(analysis / file))
-    _expect_refusal(reader, how, str(analysis), tmp_path, file, binary)
+    _expect_refusal(reader, how, str(analysis), tmp_path, file, binary,
+                    not (analysis / "manifest.toml").exists() and damage != "manifest removed")
 
 
 @pytest.mark.parametrize("reader,file,how", ANALYSIS_READERS, ids=[r[0] for r in ANALYSIS_READERS])

@@ -59,12 +59,30 @@ def read_manifest(directory):
     return out
 
 
+# What an output directory's metadata.toml says when its writer also wrote a manifest (src/io/manifest.h).
+DECLARATION = b'\n[siloscope]\nmanifest = "manifest.toml"\n'
+
+
+def declares_manifest(directory):
+    """Whether `directory`'s metadata.toml says siloscope wrote a manifest beside it."""
+    p = os.path.join(directory, "metadata.toml")
+    if not os.path.isfile(p) or os.path.islink(p):
+        return False
+    with open(p, "rb") as f:
+        return DECLARATION in f.read(4096)
+
+
 def verify_listed(path):
     """Checks `path` against the manifest of its directory (or of the directory above: a campaign's analysis
-    lists its files there); nothing when no manifest lists it (outputs of versions before manifests)."""
+    lists its files there); nothing when no manifest lists it and none is declared (outputs of versions before
+    manifests). A manifest that the directory's metadata.toml declares but that is gone is an error."""
     directory = os.path.dirname(os.path.abspath(path))
     for _ in range(2):
         m = read_manifest(directory)
+        if m is None and declares_manifest(directory):
+            raise SiloscopeError(f"{path}: {os.path.join(directory, '')} has no manifest.toml, though its "
+                                 "metadata.toml says siloscope wrote one (removed after?); what the output holds "
+                                 "cannot be checked: make it again")
         if m is not None:
             name = os.path.relpath(os.path.abspath(path), directory).replace(os.sep, "/")
             if name in m:
