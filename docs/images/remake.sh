@@ -33,6 +33,9 @@ frame scene_vibrated vibrated 91
 $S record assets/scenes/three-species.toml --duration 9.1 --size 1280x720 --no-movie --png-every 273 --quiet \
   --force --out $R/three
 frame scene_three_species three 273
+$S record assets/scenes/paper.toml --duration 8.5 --size 1280x720 --camera-path 0:hopper,5:arch:2 --no-movie \
+  --png-every 240 --quiet --force --out $R/archcam
+frame camera_arch archcam 240
 $S record assets/scenes/paper.toml --duration 8 --size 1280x720 --no-movie --png-every 240 --force-chains 1:10 \
   --quiet --force --out $R/chains
 frame force_chains chains 240

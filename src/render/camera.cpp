@@ -59,9 +59,50 @@ Camera fit(double x0, double y0, double x1, double y1, int w, int h, double angl
   return c;
 }
 
-CameraSpec parse_camera(const std::string& spec) {
+core::Vec2 SubjectTrack::at(double time) const {
+  if (t.empty()) return {0, 0};
+  if (time <= t.front()) return {x.front(), y.front()};
+  if (time >= t.back()) return {x.back(), y.back()};
+  const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), time) - t.begin());
+  const double u = (time - t[k - 1]) / (t[k] - t[k - 1]);
+  return {x[k - 1] + u * (x[k] - x[k - 1]), y[k - 1] + u * (y[k] - y[k - 1])};
+}
+
+namespace {
+const char* kCameraForms = "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)";
+const char* kSubjectForms =
+    "hopper, outlet, split, window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0), arch:K (the K-th clog's arch, K "
+    ">= "
+    "1) or grain:ID (a grain followed, ID >= 0)";
+// A whole number of at most 9 digits, else -1.
+long whole(const std::string& s) {
+  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stol(s);
+}
+}  // namespace
+
+CameraSpec parse_camera(const std::string& spec, bool with_subjects) {
   CameraSpec c;
   c.text = spec;
+  for (const char* name : {"arch:", "grain:"}) {
+    const std::string prefix = name;
+    if (spec.rfind(prefix, 0) != 0) continue;
+    if (!with_subjects)
+      throw core::InputError(
+          "camera '" + spec +
+          "': arch:K and grain:ID are known only by simulating ahead, which `record` does; "
+          "here use " +
+          kCameraForms);
+    const long v = whole(spec.substr(prefix.size()));
+    const bool arch = prefix == "arch:";
+    if (v < (arch ? 1 : 0))
+      throw core::InputError("camera '" + spec + "': expected " +
+                             (arch ? "arch:K with K a whole number >= 1 (the K-th clog, row K of clogs.csv)"
+                                   : "grain:ID with ID a whole number >= 0 (as in the trajectory)"));
+    c.kind = arch ? CameraSpec::Kind::Arch : CameraSpec::Kind::Grain;
+    c.subject = static_cast<int>(v);
+    return c;
+  }
   if (spec == "hopper") {
     c.kind = CameraSpec::Kind::Hopper;
     return c;
@@ -86,17 +127,33 @@ CameraSpec parse_camera(const std::string& spec) {
       return c;
     }
   }
-  throw core::InputError(
-      "camera '" + spec +
-      "': expected hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)");
+  throw core::InputError("camera '" + spec + "': expected " + (with_subjects ? kSubjectForms : kCameraForms));
 }
 
-std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h) {
+void frame_arch(CameraSpec& camera, const std::vector<core::Vec2>& centres, double max_radius,
+                double grain_diameter) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& c : centres) {
+    x0 = std::min(x0, c.x), x1 = std::max(x1, c.x);
+    y0 = std::min(y0, c.y), y1 = std::max(y1, c.y);
+  }
+  const double pad = max_radius + 1.5 * grain_diameter;
+  x0 -= pad, x1 += pad, y0 -= pad, y1 += pad;
+  // Grown to six diameters mostly upwards: the grains the arch holds, more than the empty outlet below it.
+  const double grow = std::max(0.0, 6 * grain_diameter - (y1 - y0));
+  y0 -= 0.3 * grow, y1 += 0.7 * grow;
+  camera.x0 = x0, camera.y0 = y0, camera.x1 = x1, camera.y1 = y1;
+}
+
+std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h, double t) {
+  if (!camera.resolved())
+    throw core::InputError("camera '" + camera.text +
+                           "': its subject is found by simulating ahead, which has not been done here");
   const double margin = 0.04 * geo.total_height;
-  const double t = geo.tilt;
+  const double tilt = geo.tilt;
   auto hopper = [&](Rect r) {
     return View{
-        fit(geo.x_left - margin, -margin, geo.x_right + margin, geo.total_height + margin, r.w, r.h, t), r,
+        fit(geo.x_left - margin, -margin, geo.x_right + margin, geo.total_height + margin, r.w, r.h, tilt), r,
         "hopper"};
   };
   auto outlet = [&](Rect r) {
@@ -113,7 +170,7 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
     if (geo.obstacle.present())
       top = std::max(top,
                      std::min(geo.total_height, geo.obstacle.centre.y + 0.5 * geo.obstacle.height + 0.5 * d));
-    return View{fit(-half, -0.25 * k, half, top, r.w, r.h, t), r, "outlet"};
+    return View{fit(-half, -0.25 * k, half, top, r.w, r.h, tilt), r, "outlet"};
   };
   switch (camera.kind) {
     case CameraSpec::Kind::Hopper:
@@ -124,7 +181,7 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
       // The whole container needs only a narrow strip; the outlet view gets the rest (and room for the
       // panel).
       const double bw = geo.x_right - geo.x_left + 2 * margin, bh = geo.total_height + 2 * margin;
-      const double ca = std::abs(std::cos(t)), sa = std::abs(std::sin(t));
+      const double ca = std::abs(std::cos(tilt)), sa = std::abs(std::sin(tilt));
       const double aspect = (ca * bw + sa * bh) / (sa * bw + ca * bh);
       const int left =
           std::clamp(static_cast<int>(std::lround(1.15 * aspect * h)), std::max(1, w / 10), w / 2);
@@ -138,17 +195,35 @@ std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& g
       return {hopper({0, 0, left, h}), out};
     }
     case CameraSpec::Kind::Window:
-      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h, t), {0, 0, w, h}, "window"}};
+      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h, geo.tilt), {0, 0, w, h}, "window"}};
+    case CameraSpec::Kind::Arch:
+      return {View{fit(camera.x0, camera.y0, camera.x1, camera.y1, w, h, geo.tilt), {0, 0, w, h}, "arch"}};
+    case CameraSpec::Kind::Grain: {
+      const core::Vec2 c = camera.track->at(t);
+      const double half = 4 * geo.grain_diameter;
+      return {
+          View{fit(c.x - half, c.y - half, c.x + half, c.y + half, w, h, geo.tilt), {0, 0, w, h}, "grain"}};
+    }
   }
   return {};
 }
 
-CameraPath parse_camera_path(const std::string& spec) {
+CameraPath subject_path(const CameraSpec& camera) {
+  CameraPath path;
+  if (!camera.names_subject()) return path;
+  path.keys.push_back({0.0, camera});
+  path.text = "0:" + camera.text;
+  return path;
+}
+
+CameraPath parse_camera_path(const std::string& spec, bool with_subjects) {
   CameraPath path;
   path.text = spec;
   const std::string allowed =
-      "expected T:CAMERA,T:CAMERA,... with times in seconds, increasing, and each camera hopper, outlet or "
-      "window:X0,Y0,X1,Y1";
+      std::string(
+          "expected T:CAMERA,T:CAMERA,... with times in seconds, increasing, and each camera hopper, "
+          "outlet, window:X0,Y0,X1,Y1") +
+      (with_subjects ? ", arch:K or grain:ID" : " (arch:K and grain:ID in record)");
   // Split at commas that start a new key (a window's own commas are followed by more numbers, not "T:").
   std::vector<std::string> items;
   std::string cur;
@@ -181,7 +256,7 @@ CameraPath parse_camera_path(const std::string& spec) {
       throw core::InputError("camera path '" + spec + "': key '" + item + "': " + allowed);
     CameraSpec cam;
     try {
-      cam = parse_camera(item.substr(colon + 1));
+      cam = parse_camera(item.substr(colon + 1), with_subjects);
     } catch (const core::InputError& e) {
       throw core::InputError("camera path key '" + item + "': " + e.what());
     }
@@ -197,33 +272,102 @@ CameraPath parse_camera_path(const std::string& spec) {
   return path;
 }
 
+namespace {
+// The picture at s in [0, 1] between views a and b: a zoom at a steady rate (the height shown geometrically)
+// about the one point that sits at the same place in both pictures, so every point inside both windows stays
+// inside the picture throughout (its place in the picture moves monotonically from one to the other); a pan
+// when the heights are equal.
+View glide(View a, const View& b, double s) {
+  const double ha = a.cam.height, hb = b.cam.height;
+  if (std::fabs(hb - ha) <= 1e-9 * ha) {
+    a.cam.cx += s * (b.cam.cx - a.cam.cx);
+    a.cam.cy += s * (b.cam.cy - a.cam.cy);
+    return a;
+  }
+  const double h = ha * std::pow(hb / ha, s);
+  const double px = (a.cam.cx * hb - b.cam.cx * ha) / (hb - ha),
+               py = (a.cam.cy * hb - b.cam.cy * ha) / (hb - ha);
+  a.cam.cx = px + (a.cam.cx - px) * h / ha;
+  a.cam.cy = py + (a.cam.cy - py) * h / ha;
+  a.cam.height = h;
+  return a;
+}
+
+// The part of the world a key is about (its subject), as a box in metres: the whole container, the outlet and
+// the region of its arches, a window, an arch's window, a followed grain where it is at time t.
+std::array<core::Vec2, 2> subject_box(const CameraSpec& c, const core::Geometry& geo, double t) {
+  const double d = geo.grain_diameter;
+  switch (c.kind) {
+    case CameraSpec::Kind::Hopper:
+    case CameraSpec::Kind::Split:
+      return {core::Vec2{geo.x_left, 0}, core::Vec2{geo.x_right, geo.total_height}};
+    case CameraSpec::Kind::Outlet:
+      return {core::Vec2{-geo.half_aperture - d, 0}, core::Vec2{geo.half_aperture + d, 2 * d}};
+    case CameraSpec::Kind::Window:
+    case CameraSpec::Kind::Arch:
+      return {core::Vec2{c.x0, c.y0}, core::Vec2{c.x1, c.y1}};
+    case CameraSpec::Kind::Grain: {
+      const core::Vec2 p = c.track->at(t);
+      return {core::Vec2{p.x - d, p.y - d}, core::Vec2{p.x + d, p.y + d}};
+    }
+  }
+  return {};
+}
+
+// Whether view v shows the box (its four corners; the world may be turned).
+bool shows(const View& v, const std::array<core::Vec2, 2>& box) {
+  for (double x : {box[0].x, box[1].x})
+    for (double y : {box[0].y, box[1].y}) {
+      const core::Vec2 px = v.world_to_pixel({x, y});
+      if (px.x < v.rect.x - 0.5 || px.x > v.rect.x + v.rect.w + 0.5 || px.y < v.rect.y - 0.5 ||
+          px.y > v.rect.y + v.rect.h + 0.5)
+        return false;
+    }
+  return true;
+}
+
+// The smallest view (a's size in pixels, its angle) that shows both a's and b's windows.
+View union_view(const View& a, const View& b) {
+  double x0 = a.rect.x, x1 = a.rect.x + a.rect.w, y0 = a.rect.y, y1 = a.rect.y + a.rect.h;
+  for (double px : {0.0, 1.0})
+    for (double py : {0.0, 1.0}) {
+      const core::Vec2 w = b.pixel_to_world({b.rect.x + px * b.rect.w, b.rect.y + py * b.rect.h});
+      const core::Vec2 q = a.world_to_pixel(w);
+      x0 = std::min(x0, q.x), x1 = std::max(x1, q.x), y0 = std::min(y0, q.y), y1 = std::max(y1, q.y);
+    }
+  View u = a;
+  const core::Vec2 c = a.pixel_to_world({0.5 * (x0 + x1), 0.5 * (y0 + y1)});
+  u.cam.cx = c.x, u.cam.cy = c.y;
+  u.cam.height = a.cam.height * std::max((y1 - y0) / a.rect.h, (x1 - x0) / a.rect.w);
+  return u;
+}
+}  // namespace
+
 View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) const {
-  auto at = [&](size_t k) { return layout_views(keys[k].camera, geo, w, h).front(); };
+  // A followed grain's key shows where the grain is now, in its glides too.
+  auto at = [&](size_t k) { return layout_views(keys[k].camera, geo, w, h, t).front(); };
   if (t <= keys.front().t) return at(0);
   if (t >= keys.back().t) return at(keys.size() - 1);
   size_t k = 1;
   while (keys[k].t < t) ++k;
-  View a = at(k - 1);
-  const View b = at(k);
-  const double u = (t - keys[k - 1].t) / (keys[k].t - keys[k - 1].t), s = u * u * (3 - 2 * u);
-  const double ha = a.cam.height, hb = b.cam.height;
-  if (std::fabs(hb - ha) <= 1e-9 * ha) {  // a pan: the centre moves, the size stays
-    a.cam.cx += s * (b.cam.cx - a.cam.cx);
-    a.cam.cy += s * (b.cam.cy - a.cam.cy);
+  const View a = at(k - 1), b = at(k);
+  const double u = (t - keys[k - 1].t) / (keys[k].t - keys[k - 1].t);
+  auto ease = [](double x) { return x * x * (3 - 2 * x); };
+  View v;
+  if (shows(a, subject_box(keys[k].camera, geo, t)) || shows(b, subject_box(keys[k - 1].camera, geo, t))) {
+    // One shows the other's subject (the hopper and its outlet, an arch and the outlet): a zoom, which keeps
+    // what both show in the picture throughout (centre and height interpolated apart, a glide from the hopper
+    // to the outlet lost the outlet half way).
+    v = glide(a, b, ease(u));
   } else {
-    // A zoom at a steady rate about the one point that sits at the same place in both keys' pictures: every
-    // point inside both keys' windows stays inside the picture throughout (its place in the picture moves
-    // monotonically from one key's to the other's), so a glide from the hopper to the outlet never loses the
-    // outlet (centre and height interpolated apart, it dropped below the frame half way).
-    const double h = ha * std::pow(hb / ha, s);
-    const double px = (a.cam.cx * hb - b.cam.cx * ha) / (hb - ha),
-                 py = (a.cam.cy * hb - b.cam.cy * ha) / (hb - ha);
-    a.cam.cx = px + (a.cam.cx - px) * h / ha;
-    a.cam.cy = py + (a.cam.cy - py) * h / ha;
-    a.cam.height = h;
+    // Subjects apart (an arch and a grain far from it; two windows): the first half widens the picture until
+    // both are in it, the second closes on the next key's subject, which then stays in the picture (a pan or
+    // a zoom straight across showed neither for a while).
+    const View both = union_view(a, b);
+    v = u < 0.5 ? glide(a, both, ease(2 * u)) : glide(both, b, ease(2 * u - 1));
   }
-  a.name = "path";
-  return a;
+  v.name = "path";
+  return v;
 }
 
 long Freeze::copies(double fps) const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,26 +42,48 @@ void parse_size(const std::string& text, const std::string& option, int& w, int&
 // turned by `angle` (rad, counter-clockwise).
 Camera fit(double x0, double y0, double x1, double y1, int w, int h, double angle = 0);
 
+// Where a camera's subject is over time, found by simulating ahead (app/services/recording.h): a grain's
+// centre at increasing times (m, world frame), read between samples by straight lines.
+struct SubjectTrack {
+  std::vector<double> t, x, y;
+  core::Vec2 at(double time) const;
+};
+
 // What a camera shows, parsed once from its text:
 //   hopper          the whole container
 //   outlet          the outlet region, ten original diameters tall (from 1.9 diameters below the aperture),
-//   at
-//                   most 9.2 diameters wide: 1.3 m x 1.2 m for the paper's 0.13 m disks
+//                   at most 9.2 diameters wide: 1.3 m x 1.2 m for the paper's 0.13 m disks
 //   split           the whole container in a strip on the left, the outlet in the rest
 //   window:X0,Y0,X1,Y1   any window in metres
+//   arch:K          the arch of the K-th clog (row K of clogs.csv) as it forms, whole, with a diameter and a
+//                   half around it and at least six diameters tall (grown mostly upwards: what it holds)
+//   grain:ID        grain ID (0-based, as in the trajectory), followed: eight diameters tall, centred on it
+// arch and grain are known only by simulating ahead: `record` resolves them (with_subjects below); every
+// other command refuses them.
 struct CameraSpec {
-  enum class Kind { Hopper, Outlet, Split, Window } kind = Kind::Split;
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // Window only, m
-  std::string text = "split";             // as written: metadata, panels, messages
+  enum class Kind { Hopper, Outlet, Split, Window, Arch, Grain } kind = Kind::Split;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;      // Window, and Arch once resolved, m
+  int subject = 0;                            // Arch: the clog's number K >= 1; Grain: the grain's id
+  std::shared_ptr<const SubjectTrack> track;  // Grain, once resolved
+  std::string text = "split";                 // as written: metadata, panels, messages
+  bool names_subject() const { return kind == Kind::Arch || kind == Kind::Grain; }
+  bool resolved() const { return kind == Kind::Arch ? x1 > x0 : kind != Kind::Grain || track != nullptr; }
 };
-// Throws core::InputError naming the spec and the allowed forms.
-CameraSpec parse_camera(const std::string& spec);
+// Throws core::InputError naming the spec and the allowed forms; arch:K and grain:ID only `with_subjects`.
+CameraSpec parse_camera(const std::string& spec, bool with_subjects = false);
 
-// The views of a camera in an image of w x h pixels.
-std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h);
+// The window that shows an arch whose grains have these centres and radii (m): arch:K's, once found.
+void frame_arch(CameraSpec& camera, const std::vector<core::Vec2>& centres, double max_radius,
+                double grain_diameter);
+
+// The views of a camera in an image of w x h pixels (a grain followed: where it is at simulated time t).
+// Throws core::InputError for an arch or grain camera not yet resolved.
+std::vector<View> layout_views(const CameraSpec& camera, const core::Geometry& geo, int w, int h,
+                               double t = 0);
 
 // A camera move: key frames "T:CAMERA,T:CAMERA,..." (simulated seconds, increasing; each camera hopper,
-// outlet or window:X0,Y0,X1,Y1: one view, since a path moves one view). Before the first key and after the
+// outlet, window:X0,Y0,X1,Y1, arch:K or grain:ID: one view, since a path moves one view; a key that follows a
+// grain is evaluated where the grain is at each frame, in its glides too). Before the first key and after the
 // last the camera stands still; between two keys it glides with an ease in and out (smoothstep): a zoom at a
 // steady rate (the height shown geometrically) about the point that sits at the same place in both keys'
 // pictures, so whatever both keys show (the outlet, between the hopper and the outlet) stays in the picture
@@ -76,8 +99,11 @@ struct CameraPath {
   // The single view at simulated time t in an image of w x h pixels.
   View view_at(double t, const core::Geometry& geo, int w, int h) const;
 };
-// Throws core::InputError naming the key and what is allowed.
-CameraPath parse_camera_path(const std::string& spec);
+// Throws core::InputError naming the key and what is allowed; arch:K and grain:ID keys only `with_subjects`.
+CameraPath parse_camera_path(const std::string& spec, bool with_subjects = false);
+// A camera naming a subject (arch:K, grain:ID) as a path of one key at 0 s, so that it moves as its subject
+// does; an empty path for any other camera.
+CameraPath subject_path(const CameraSpec& camera);
 
 // A freeze: a movie or clip holds its picture for `seconds` of video at each event, a clog opening (as the
 // simulation's step reports it, core/events.h) or the last frame before the clog rule fires.

@@ -226,7 +226,10 @@ TEST_CASE("record --freeze holds the picture at each clog and --camera-path move
       {" --freeze clog:0", "0 < SECONDS <= 60"},
       {" --freeze rule:1 --set clog_timeout=0", "clog rule is off"},
       {" --camera-path 0:split", "a path moves one"},
-      {" --camera-path 3:outlet,1:hopper", "times must increase"}};
+      {" --camera-path 3:outlet,1:hopper", "times must increase"},
+      {" --camera arch:9", "--camera arch:9: the run has"},
+      {" --camera grain:99999", "ids 0 to 249"},
+      {" --camera-path 0:outlet,2:arch:0", "K a whole number >= 1"}};
   for (const auto& [args, says] : bad) {
     auto r = cli(base + (d / "e").string() + args);
     CHECK(r.code == 2);

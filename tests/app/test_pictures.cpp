@@ -5,6 +5,7 @@
 // a pixel of the subject, and every box lies whole inside the picture.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -184,4 +185,80 @@ TEST_CASE(
       CHECK(t.boxes_outside == 0);
       CHECK(t.panels_differ == 0);
     }
+}
+
+TEST_CASE(
+    "a camera on an arch or a grain: the arch whole as its clog forms, the grain followed, each kept in the "
+    "picture on the way to it",
+    "[app][record]") {
+  app::RecordOptions o;
+  o.scene.path = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
+  o.scene.seed = 1;
+  o.scene.duration = 10.0;
+  o.size = "640x360";
+  o.quiet = true;
+  constexpr int kGrain = 60;
+  o.camera_path = "0:outlet,2:arch:1,6:grain:" + std::to_string(kGrain);
+  std::vector<app::Panel> panels = app::make_panels(o);
+  const app::Plan plan = app::plan_recording(o, panels);
+  const auto& tracked = plan.style.tracked;
+  CHECK(std::find(tracked.begin(), tracked.end(), kGrain) != tracked.end());  // ringed, with its trail
+  REQUIRE(plan.path.keys.size() == 3);
+  CHECK(plan.path.keys[1].camera.resolved());
+  CHECK(plan.path.keys[2].camera.resolved());
+  const core::Geometry& geo = panels[0].geo;
+  const int w = 640 - panels[0].odata.margin_w, h = 360;
+  // Whether the disk at p of radius r is whole inside view v.
+  auto inside = [](const render::View& v, core::Vec2 p, double r) {
+    const core::Vec2 px = v.world_to_pixel(p);
+    const double rp = r * v.px_per_m();
+    return px.x - rp >= v.rect.x - 1 && px.x + rp <= v.rect.x + v.rect.w + 1 && px.y - rp >= v.rect.y - 1 &&
+           px.y + rp <= v.rect.y + v.rect.h + 1;
+  };
+  sim::Silo silo(panels[0].model);
+  const std::vector<double> radii = silo.radii();
+  std::vector<core::Vec2> arch;  // clog 1's arch where it stood as the clog formed
+  std::vector<double> arch_r;
+  long frames = 0, arch_missing = 0, grain_missing = 0, off_centre = 0;
+  double next = 0;
+  while (silo.time() < 10.0) {
+    const core::StepEvents& e = silo.step();
+    for (int n : e.clogs_opened)
+      if (n == 1 && silo.clog().open && silo.clog().number == 1) {
+        const core::Frame f = silo.frame(false);
+        for (int id : silo.clog().arch) {
+          arch.push_back({f.particles[static_cast<size_t>(id)].x, f.particles[static_cast<size_t>(id)].y});
+          arch_r.push_back(radii[static_cast<size_t>(id)]);
+        }
+        // The picture a freeze at this clog holds: every member whole in it.
+        const render::View v = plan.path.view_at(silo.time(), geo, w, h);
+        for (size_t k = 0; k < arch.size(); ++k) CHECK(inside(v, arch[k], arch_r[k]));
+      }
+    if (silo.time() < next) continue;
+    next += 1.0 / 30;
+    ++frames;
+    const double t = silo.time();
+    const render::View v = plan.path.view_at(t, geo, w, h);
+    // From the arch's key to half-way to the grain's, the arch (as it formed) stays whole in the picture;
+    // from half-way on, the grain does; from its key on, it is at the centre.
+    if (t >= 2 && t <= 4)
+      for (size_t k = 0; k < arch.size(); ++k) arch_missing += !inside(v, arch[k], arch_r[k]);
+    const auto& p = silo.frame(false).particles[kGrain];
+    if (t >= 4) grain_missing += !inside(v, {p.x, p.y}, radii[kGrain]);
+    if (t >= 6.05) {
+      const core::Vec2 px = v.world_to_pixel({p.x, p.y});
+      // Its track is sampled every 0.01 s and read between by straight lines: a tenth of a diameter.
+      off_centre +=
+          std::hypot(px.x - (v.rect.x + 0.5 * w), px.y - 0.5 * h) > 0.1 * geo.grain_diameter * v.px_per_m();
+    }
+  }
+  REQUIRE(!arch.empty());
+  CHECK(frames >= 295);
+  CHECK(arch_missing == 0);
+  CHECK(grain_missing == 0);
+  CHECK(off_centre == 0);
+  // The arch's window: the whole arch and at least six diameters tall.
+  const render::CameraSpec& a = plan.path.keys[1].camera;
+  CHECK(a.y1 - a.y0 >= 6 * geo.grain_diameter - 1e-9);
+  for (const auto& m : arch) CHECK((m.x > a.x0 && m.x < a.x1 && m.y > a.y0 && m.y < a.y1));
 }

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 
 #include "core/error.h"
 #include "render/camera.h"
@@ -87,6 +88,59 @@ TEST_CASE("a camera path: the keys' cameras at their times, an eased glide betwe
   }
   CHECK_THROWS_WITH(render::parse_camera_path("0:split"), Catch::Contains("a path moves one"));
   CHECK_THROWS_WITH(render::parse_camera_path("2:hopper,1:outlet"), Catch::Contains("times must increase"));
+}
+
+TEST_CASE("camera keys naming an arch or a grain: parsed for record only, framed whole, followed",
+          "[render]") {
+  const render::CameraSpec arch = render::parse_camera("arch:2", true);
+  CHECK(arch.kind == render::CameraSpec::Kind::Arch);
+  CHECK(arch.subject == 2);
+  CHECK_FALSE(arch.resolved());
+  CHECK(render::parse_camera("grain:0", true).kind == render::CameraSpec::Kind::Grain);
+  // Elsewhere (the inspector, live, lab) nothing simulates ahead: refused, saying where they work.
+  CHECK_THROWS_WITH(render::parse_camera("arch:2"), Catch::Contains("`record` does"));
+  CHECK_THROWS_WITH(render::parse_camera_path("0:outlet,2:grain:5"), Catch::Contains("`record` does"));
+  for (const char* bad :
+       {"arch:0", "arch:-1", "arch:x", "arch:", "grain:-1", "grain:1.5", "grain:", "arch:1,2"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(render::parse_camera(bad, true), core::InputError);
+  }
+  CHECK_THROWS_WITH(render::parse_camera("arch:0", true), Catch::Contains("K a whole number >= 1"));
+  const core::Geometry geo = core::make_geometry(core::Scene{});
+  CHECK_THROWS_WITH(render::layout_views(arch, geo, 640, 360), Catch::Contains("simulating ahead"));
+  const render::CameraPath path = render::parse_camera_path("0:outlet,2:arch:1,4:grain:7", true);
+  REQUIRE(path.keys.size() == 3);
+  CHECK(path.keys[1].camera.subject == 1);
+  CHECK(path.keys[2].camera.subject == 7);
+  // An arch of three disks over the outlet: framed whole, at least six diameters tall.
+  render::CameraSpec a = arch;
+  const double d = geo.grain_diameter, r = 0.5 * d;
+  render::frame_arch(a, {{-0.12, 0.05}, {0, 0.13}, {0.12, 0.05}}, r, d);
+  CHECK(a.resolved());
+  CHECK(a.y1 - a.y0 >= 6 * d - 1e-12);
+  const render::View v = render::layout_views(a, geo, 640, 360).front();
+  for (const core::Vec2 p :
+       {core::Vec2{-0.12 - r, 0.05}, core::Vec2{0.12 + r, 0.05}, core::Vec2{0, 0.13 + r}}) {
+    const core::Vec2 px = v.world_to_pixel(p);
+    CHECK((px.x > 0 && px.x < 640 && px.y > 0 && px.y < 360));
+  }
+  // A grain followed: at the centre of the picture wherever its track has it, read between samples.
+  render::CameraSpec g = render::parse_camera("grain:7", true);
+  auto track = std::make_shared<render::SubjectTrack>();
+  track->t = {0, 1, 2};
+  track->x = {0, 0.4, 0.4};
+  track->y = {3, 2, 1};
+  g.track = track;
+  CHECK(track->at(0.5).x == Approx(0.2));
+  CHECK(track->at(1.5).y == Approx(1.5));
+  CHECK(track->at(9).y == Approx(1));
+  for (double t : {0.0, 0.5, 1.5, 3.0}) {
+    const render::View gv = render::layout_views(g, geo, 640, 360, t).front();
+    const core::Vec2 px = gv.world_to_pixel(track->at(t));
+    CHECK(px.x == Approx(320).margin(1e-6));
+    CHECK(px.y == Approx(180).margin(1e-6));
+    CHECK(gv.cam.height == Approx(8 * d));
+  }
 }
 
 TEST_CASE("the outlet camera is sized by the grain: ten diameters tall at any grain size", "[render]") {

@@ -561,6 +561,9 @@ TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, an
   CHECK(insp.views(160, 120).size() == 2);  // back to split
   CHECK_THROWS_WITH(insp.execute("freeze jam 2"), Contains("freeze clog|rule SECONDS"));
   CHECK_THROWS_WITH(insp.execute("camera-path 0:split"), Contains("a path moves one"));
+  // Arches and grains as camera subjects are record's (it simulates ahead to find them).
+  CHECK_THROWS_WITH(insp.execute("zoom arch:1"), Contains("`record` does"));
+  CHECK_THROWS_WITH(insp.execute("camera-path 0:hopper,1:grain:3"), Contains("`record` does"));
 }
 
 TEST_CASE("a window session saved as a script replays off-screen to the same snapshot bytes (Xvfb, xdotool)",

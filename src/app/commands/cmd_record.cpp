@@ -390,13 +390,15 @@ void add_record_command(CLI::App& app, Action& action) {
          "slow the video this many times around each long-lasting arch's removal (0.5 s before to 1 s after)")
       ->capture_default_str();
   auto* camera =
-      cmd->add_option("--camera", o->camera, "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres)")
+      cmd->add_option("--camera", o->camera,
+                      "hopper, outlet, split, window:X0,Y0,X1,Y1 (metres), arch:K (the K-th clog's arch, "
+                      "whole) or grain:ID (a grain followed); arch and grain are found by simulating ahead")
           ->capture_default_str();
   cmd->add_option(
          "--camera-path", o->camera_path,
-         "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet or window:X0,Y0,X1,Y1), "
-         "e.g. 0:hopper,3:outlet,8:outlet,10:hopper; eased between keys, still before and after; not with "
-         "--camera")
+         "a camera move: key frames T:CAMERA,... (simulated s; hopper, outlet, window:X0,Y0,X1,Y1, arch:K or "
+         "grain:ID), e.g. 0:hopper,3:outlet,8:arch:1,10:hopper; eased between keys, still before and after "
+         "(a grain's key follows it); not with --camera")
       ->excludes(camera);
   cmd->add_option(
       "--freeze", o->freeze,

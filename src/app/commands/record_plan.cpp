@@ -2,6 +2,7 @@
 #include "app/commands/record_plan.h"
 #include "app/services/cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -133,9 +134,12 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
   // outlet and the box keeps the top-right corner (narrow comparison panels have no room there for both).
   plan.overlay.place_clear = !plan.overlay.plot;
-  const render::CameraSpec camera = for_flag("--camera", [&] { return render::parse_camera(o.camera); });
+  const render::CameraSpec camera =
+      for_flag("--camera", [&] { return render::parse_camera(o.camera, true); });
   if (!o.camera_path.empty())
-    plan.path = for_flag("--camera-path", [&] { return render::parse_camera_path(o.camera_path); });
+    plan.path = for_flag("--camera-path", [&] { return render::parse_camera_path(o.camera_path, true); });
+  // A camera on an arch or a grain moves with its subject: a path of one key.
+  if (camera.names_subject()) plan.path = render::subject_path(camera);
   if (!o.freeze.empty()) {
     const size_t colon = o.freeze.find(':');
     plan.freeze = render::parse_freeze(o.freeze.substr(0, colon),
@@ -176,6 +180,15 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
       p.odata.panel_w = panel_w;
     }
   }
+  // Arches and grains the camera shows, found by simulating ahead (in the first panel's run).
+  resolve_camera_subjects(panels.front().model, plan.path,
+                          o.camera_path.empty() ? "--camera" : "--camera-path", !o.quiet);
+  // A grain the camera follows is marked as a tracked one (its ring and trail): the eye finds it at once.
+  for (const auto& key : plan.path.keys)
+    if (key.camera.kind == render::CameraSpec::Kind::Grain &&
+        std::find(plan.style.tracked.begin(), plan.style.tracked.end(), key.camera.subject) ==
+            plan.style.tracked.end())
+      plan.style.tracked.push_back(key.camera.subject);
   // Where the container leaves the overlay's boxes no clear space (a flat silo fills its outlet view; large
   // text), every panel gets the same margin on its right for them, the widest any panel needs.
   auto views_in = [&](const Panel& p, size_t k, int width) {
@@ -206,7 +219,9 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   for (size_t k = 0; k < n_panels; ++k) {
     Panel& p = panels[k];
     p.odata.margin_w = margin;
-    p.views = render::layout_views(camera, p.geo, panel_w - margin, video.height);
+    p.views = plan.path.empty()
+                  ? render::layout_views(camera, p.geo, panel_w - margin, video.height)
+                  : std::vector<render::View>{plan.path.view_at(0, p.geo, panel_w - margin, video.height)};
     for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
   }
   // (Whether the boxes then find room is known when each picture is drawn: record counts the pictures where

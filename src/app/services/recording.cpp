@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 
 #include "app/services/session.h"
 #include "core/error.h"
@@ -147,6 +149,95 @@ std::vector<int> clog_arch_members(const core::Model& model, int k, bool show) {
         ": no arch blocks the outlet as that clog forms (grains resting on the floor or an "
         "obstacle block it without one)");
   return ids;
+}
+
+void resolve_camera_subjects(const core::Model& model, render::CameraPath& path, const std::string& what,
+                             bool show) {
+  const core::Scene& scene = model.scene;
+  auto& keys = path.keys;
+  auto key_text = [&](size_t i) {  // the option and what it says of this key
+    return what == "--camera"
+               ? what + " " + keys[i].camera.text
+               : what + " key '" + core::format_g(keys[i].t, 6) + ":" + keys[i].camera.text + "'";
+  };
+  constexpr double kEvery = 0.01;  // s between a followed grain's samples
+  int last_clog = 0;
+  double end = 0;  // the simulated time the samples must reach
+  struct Follow {
+    size_t key;
+    double t0, t1;
+    std::shared_ptr<render::SubjectTrack> track;
+  };
+  std::vector<Follow> follows;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const render::CameraSpec& c = keys[i].camera;
+    if (c.kind == render::CameraSpec::Kind::Arch) last_clog = std::max(last_clog, c.subject);
+    if (c.kind != render::CameraSpec::Kind::Grain) continue;
+    if (c.subject >= model.setup.n_total)
+      throw core::InputError(key_text(i) + ": the scene has " + std::to_string(model.setup.n_total) +
+                             " grains (ids 0 to " + std::to_string(model.setup.n_total - 1) + ")");
+    // Shown from the key before (a glide in) to the key after (a glide out), or from the opening / to the
+    // end.
+    const double t0 = i == 0 ? 0 : keys[i - 1].t;
+    const double t1 = i + 1 == keys.size() ? scene.duration : std::min(scene.duration, keys[i + 1].t);
+    follows.push_back({i, t0, t1, std::make_shared<render::SubjectTrack>()});
+    end = std::max(end, t1);
+  }
+  if (last_clog == 0 && follows.empty()) return;
+  std::map<int, std::vector<core::Vec2>> arches;  // by clog number: the members' centres as it forms
+  std::map<int, double> radius;                   // by clog number: the largest member's radius
+  int opened = 0;
+  Session session({model});
+  FunctionSink probe;
+  probe.on_step = [&](const sim::Silo& h, const core::StepEvents& e, size_t) {
+    for (int number : e.clogs_opened) {
+      opened = std::max(opened, number);
+      if (number > last_clog || !h.clog().open || h.clog().number != number) continue;
+      const core::Frame f = h.frame(false);
+      const std::vector<double> radii = h.radii();
+      auto& centres = arches[number];
+      for (int id : h.clog().arch) {
+        const auto& p = f.particles[static_cast<size_t>(id)];
+        centres.push_back({p.x, p.y});
+        radius[number] = std::max(radius[number], radii[static_cast<size_t>(id)]);
+      }
+    }
+    return opened < last_clog || h.time() < end + kEvery;
+  };
+  probe.on_frame = [&](const FrameTick& tick) {
+    const core::Frame& f = tick.frames[0];
+    for (auto& fo : follows) {
+      if (f.t < fo.t0 - kEvery || f.t > fo.t1 + kEvery) continue;
+      const auto& p = f.particles[static_cast<size_t>(keys[fo.key].camera.subject)];
+      fo.track->t.push_back(f.t);
+      fo.track->x.push_back(p.x);
+      fo.track->y.push_back(p.y);
+    }
+  };
+  const double until = last_clog > 0 ? scene.duration : std::min(scene.duration, end + 2 * kEvery);
+  Progress progress(what + ": simulating ahead to find its subjects", until, show);
+  session.run(until, FrameClock::every(scene.dt, kEvery, what), {&probe}, {},
+              [&](double now) { progress.update(now); });
+  progress.finish();
+  for (size_t i = 0; i < keys.size(); ++i) {
+    render::CameraSpec& c = keys[i].camera;
+    if (c.kind != render::CameraSpec::Kind::Arch) continue;
+    if (opened < c.subject)
+      throw core::InputError(key_text(i) + ": the run has " + std::to_string(opened) +
+                             (opened == 1 ? " clog" : " clogs") + " in its " +
+                             core::format_g(scene.duration, 6) + " s");
+    if (arches[c.subject].empty())
+      throw core::InputError(key_text(i) +
+                             ": no arch blocks the outlet as that clog forms (grains resting on the floor or "
+                             "an obstacle block it without one); use outlet or a window");
+    render::frame_arch(c, arches[c.subject], radius[c.subject], model.setup.geo.grain_diameter);
+  }
+  for (auto& fo : follows) {
+    if (fo.track->t.empty())  // shown only past the end of the run: where it was last seen
+      throw core::InputError(key_text(fo.key) + ": shown only after the run's end (" +
+                             core::format_g(scene.duration, 6) + " s)");
+    keys[fo.key].camera.track = fo.track;
+  }
 }
 
 }  // namespace app

@@ -8,6 +8,7 @@
 #include "core/frame.h"
 #include "core/model.h"
 #include "core/scene.h"
+#include "render/camera.h"
 #include "render/overlay.h"
 
 namespace sim {
@@ -31,6 +32,14 @@ std::vector<int> grains_in_box(const core::Model& model, double x0, double y0, d
 std::vector<int> long_arch_members(const core::Model& model, int k, bool progress = true);
 // The members of the arch of the k-th clog as it opens (k >= 1; row k of clogs.csv).
 std::vector<int> clog_arch_members(const core::Model& model, int k, bool progress = true);
+
+// A camera's subjects (arch:K, grain:ID keys of `path`; a lone --camera arch:K is a path of one key) found by
+// simulating the scene ahead from the same seed (a run repeats exactly): the arch of the K-th clog where it
+// stands as the clog forms, a followed grain's centre every 0.01 s over the times its key is shown. `what`
+// names the option in errors; throws core::InputError naming the key when the run has fewer clogs, no arch
+// blocks that clog, or the scene has no such grain. Nothing is simulated when no key names a subject.
+void resolve_camera_subjects(const core::Model& model, render::CameraPath& path, const std::string& what,
+                             bool progress = true);
 
 // The annotations record puts on a panel's frames: the members of the last rule removal, ringed where they
 // stood, and a caption, after each rule firing or clog broken by vibration, for at least kMinFrames frames
