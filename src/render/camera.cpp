@@ -326,22 +326,51 @@ bool shows(const View& v, const std::array<core::Vec2, 2>& box) {
   return true;
 }
 
-// The smallest view (a's size in pixels, its angle) that shows both a's and b's windows.
-View union_view(const View& a, const View& b) {
+// The smallest view (a's size in pixels, its angle) that shows a's window and every point of `pts` (m).
+View union_points(const View& a, const std::vector<core::Vec2>& pts) {
   double x0 = a.rect.x, x1 = a.rect.x + a.rect.w, y0 = a.rect.y, y1 = a.rect.y + a.rect.h;
-  for (double px : {0.0, 1.0})
-    for (double py : {0.0, 1.0}) {
-      const core::Vec2 w = b.pixel_to_world({b.rect.x + px * b.rect.w, b.rect.y + py * b.rect.h});
-      const core::Vec2 q = a.world_to_pixel(w);
-      x0 = std::min(x0, q.x), x1 = std::max(x1, q.x), y0 = std::min(y0, q.y), y1 = std::max(y1, q.y);
-    }
+  for (const core::Vec2& w : pts) {
+    const core::Vec2 q = a.world_to_pixel(w);
+    x0 = std::min(x0, q.x), x1 = std::max(x1, q.x), y0 = std::min(y0, q.y), y1 = std::max(y1, q.y);
+  }
   View u = a;
   const core::Vec2 c = a.pixel_to_world({0.5 * (x0 + x1), 0.5 * (y0 + y1)});
   u.cam.cx = c.x, u.cam.cy = c.y;
   u.cam.height = a.cam.height * std::max((y1 - y0) / a.rect.h, (x1 - x0) / a.rect.w);
   return u;
 }
+
+// The smallest view (a's size in pixels, its angle) that shows both a's and b's windows.
+View union_view(const View& a, const View& b) {
+  std::vector<core::Vec2> corners;
+  for (double px : {0.0, 1.0})
+    for (double py : {0.0, 1.0})
+      corners.push_back(b.pixel_to_world({b.rect.x + px * b.rect.w, b.rect.y + py * b.rect.h}));
+  return union_points(a, corners);
+}
 }  // namespace
+
+bool shows_disks(const View& v, const std::vector<core::Vec2>& centres, const std::vector<double>& radii) {
+  for (size_t k = 0; k < centres.size(); ++k) {
+    const core::Vec2 px = v.world_to_pixel(centres[k]);
+    const double r = radii[k] * v.px_per_m();
+    if (px.x - r < v.rect.x - 0.5 || px.x + r > v.rect.x + v.rect.w + 0.5 || px.y - r < v.rect.y - 0.5 ||
+        px.y + r > v.rect.y + v.rect.h + 0.5)
+      return false;
+  }
+  return true;
+}
+
+View widened_to_show(const View& v, const std::vector<core::Vec2>& centres, const std::vector<double>& radii,
+                     double pad) {
+  std::vector<core::Vec2> pts;
+  for (size_t k = 0; k < centres.size(); ++k) {
+    const double r = radii[k] + pad;
+    for (double dx : {-r, r})
+      for (double dy : {-r, r}) pts.push_back({centres[k].x + dx, centres[k].y + dy});
+  }
+  return union_points(v, pts);
+}
 
 View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) const {
   // A followed grain's key shows where the grain is now, in its glides too.

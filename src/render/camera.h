@@ -105,6 +105,13 @@ CameraPath parse_camera_path(const std::string& spec, bool with_subjects = false
 // does; an empty path for any other camera.
 CameraPath subject_path(const CameraSpec& camera);
 
+// Whether view v shows every disk (centres and radii, m) whole.
+bool shows_disks(const View& v, const std::vector<core::Vec2>& centres, const std::vector<double>& radii);
+// View v widened about its own pixel rectangle (the same angle) as little as needed to show every disk whole
+// with `pad` metres around it: a freeze's picture of an arch the camera had partly out of view.
+View widened_to_show(const View& v, const std::vector<core::Vec2>& centres, const std::vector<double>& radii,
+                     double pad);
+
 // A freeze: a movie or clip holds its picture for `seconds` of video at each event, a clog opening (as the
 // simulation's step reports it, core/events.h) or the last frame before the clog rule fires.
 struct Freeze {

@@ -221,6 +221,15 @@ TEST_CASE("record --freeze holds the picture at each clog and --camera-path move
   long held = 0;                                               // frames equal to the one before
   for (size_t k = 1; k < pngs.size(); ++k) held += slurp(pngs[k]) == slurp(pngs[k - 1]);
   CHECK(held >= 4 * formed);
+  // A camera on a window away from the outlet: the freeze widens its picture to show the arch whole, and says
+  // so.
+  {
+    auto r =
+        cli("record " + kScene + " --duration 3 --size 160x120 --fps 10 --no-movie --png-every 1 --out " +
+            (d / "w").string() + " --camera window:0.5,1,1.5,2 --freeze clog:0.5");
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.output, Catch::Matchers::Contains("the held picture widens to show it whole"));
+  }
   const std::pair<const char*, const char*> bad[] = {
       {" --freeze jam:1", "clog:SECONDS or rule:SECONDS"},
       {" --freeze clog:0", "0 < SECONDS <= 60"},

@@ -143,6 +143,25 @@ TEST_CASE("camera keys naming an arch or a grain: parsed for record only, framed
   }
 }
 
+TEST_CASE("a view widened to show disks whole keeps its rectangle and angle and grows no more than needed",
+          "[render]") {
+  render::View v{render::fit(0.5, 1, 1.5, 2, 640, 360, 0.3), {40, 0, 640, 360}, "window"};
+  const std::vector<core::Vec2> arch = {{-0.15, 0.07}, {0, 0.15}, {0.15, 0.07}};
+  const std::vector<double> r = {0.065, 0.065, 0.065};
+  CHECK_FALSE(render::shows_disks(v, arch, r));
+  const render::View w = render::widened_to_show(v, arch, r, 0.065);
+  CHECK(render::shows_disks(w, arch, r));
+  CHECK(render::shows_disks(w, {{1.0, 1.5}}, {0.4}));  // what it showed before, still shown
+  CHECK(w.rect.x == 40);
+  CHECK(w.rect.w == 640);
+  CHECK(w.cam.angle == 0.3);
+  // Tight: with 10% less height the padded disks no longer fit.
+  render::View smaller = w;
+  smaller.cam.height *= 0.9;
+  CHECK_FALSE(render::shows_disks(smaller, arch, {0.13, 0.13, 0.13}));
+  CHECK(render::shows_disks(v, {{1.0, 1.5}}, {0.1}));
+}
+
 TEST_CASE("the outlet camera is sized by the grain: ten diameters tall at any grain size", "[render]") {
   core::Scene paper;
   const auto at_paper =

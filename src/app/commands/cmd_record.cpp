@@ -124,6 +124,9 @@ class MovieSink : public Sink {
     slow_frames += tick.slow;
     sim_seconds += since(t0_);
     if (freeze) {
+      // A freeze at a clog shows its whole arch: where no view of a panel has every member whole (a camera on
+      // a window or a grain, a glide half-way), the view showing most of it widens until it does.
+      show_arches(pf);
       // Hold this picture for the freeze's seconds of video (the frame itself is the first of them).
       const long copies = plan_.freeze.copies(clock_.video_fps);
       for (auto& n : pf.notes)
@@ -140,8 +143,39 @@ class MovieSink : public Sink {
   bool done() const override { return !open_; }
   double last_t = 0, sim_seconds = 0;
   long slow_frames = 0, frozen_frames = 0;
+  long widened_freezes = 0;  // freezes whose view widened to show the whole arch
 
  private:
+  void show_arches(PipelineFrame& pf) {
+    for (size_t i = 0; i < panels_.size(); ++i) {
+      if (i >= pf.frames.size() || panels_[i].replay) continue;
+      const core::Frame& f = pf.frames[i];
+      if (f.arch.empty()) continue;
+      std::vector<core::Vec2> centres;
+      std::vector<double> radii;
+      for (int id : f.arch) {
+        const core::Particle& p = f.particles[static_cast<size_t>(id)];
+        centres.push_back({p.x, p.y});
+        radii.push_back(p.radius * core::polygon_extent(p.sides));
+      }
+      const std::vector<render::View>& views = i < pf.views.size() ? pf.views[i] : panels_[i].views;
+      size_t best = 0;
+      long best_n = -1;
+      bool whole = false;
+      for (size_t k = 0; k < views.size() && !whole; ++k) {
+        long n = 0;
+        for (size_t m = 0; m < centres.size(); ++m)
+          n += render::shows_disks(views[k], {centres[m]}, {radii[m]});
+        whole = n == static_cast<long>(centres.size());
+        if (n > best_n) best = k, best_n = n;
+      }
+      if (whole || views.empty()) continue;
+      while (pf.views.size() <= i) pf.views.push_back(panels_[pf.views.size()].views);
+      pf.views[i][best] =
+          render::widened_to_show(pf.views[i][best], centres, radii, 0.5 * panels_[i].geo.grain_diameter);
+      ++widened_freezes;
+    }
+  }
   // Whether a panel's frame is a freeze's event, as its steps reported it: a clog opened since the previous
   // frame, or the rule falls due before the next frame (the last frame before it fires) with an arch shown.
   bool freezes(const core::Frame& f, const core::StepEvents& e) const {
@@ -367,6 +401,11 @@ int record_movie(const RecordOptions& o) {
         "of the container or its grains: a larger --size, a smaller --font-scale, fewer elements "
         "(--overlay) or --overlay-at would give them room\n",
         pipeline.covered_frames(), encoded);
+  if (!o.quiet && movie->widened_freezes > 0)
+    std::fprintf(stderr,
+                 "siloscope: at %ld freeze%s the camera had part of the arch out of view: the held picture "
+                 "widens to show it whole\n",
+                 movie->widened_freezes, movie->widened_freezes == 1 ? "" : "s");
   return was_interrupted ? 130 : 0;
 }
 }  // namespace
