@@ -15,6 +15,9 @@ frame() {  # NAME DIR FRAME: copy DIR's frame FRAME to docs/images/NAME.png
 # The main job's movie 3.8 s into its second clog, a three-disk arch (from 7.104 s; frame 330 is t = 10.89 s).
 $S record assets/scenes/paper.toml --duration 11 --no-movie --png-every 330 --quiet --force --out $R/demo
 frame demo_frame demo 330
+# The demo run's second clog at four times, and its discharge as a figure (both from the recording above).
+$S filmstrip $R/demo --clog 2 --times=-1,-0.5,0,2 --force --out docs/images/filmstrip.png
+$S timeline $R/demo --force --out docs/images/timeline.png
 $S record assets/scenes/paper.toml --duration 7.2 --slowmo 4 --overlay all+plot --size 1280x720 --no-movie \
   --png-every 250 --quiet --force --out $R/events
 frame events_frame events 250

@@ -4,7 +4,9 @@
 by itself, still standing at the run's end), axis ticks and labels, a legend and the run named; the command
 that made it in the footer. Vector in PDF and SVG, text kept as text.
 
-    python3 timeline.py RUN OUT FROM TO VERSION COMMAND      (called by `siloscope timeline`)
+    python3 timeline.py RUN OUT FROM TO VERSION COMMAND [COLORS]      (called by `siloscope timeline`)
+
+COLORS: each species' colour as #rrggbb, comma-separated, as the movies draw them (default: matplotlib's).
 """
 import os
 import sys
@@ -25,7 +27,7 @@ ENDED = {"rule": ("#c0392b", "clog ended by the rule (arch removed)"),
          "run_end": ("#7d3c98", "clogged at the run's end")}
 
 
-def main(run_dir, out, t0, t1, version, command):
+def main(run_dir, out, t0, t1, version, command, species_colors=""):
     r = siloscope.read_run(run_dir)
     plt.rcParams.update({"svg.fonttype": "none", "pdf.fonttype": 42, "font.size": 9})
     fig, ax = plt.subplots(figsize=(8, 3.6))
@@ -37,7 +39,12 @@ def main(run_dir, out, t0, t1, version, command):
         color, _ = ENDED.get(c["ended_by"], ("#cccccc", c["ended_by"]))
         ax.axvspan(a, b, color=color, alpha=0.25, lw=0)
         seen.add(c["ended_by"])
-    colors = plt.get_cmap("tab10")
+    given = [c for c in species_colors.split(",") if c]
+    tab = plt.get_cmap("tab10")
+
+    def colors(k):
+        return given[k] if k < len(given) else tab(k)
+
     for k, name in enumerate(r.species_names):
         t = np.sort(r.exits.loc[r.exits["species"] == name, "t_s"].to_numpy(float))
         t = t[t <= t1]
@@ -64,6 +71,6 @@ def main(run_dir, out, t0, t1, version, command):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 7:
+    if len(sys.argv) not in (7, 8):
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5], sys.argv[6])
+    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5], sys.argv[6], *sys.argv[7:8])

@@ -224,6 +224,9 @@ TEST_CASE("timeline: the discharge staircase with clog bands in PDF, SVG and PNG
                            Catch::Matchers::Contains("clog ended by the rule") &&
                            Catch::Matchers::Contains("siloscope timeline"));
       CHECK(body.find("<image") == std::string::npos);
+      // Each species' staircase in the colour the movies give it (the paper palette's red and blue).
+      CHECK_THAT(
+          body, Catch::Matchers::Contains("stroke: #d92924") && Catch::Matchers::Contains("stroke: #2961d9"));
     } else if (std::string(ext) == ".pdf") {
       CHECK(body.rfind("%PDF", 0) == 0);
       CHECK(body.find("/Subtype /Image") == std::string::npos);
