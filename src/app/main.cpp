@@ -47,14 +47,22 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // What was printed must have reached standard output (a full disk, a closed pipe): otherwise the command
+  // did not do what it said, whatever it computed.
+  auto printed = [](int rc) {
+    if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return rc;
+    std::fprintf(stderr, "siloscope: error: cannot write to standard output (%s): what was printed is lost\n",
+                 std::strerror(errno));
+    return rc == 0 ? 1 : rc;
+  };
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return cli.exit(e);
+    return printed(cli.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return cli.exit(e);
+    return printed(cli.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return cli.exit(e);
+    return printed(cli.exit(e));
   } catch (const CLI::ParseError& e) {
     std::fprintf(
         stderr,
@@ -66,16 +74,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const int rc = action();
-    // What was printed must have reached standard output (a full disk, a closed pipe): otherwise the command
-    // did not do what it said, whatever it computed.
-    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      std::fprintf(stderr,
-                   "siloscope: error: cannot write to standard output (%s): what was printed is lost\n",
-                   std::strerror(errno));
-      return rc == 0 ? 1 : rc;
-    }
-    return rc;
+    return printed(action());
   } catch (const core::OutputBusy& e) {
     std::fprintf(stderr, "siloscope: busy: %s\n", e.what());
     return 75;

@@ -253,6 +253,13 @@ TEST_CASE("conflicting flags are refused with both named, and output lost on a f
   CHECK(test::sh(kBin + " scene " + kScene + " > /dev/full 2> " + (d / "err.txt").string()) == 1);
   CHECK_THAT(test::slurp(d / "err.txt"), Catch::Matchers::Contains("cannot write to standard output"));
   CHECK(test::sh(kBin + " scene " + kScene + " > /dev/null") == 0);
+  // --help and --version too (CLI11 printed them and the program exited 0 whatever the write did).
+  for (const char* args : {" --help", " run --help", " --version"}) {
+    INFO(args);
+    CHECK(test::sh(kBin + args + " > /dev/full 2> " + (d / "err.txt").string()) == 1);
+    CHECK_THAT(test::slurp(d / "err.txt"), Catch::Matchers::Contains("cannot write to standard output"));
+    CHECK(test::sh(kBin + args + " > /dev/null") == 0);
+  }
 }
 
 TEST_CASE("keys that do nothing in this scene and species rounded to no grains are warned about, by origin",
