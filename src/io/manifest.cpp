@@ -214,17 +214,18 @@ std::string manifest_mismatch(const fs::path& dir, const Manifest& m, bool hashe
 }
 
 namespace {
+// `dir`: named when the caller named a file inside it; empty when the caller named the directory itself.
 std::string missing_why(const fs::path& dir) {
-  return (dir / "").string() +
-         " has no manifest.toml, though its metadata.toml says siloscope wrote one "
-         "(removed after?); what the output holds cannot be checked: make it again";
+  return (dir.empty() ? std::string("no manifest.toml") : (dir / "").string() + " has no manifest.toml") +
+         ", though its metadata.toml says siloscope wrote one (removed after?), so what the output holds "
+         "cannot be checked";
 }
 }  // namespace
 
 void verify_manifest(const fs::path& dir, const std::string& what, const std::vector<std::string>& only) {
   Manifest m;
   if (!read_manifest(dir, m)) {
-    if (declares_manifest(dir)) throw core::InputError(what + " " + dir.string() + ": " + missing_why(dir));
+    if (declares_manifest(dir)) throw core::InputError(what + " " + dir.string() + ": " + missing_why({}));
     return;
   }
   for (const auto& e : m.files) {
@@ -240,7 +241,7 @@ void verify_listed(const fs::path& file, const std::string& what) {
     Manifest m;
     if (!read_manifest(dir, m)) {
       if (declares_manifest(dir))
-        throw core::InputError(what + " " + file.string() + ": " + missing_why(dir));
+        throw core::InputError(what + " " + file.string() + ": " + missing_why(dir) + ": make it again");
       continue;
     }
     const std::string rel = file.lexically_relative(dir).generic_string();

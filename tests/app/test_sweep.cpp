@@ -174,6 +174,40 @@ TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realiz
   CHECK(slurp(d / "kill" / "analysis" / "points.csv") == whole);
 }
 
+TEST_CASE("a resumed sweep refuses a finished realization that was cut, edited or lost its manifest",
+          "[campaign][app]") {
+  fs::path d = temp_dir("resume_check");
+  fs::path c = tiny_campaign(d, 1);  // 3 realizations
+  const fs::path r = d / "r";
+  const std::string sweep = kBin + " sweep " + c.string() + " --quiet --results " + r.string();
+  REQUIRE(sh(sweep) == 0);
+  const fs::path run = r / "runs" / "p000" / "r000";
+  const fs::path keep = d / "keep";
+  fs::copy(run, keep, fs::copy_options::recursive);
+  auto refused = [&](const std::string& says) {
+    auto out = test::cli("sweep " + c.string() + " --quiet --results " + r.string());
+    INFO(out.output);
+    CHECK(out.code == 2);
+    CHECK_THAT(out.output,
+               Catch::Matchers::Contains(says) && Catch::Matchers::Contains("remove " + run.string()));
+    CHECK(fs::exists(run / "metadata.toml"));  // left as it is: the user decides
+    fs::remove_all(run);
+    fs::copy(keep, run, fs::copy_options::recursive);
+  };
+  std::string exits = slurp(run / "exits.csv");
+  std::ofstream(run / "exits.csv", std::ios::binary) << exits.substr(0, exits.size() - 7);
+  refused("exits.csv is");
+  exits[exits.size() - 2] = exits[exits.size() - 2] == '1' ? '2' : '1';
+  std::ofstream(run / "exits.csv", std::ios::binary) << exits;
+  refused("differs from what siloscope wrote");
+  fs::remove(run / "manifest.toml");
+  refused("no manifest.toml, though its metadata.toml says siloscope wrote one");
+  fs::copy_file(r / "runs" / "p001" / "r000" / "clogs.csv", run / "clogs.csv",
+                fs::copy_options::overwrite_existing);
+  refused("clogs.csv");
+  CHECK(sh(sweep) == 0);  // restored: resumes (nothing left to do) and analyses
+}
+
 TEST_CASE("a realization the health monitor refuses is recorded once, not rerun, and counted by analyze",
           "[campaign][app]") {
   fs::path d = temp_dir("refused");

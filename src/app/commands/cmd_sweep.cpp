@@ -33,6 +33,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/stats.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -213,6 +214,14 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
     for (size_t p = 0; p < c.points.size(); ++p) {
       Job j{p, k, "runs/" + c.run_dir(p, k), {}, ""};
       if (fs::exists(dir / j.dir / "metadata.toml")) {
+        // Finished: counted only while it holds what siloscope wrote (a cut, edited or half-copied run would
+        // be believed done and then refused by analyze, or worse, analysed).
+        try {
+          io::verify_manifest(dir / j.dir, "sweep: realization");
+        } catch (const core::InputError& e) {
+          throw core::InputError(std::string(e.what()) + "; remove " + (dir / j.dir).string() +
+                                 " to run that realization again");
+        }
         ++done;
         continue;
       }
