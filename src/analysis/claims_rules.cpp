@@ -1,8 +1,11 @@
 // The claims' shared machinery (claims_detail.h): reading a campaign's analysis, comparisons with their
 // intervals and p-values, Holm's correction over a claim, and the rules that turn comparisons into verdicts.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+
+#include <toml++/toml.h>
 
 #include "analysis/claims_detail.h"
 #include "analysis/stats.h"
@@ -84,6 +87,21 @@ Data::Data(const std::string& dir, const std::string& column_dir)
     p.n = static_cast<long>(points_.num(i, "n_runs"));
     by_key[key(points_, i)] = pts_.size();
     pts_.push_back(p);
+  }
+  // analyze writes how many points it wrote: a points.csv cut at a line's end (or a row deleted) keeps its
+  // form, and only this count tells (the Python package's read_campaign checks the same).
+  const std::string mpath = dir + "/metadata.toml";
+  if (std::filesystem::exists(mpath)) {
+    try {
+      const toml::table meta = toml::parse_file(mpath);
+      if (auto declared = meta["run"]["points"].value<std::int64_t>();
+          declared && *declared != static_cast<std::int64_t>(points_.rows()))
+        throw core::InputError(points_.path() + " has " + std::to_string(points_.rows()) +
+                               " points where its metadata.toml says analyze wrote " +
+                               std::to_string(*declared) + " (cut, or rows removed by hand?)");
+    } catch (const toml::parse_error&) {
+      throw core::InputError(mpath + ": malformed TOML (truncated or edited by hand?)");
+    }
   }
   const std::string rpath = dir + "/realizations.csv";
   if (std::filesystem::exists(rpath)) {

@@ -191,3 +191,15 @@ def test_the_undamaged_inputs_are_read(made, binary, tmp_path):
         else:
             p = subprocess.run(how(binary, analysis, str(tmp_path / reader)), capture_output=True, text=True)
             assert p.returncode == 0, f"{reader}: {p.stderr}"
+
+
+@pytest.mark.parametrize("reader,file,how", ANALYSIS_READERS, ids=[r[0] for r in ANALYSIS_READERS])
+def test_an_analysis_reader_refuses_a_points_table_cut_at_a_line_end(root, tmp_path, binary, reader, file, how):
+    """A committed pack (no manifest, as before manifests) whose points.csv lost its last row whole: the table
+    keeps its form, and only the count analyze wrote into metadata.toml tells."""
+    analysis = tmp_path / "analysis"
+    shutil.copytree(os.path.join(root, "docs", "campaigns", "kicks", "analysis"), analysis)
+    assert not (analysis / "manifest.toml").exists()
+    rows = (analysis / "points.csv").read_text().splitlines(keepends=True)
+    (analysis / "points.csv").write_text("".join(rows[:-1]))
+    _expect_refusal(reader, how, str(analysis), tmp_path, file, binary, without_manifest=True)

@@ -57,6 +57,12 @@ class Campaign:
                                         counts=("at_risk", "clogs"), optional=True)
         meta = os.path.join(analysis, "metadata.toml")
         self.metadata = read_metadata(meta) if os.path.exists(meta) else None
+        # analyze writes how many points it wrote: a points.csv cut at a line's end (or a row deleted) keeps its
+        # form, and only this count tells.
+        declared = ((self.metadata or {}).get("run") or {}).get("points")
+        if isinstance(declared, int) and not isinstance(declared, bool) and declared != len(self.points):
+            raise SiloscopeError(f"{analysis}/points.csv has {len(self.points)} points where its metadata.toml says "
+                                 f"analyze wrote {declared} (cut, or rows removed by hand?)")
         self.campaign = None
         for c in (os.path.join(analysis, "..", "campaign.toml"), os.path.join(analysis, "campaign.toml")):
             if os.path.exists(c):
