@@ -243,7 +243,8 @@ TEST_CASE(
     // from half-way on, the grain does; from its key on, it is at the centre.
     if (t >= 2 && t <= 4)
       for (size_t k = 0; k < arch.size(); ++k) arch_missing += !inside(v, arch[k], arch_r[k]);
-    const auto& p = silo.frame(false).particles[kGrain];
+    const core::Frame f = silo.frame(false);  // kept: the grain is read from it below
+    const auto& p = f.particles[kGrain];
     if (t >= 4) grain_missing += !inside(v, {p.x, p.y}, radii[kGrain]);
     if (t >= 6.05) {
       const core::Vec2 px = v.world_to_pixel({p.x, p.y});
