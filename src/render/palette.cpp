@@ -178,6 +178,13 @@ Rgba species_color(const Style& style, core::Species s) {
   return species_color(style.palette, s);
 }
 
+std::string hex_rgb(Rgba c) {
+  char b[8];
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  std::snprintf(b, sizeof b, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return b;
+}
+
 Rgba background_color(const Style& s) {
   if (s.transparent) return {0, 0, 0, 0};
   if (s.dark) return {0.07f, 0.07f, 0.09f, 1};

@@ -75,6 +75,8 @@ double color_scale_max(const Style& s);
 // Okabe-Ito vermillion and blue. A style's own species_colors win where set.
 Rgba species_color(Palette p, core::Species s);
 Rgba species_color(const Style& style, core::Species s);
+// "#rrggbb" of a colour (alpha left out; channels clamped to 0..1): SVG, matplotlib.
+std::string hex_rgb(Rgba c);
 Rgba background_color(const Style& s);
 Rgba wall_color(Palette p);
 Rgba wall_color(const Style& s);     // light on a dark background

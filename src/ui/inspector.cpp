@@ -378,15 +378,6 @@ std::string Inspector::vector_table(int w, int h, double& width_m, double& heigh
   return table;
 }
 
-namespace {
-std::string hex(render::Rgba c) {
-  char b[8];
-  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
-  std::snprintf(b, sizeof b, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
-  return b;
-}
-}  // namespace
-
 std::string Inspector::vector_key() const {
   // As the bitmap pictures, by the overlay's elements: the information box (the caption already gives the
   // time, the clog timer and the arch's size), the legend, the colour bar and the scale bar.
@@ -419,9 +410,9 @@ std::string Inspector::vector_key() const {
     if (scale.empty())
       for (size_t s = 0; s < overlay_data.species_names.size(); ++s)
         k += "species\t" + overlay_data.species_names[s] + "\t" +
-             hex(render::species_color(st, static_cast<core::Species>(s))) + "\n";
+             render::hex_rgb(render::species_color(st, static_cast<core::Species>(s))) + "\n";
     if (st.show_arch && !f.arch.empty())
-      k += "arch\tarch members\t" + hex(render::arch_color(st.palette)) + "\n";
+      k += "arch\tarch members\t" + render::hex_rgb(render::arch_color(st.palette)) + "\n";
   }
   if (!scale.empty() && (o.legend || o.colorbar)) {
     std::snprintf(line, sizeof line, "\t%.6g\t%.6g\t%s\n", st.color_min, render::color_scale_max(st),

@@ -2,7 +2,6 @@
 // cumulative exits against time (the staircase), every clog as a band coloured by how it ended, axis ticks
 // and labels, a legend, the run named. Vector in PDF and SVG (text stays text); drawn by matplotlib
 // (src/figures/timeline.py) from the run's own event files, read and checked here.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -15,6 +14,7 @@
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "render/overlay.h"
 #include "render/palette.h"
 
 namespace app {
@@ -55,17 +55,11 @@ int timeline(const TimelineOptions& o) {
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
   // Each species in the colour the movies give it (the scene's own, else the paper palette's), so that the
   // figure and a frame beside it on a slide agree.
+  render::Style style;
+  style.species_colors = render::overlay_data_for(model).species_colors;
   std::string colors;
-  for (size_t k = 0; k < model.setup.species.size(); ++k) {
-    const auto& sp = model.setup.species[k];
-    const render::Rgba c = sp.has_color
-                               ? render::Rgba{sp.color[0], sp.color[1], sp.color[2], 1}
-                               : render::species_color(render::Palette::Paper, static_cast<core::Species>(k));
-    char hex[16];
-    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(255 * c.r)),
-                  static_cast<int>(std::lround(255 * c.g)), static_cast<int>(std::lround(255 * c.b)));
-    colors += (colors.empty() ? "" : ",") + std::string(hex);
-  }
+  for (size_t k = 0; k < model.setup.species.size(); ++k)
+    colors += (k ? "," : "") + render::hex_rgb(render::species_color(style, static_cast<core::Species>(k)));
   const int status = run_python(script_path("timeline.py"),
                                 {run.string(), partial.string(), core::format_g(o.from, 9),
                                  core::format_g(to, 9), io::version_string(), command_line(), colors});
