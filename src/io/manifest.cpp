@@ -126,7 +126,8 @@ void declare_manifest(const fs::path& dir) {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.eof() && in.fail()) throw core::RuntimeFault(meta.string() + ": cannot be read back");
   const size_t at = text.find(kSiloscopeTable);
-  if (at == std::string::npos || declares_manifest(dir)) return;
+  const std::string declared = std::string(kSiloscopeTable) + kManifestDeclaration + "\n";
+  if (at == std::string::npos || text.compare(at, declared.size(), declared) == 0) return;
   text.insert(at + std::char_traits<char>::length(kSiloscopeTable), std::string(kManifestDeclaration) + "\n");
   write_file_atomic(meta, text);
 }

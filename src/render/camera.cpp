@@ -316,14 +316,7 @@ std::array<core::Vec2, 2> subject_box(const CameraSpec& c, const core::Geometry&
 
 // Whether view v shows the box (its four corners; the world may be turned).
 bool shows(const View& v, const std::array<core::Vec2, 2>& box) {
-  for (double x : {box[0].x, box[1].x})
-    for (double y : {box[0].y, box[1].y}) {
-      const core::Vec2 px = v.world_to_pixel({x, y});
-      if (px.x < v.rect.x - 0.5 || px.x > v.rect.x + v.rect.w + 0.5 || px.y < v.rect.y - 0.5 ||
-          px.y > v.rect.y + v.rect.h + 0.5)
-        return false;
-    }
-  return true;
+  return shows_disks(v, {box[0], {box[0].x, box[1].y}, {box[1].x, box[0].y}, box[1]}, {0, 0, 0, 0});
 }
 
 // The smallest view (a's size in pixels, its angle) that shows a's window and every point of `pts` (m).
