@@ -1,13 +1,17 @@
-// A lab run from tracked particles (lab/import.h).
+// A lab run from tracked particles (lab/import.h): tracks joined into grains, their paths, exits, then clogs
+// and arches by the simulation's own rules, one step of the Importer each. Over 400 lines because the steps
+// share one state (every grain's path at every frame) and read best in order; contacts and arches by distance
+// are the lab's own geometry and sit above them.
 #include "lab/import.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "core/clog.h"
 #include "core/error.h"
-#include "core/stats.h"
-#include "sim/clog.h"
+#include "core/interrupt.h"
+#include "core/median.h"
 
 namespace lab {
 
@@ -79,267 +83,324 @@ std::vector<int> arch_by_distance(const std::vector<core::Vec2>& pos, const std:
   return arch;
 }
 
-Imported import_tracks(const Tracks& tracks, const core::Model& model, const ImportOptions& opt) {
-  const core::Geometry& geo = model.setup.geo;
-  const core::Scene& scene = model.scene;
-  Imported out;
-  ImportReport& rep = out.report;
-  const int nf = static_cast<int>(tracks.frames.size());
-  rep.frames = nf;
-  rep.rows = tracks.rows;
-  rep.time_offset = tracks.frames.front().t;
-  std::vector<double> t(static_cast<size_t>(nf));
-  for (int k = 0; k < nf; ++k) t[k] = tracks.frames[k].t - rep.time_offset;
-  {
+namespace {
+
+// The import's steps over one track file, each a method: frame times, tracks joined into grains, each grain's
+// size and path, exits, then clogs and arches frame by frame.
+class Importer {
+ public:
+  Importer(const Tracks& tracks, const core::Model& model, const ImportOptions& opt)
+      : tracks_(tracks), model_(model), geo_(model.setup.geo), opt_(opt), rep_(out_.report) {}
+
+  Imported run() {
+    frame_times();
+    join_tracks();
+    grain_sizes();
+    grain_paths();
+    park_unseen();
+    find_exits();
+    clogs_and_arches();
+    return std::move(out_);
+  }
+
+ private:
+  const Tracks& tracks_;
+  const core::Model& model_;
+  const core::Geometry& geo_;
+  const ImportOptions& opt_;
+  Imported out_;
+  ImportReport& rep_;
+  int nf_ = 0, n_ = 0;
+  double rmax_ = 0;
+  std::vector<double> t_;
+  std::vector<Track> grains_;
+  std::vector<std::vector<core::Vec2>> pos_;
+  std::vector<std::vector<float>> angle_;
+  std::vector<std::vector<bool>> present_;
+  std::vector<std::vector<int>> exits_at_;
+
+  // Times from the first frame, and how regular the intervals are.
+  void frame_times() {
+    nf_ = static_cast<int>(tracks_.frames.size());
+    rep_.frames = nf_;
+    rep_.rows = tracks_.rows;
+    rep_.time_offset = tracks_.frames.front().t;
+    t_.resize(static_cast<size_t>(nf_));
+    for (int k = 0; k < nf_; ++k) t_[k] = tracks_.frames[k].t - rep_.time_offset;
     std::vector<double> dt;
-    for (int k = 1; k < nf; ++k) dt.push_back(t[k] - t[k - 1]);
-    rep.interval_median = core::median(dt);
+    for (int k = 1; k < nf_; ++k) dt.push_back(t_[k] - t_[k - 1]);
+    rep_.interval_median = core::median(dt);
     if (!dt.empty()) {
-      rep.interval_min = *std::min_element(dt.begin(), dt.end());
-      rep.interval_max = *std::max_element(dt.begin(), dt.end());
+      rep_.interval_min = *std::min_element(dt.begin(), dt.end());
+      rep_.interval_max = *std::max_element(dt.begin(), dt.end());
     }
     for (double d : dt)
-      if (std::fabs(d - rep.interval_median) > 0.01 * rep.interval_median) ++rep.interval_changes;
+      if (std::fabs(d - rep_.interval_median) > 0.01 * rep_.interval_median) ++rep_.interval_changes;
   }
 
-  // Tracks by the file's ids, then ids that changed joined.
-  std::map<long, Track> by_id;
-  for (int k = 0; k < nf; ++k)
-    for (const Detection& d : tracks.frames[k].found) {
-      Track& tr = by_id[d.id];
-      tr.id = d.id;
-      tr.points.push_back({k, d});
-    }
-  std::vector<Track> all;
-  for (auto& [id, tr] : by_id) all.push_back(std::move(tr));
-  rep.tracks = static_cast<long>(all.size());
-  std::vector<std::vector<int>> starting(static_cast<size_t>(nf));
-  for (int i = 0; i < static_cast<int>(all.size()); ++i)
-    starting[static_cast<size_t>(all[i].start())].push_back(i);
-  std::vector<int> by_end(all.size());
-  for (size_t i = 0; i < all.size(); ++i) by_end[i] = static_cast<int>(i);
-  std::sort(by_end.begin(), by_end.end(), [&](int a, int b) { return all[a].end() < all[b].end(); });
-  for (int ia : by_end) {
-    Track& a = all[static_cast<size_t>(ia)];
-    while (!a.joined && a.end() < nf - 1 && !ends_at_outlet(a.points.back().d, geo)) {
-      const Detection& last = a.points.back().d;
-      int best = -1;
-      double best_d = opt.join_distance * 2 * last.r;
-      for (int s = a.end() + 1; s <= std::min(nf - 1, a.end() + opt.max_gap + 1); ++s)
-        for (int ib : starting[static_cast<size_t>(s)]) {
-          const Track& b = all[static_cast<size_t>(ib)];
-          if (b.joined || ib == ia || b.points.front().d.species != last.species) continue;
-          const double dist = std::hypot(b.points.front().d.x - last.x, b.points.front().d.y - last.y);
-          if (dist <= best_d) best_d = dist, best = ib;
-        }
-      if (best < 0) break;
-      Track& b = all[static_cast<size_t>(best)];
-      a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-      b.joined = true;
-      ++rep.joined;
-    }
-  }
-  std::vector<Track> grains;
-  for (Track& tr : all)
-    if (!tr.joined) grains.push_back(std::move(tr));
-  const int n = static_cast<int>(grains.size());
-  rep.grains = n;
-
-  // Each grain's size and species, and where it is at every frame.
-  out.radius.resize(static_cast<size_t>(n));
-  out.species.resize(static_cast<size_t>(n));
-  out.track_id.resize(static_cast<size_t>(n));
-  double rmax = 0;
-  for (int g = 0; g < n; ++g) {
-    std::vector<double> r;
-    std::vector<int> count(model.setup.species.size(), 0);
-    for (const Point& p : grains[g].points) r.push_back(p.d.r), ++count[static_cast<size_t>(p.d.species)];
-    out.radius[g] = core::median(r);
-    out.species[g] = static_cast<core::Species>(std::max_element(count.begin(), count.end()) - count.begin());
-    out.track_id[g] = grains[g].id;
-    rmax = std::max(rmax, out.radius[g]);
-  }
-  std::vector<std::vector<core::Vec2>> pos(static_cast<size_t>(nf),
-                                           std::vector<core::Vec2>(static_cast<size_t>(n)));
-  std::vector<std::vector<float>> angle(static_cast<size_t>(nf),
-                                        std::vector<float>(static_cast<size_t>(n), 0.f));
-  std::vector<std::vector<bool>> present(static_cast<size_t>(nf),
-                                         std::vector<bool>(static_cast<size_t>(n), false));
-  for (int g = 0; g < n; ++g) {
-    const auto& pts = grains[g].points;
-    for (size_t k = 0; k < pts.size(); ++k) {
-      const Point& p = pts[k];
-      pos[p.frame][g] = {p.d.x, p.d.y};
-      angle[p.frame][g] = static_cast<float>(p.d.angle);
-      present[p.frame][g] = true;
-      if (k + 1 < pts.size()) {
-        const Point& q = pts[k + 1];
-        const int missing = q.frame - p.frame - 1;
-        if (missing > opt.max_gap) {
-          ++rep.long_gaps;
-        } else {
-          for (int f = p.frame + 1; f < q.frame; ++f) {
-            const double w = (t[f] - t[p.frame]) / std::max(1e-12, t[q.frame] - t[p.frame]);
-            pos[f][g] = {p.d.x + w * (q.d.x - p.d.x), p.d.y + w * (q.d.y - p.d.y)};
-            angle[f][g] = static_cast<float>(p.d.angle + w * (q.d.angle - p.d.angle));
-            present[f][g] = true;
-            ++rep.interpolated;
-          }
-        }
+  // Tracks by the file's ids, then a track that breaks off away from the outlet joined to one starting near
+  // where it ended, within max_gap frames: a grain whose id changed.
+  void join_tracks() {
+    std::map<long, Track> by_id;
+    for (int k = 0; k < nf_; ++k)
+      for (const Detection& d : tracks_.frames[k].found) {
+        Track& tr = by_id[d.id];
+        tr.id = d.id;
+        tr.points.push_back({k, d});
+      }
+    std::vector<Track> all;
+    for (auto& [id, tr] : by_id) all.push_back(std::move(tr));
+    rep_.tracks = static_cast<long>(all.size());
+    std::vector<std::vector<int>> starting(static_cast<size_t>(nf_));
+    for (int i = 0; i < static_cast<int>(all.size()); ++i)
+      starting[static_cast<size_t>(all[i].start())].push_back(i);
+    std::vector<int> by_end(all.size());
+    for (size_t i = 0; i < all.size(); ++i) by_end[i] = static_cast<int>(i);
+    std::sort(by_end.begin(), by_end.end(), [&](int a, int b) { return all[a].end() < all[b].end(); });
+    for (int ia : by_end) {
+      Track& a = all[static_cast<size_t>(ia)];
+      while (!a.joined && a.end() < nf_ - 1 && !ends_at_outlet(a.points.back().d, geo_)) {
+        const int best = best_continuation(all, starting, ia);
+        if (best < 0) break;
+        Track& b = all[static_cast<size_t>(best)];
+        a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+        b.joined = true;
+        ++rep_.joined;
       }
     }
-    if (grains[g].start() > 0) ++rep.entered;
+    for (Track& tr : all)
+      if (!tr.joined) grains_.push_back(std::move(tr));
+    n_ = static_cast<int>(grains_.size());
+    rep_.grains = n_;
+  }
+
+  // The nearest track of the same species starting within max_gap frames after track ia ends, within
+  // join_distance diameters; -1 when none.
+  int best_continuation(const std::vector<Track>& all, const std::vector<std::vector<int>>& starting,
+                        int ia) const {
+    const Track& a = all[static_cast<size_t>(ia)];
+    const Detection& last = a.points.back().d;
+    int best = -1;
+    double best_d = opt_.join_distance * 2 * last.r;
+    for (int s = a.end() + 1; s <= std::min(nf_ - 1, a.end() + opt_.max_gap + 1); ++s)
+      for (int ib : starting[static_cast<size_t>(s)]) {
+        const Track& b = all[static_cast<size_t>(ib)];
+        if (b.joined || ib == ia || b.points.front().d.species != last.species) continue;
+        const double dist = std::hypot(b.points.front().d.x - last.x, b.points.front().d.y - last.y);
+        if (dist <= best_d) best_d = dist, best = ib;
+      }
+    return best;
+  }
+
+  // Each grain's size (the median of its detections) and species (the most frequent).
+  void grain_sizes() {
+    out_.radius.resize(static_cast<size_t>(n_));
+    out_.species.resize(static_cast<size_t>(n_));
+    out_.track_id.resize(static_cast<size_t>(n_));
+    for (int g = 0; g < n_; ++g) {
+      std::vector<double> r;
+      std::vector<int> count(model_.setup.species.size(), 0);
+      for (const Point& p : grains_[g].points) r.push_back(p.d.r), ++count[static_cast<size_t>(p.d.species)];
+      out_.radius[g] = core::median(r);
+      out_.species[g] =
+          static_cast<core::Species>(std::max_element(count.begin(), count.end()) - count.begin());
+      out_.track_id[g] = grains_[g].id;
+      rmax_ = std::max(rmax_, out_.radius[g]);
+    }
+  }
+
+  // Where each grain is at every frame: its detections, gaps of at most max_gap frames interpolated.
+  void grain_paths() {
+    pos_.assign(static_cast<size_t>(nf_), std::vector<core::Vec2>(static_cast<size_t>(n_)));
+    angle_.assign(static_cast<size_t>(nf_), std::vector<float>(static_cast<size_t>(n_), 0.f));
+    present_.assign(static_cast<size_t>(nf_), std::vector<bool>(static_cast<size_t>(n_), false));
+    for (int g = 0; g < n_; ++g) {
+      const auto& pts = grains_[g].points;
+      for (size_t k = 0; k < pts.size(); ++k) {
+        const Point& p = pts[k];
+        pos_[p.frame][g] = {p.d.x, p.d.y};
+        angle_[p.frame][g] = static_cast<float>(p.d.angle);
+        present_[p.frame][g] = true;
+        if (k + 1 < pts.size()) fill_gap(g, p, pts[k + 1]);
+      }
+      if (grains_[g].start() > 0) ++rep_.entered;
+    }
+  }
+
+  void fill_gap(int g, const Point& p, const Point& q) {
+    const int missing = q.frame - p.frame - 1;
+    if (missing > opt_.max_gap) {
+      ++rep_.long_gaps;
+      return;
+    }
+    for (int f = p.frame + 1; f < q.frame; ++f) {
+      const double w = (t_[f] - t_[p.frame]) / std::max(1e-12, t_[q.frame] - t_[p.frame]);
+      pos_[f][g] = {p.d.x + w * (q.d.x - p.d.x), p.d.y + w * (q.d.y - p.d.y)};
+      angle_[f][g] = static_cast<float>(p.d.angle + w * (q.d.angle - p.d.angle));
+      present_[f][g] = true;
+      ++rep_.interpolated;
+    }
   }
 
   // Where a grain is not seen it is parked far below the container, apart from every other (no contact, and
-  // never between an arch and the outlet).
-  // A grid below the container, as wide as eight times its size (trajectory readers refuse positions farther
-  // than ten times the container's size away).
-  const double size = std::max(geo.total_height, geo.x_right - geo.x_left), pitch = 2.5 * rmax;
-  const long cols = std::max(1L, static_cast<long>((geo.x_right - geo.x_left + 8 * size) / pitch));
-  const long rows = static_cast<long>(7 * size / pitch);
-  if (n > cols * rows)
-    throw core::InputError(tracks.source + ": " + std::to_string(n) +
-                           " grains (tracks) where a run holds at most " + std::to_string(cols * rows) +
-                           " for this container: join broken tracks (--join-distance, --max-gap) or import a "
-                           "shorter stretch");
-  auto park = [&](int g) {
-    return core::Vec2{geo.x_left - 4 * size + (static_cast<double>(g % cols) + 0.5) * pitch,
-                      -(geo.total_height + 1.0) - static_cast<double>(g / cols) * pitch};
-  };
-  for (int k = 0; k < nf; ++k)
-    for (int g = 0; g < n; ++g)
-      if (!present[k][g]) pos[k][g] = park(g);
+  // never between an arch and the outlet): a grid below the container, as wide as eight times its size
+  // (trajectory readers refuse positions farther than ten times the container's size away).
+  void park_unseen() {
+    const double size = std::max(geo_.total_height, geo_.x_right - geo_.x_left), pitch = 2.5 * rmax_;
+    const long cols = std::max(1L, static_cast<long>((geo_.x_right - geo_.x_left + 8 * size) / pitch));
+    const long rows = static_cast<long>(7 * size / pitch);
+    if (n_ > cols * rows)
+      throw core::InputError(
+          tracks_.source + ": " + std::to_string(n_) + " grains (tracks) where a run holds at most " +
+          std::to_string(cols * rows) +
+          " for this container: join broken tracks (--join-distance, --max-gap) or import a "
+          "shorter stretch");
+    auto park = [&](int g) {
+      return core::Vec2{geo_.x_left - 4 * size + (static_cast<double>(g % cols) + 0.5) * pitch,
+                        -(geo_.total_height + 1.0) - static_cast<double>(g / cols) * pitch};
+    };
+    for (int k = 0; k < nf_; ++k)
+      for (int g = 0; g < n_; ++g)
+        if (!present_[k][g]) pos_[k][g] = park(g);
+  }
 
   // Exits: the centre wholly below the outlet line, or a track that ends inside the outlet.
-  std::vector<std::vector<int>> exits_at(static_cast<size_t>(nf));
-  for (int g = 0; g < n; ++g) {
-    int exit_frame = -1;
-    for (const Point& p : grains[g].points)
-      if (p.d.y < -out.radius[g]) {
-        exit_frame = p.frame;
-        ++rep.exits_below;
-        break;
+  void find_exits() {
+    exits_at_.assign(static_cast<size_t>(nf_), {});
+    for (int g = 0; g < n_; ++g) {
+      int exit_frame = -1;
+      for (const Point& p : grains_[g].points)
+        if (p.d.y < -out_.radius[g]) {
+          exit_frame = p.frame;
+          ++rep_.exits_below;
+          break;
+        }
+      const Detection& last = grains_[g].points.back().d;
+      if (exit_frame < 0 && grains_[g].end() < nf_ - 1) {
+        if (ends_at_outlet(last, geo_)) {
+          exit_frame = grains_[g].end() + 1;
+          ++rep_.exits_lost;
+        } else {
+          ++rep_.left_view;
+        }
       }
-    const Detection& last = grains[g].points.back().d;
-    if (exit_frame < 0 && grains[g].end() < nf - 1) {
-      if (ends_at_outlet(last, geo)) {
-        exit_frame = grains[g].end() + 1;
-        ++rep.exits_lost;
-      } else {
-        ++rep.left_view;
+      if (exit_frame >= 0) exits_at_[static_cast<size_t>(exit_frame)].push_back(g);
+    }
+  }
+
+  // At rest at frame k: the arch and the grains no farther from the outlet's centre held still over
+  // arrest_hold.
+  bool at_rest(int k, const std::vector<int>& arch) const {
+    if (arch.empty() || k == 0) return false;
+    const core::Scene& scene = model_.scene;
+    int j = k - 1;
+    while (j > 0 && t_[k] - t_[j] < scene.arrest_hold) --j;
+    double reach = 0;
+    for (int id : arch) reach = std::max(reach, core::length(pos_[k][id]) + out_.radius[id]);
+    for (int g = 0; g < n_; ++g) {
+      if (!present_[k][g] || core::length(pos_[k][g]) > reach) continue;
+      if (!present_[j][g]) return false;
+      const core::Vec2 d = pos_[k][g] - pos_[j][g];
+      const double limit = scene.arrest_shift * out_.radius[g];
+      if (core::dot(d, d) > limit * limit) return false;
+    }
+    return true;
+  }
+
+  // Frame k's grains: positions, angles, velocities from the neighbouring frames (unseen grains parked, at
+  // rest).
+  void fill_particles(int k, core::Frame& f) const {
+    f.particles.resize(static_cast<size_t>(n_));
+    for (int g = 0; g < n_; ++g) {
+      core::Particle& p = f.particles[g];
+      p.radius = static_cast<float>(out_.radius[g]);
+      p.species = out_.species[g];
+      p.force = 0;
+      p.vx = p.vy = 0;
+      p.x = static_cast<float>(pos_[k][g].x);
+      p.y = static_cast<float>(pos_[k][g].y);
+      p.angle = 0;
+      if (!present_[k][g]) continue;
+      p.angle = angle_[k][g];
+      const int a = k > 0 && present_[k - 1][g] ? k - 1 : k;
+      const int b = k + 1 < nf_ && present_[k + 1][g] ? k + 1 : k;
+      if (b > a) {
+        p.vx = static_cast<float>((pos_[b][g].x - pos_[a][g].x) / (t_[b] - t_[a]));
+        p.vy = static_cast<float>((pos_[b][g].y - pos_[a][g].y) / (t_[b] - t_[a]));
       }
     }
-    if (exit_frame >= 0) exits_at[static_cast<size_t>(exit_frame)].push_back(g);
   }
 
   // Clogs and arches, frame by frame, by the simulation's rules (no clog rule: nothing removes an arch here).
-  const bool driven = model.setup.drive.kick_impulse_max > 0 || model.setup.drive.vibrating();
-  sim::ClogTracker tracker(scene.clog_min_gap, 0, driven);
-  const double tol = opt.contact_tolerance;
-  std::vector<std::int64_t> exits(model.setup.species.size(), 0);
-  out.frames.resize(static_cast<size_t>(nf));
-  out.between.resize(static_cast<size_t>(nf));
-  std::vector<int> held_arch;  // the open clog's arch, and the frame it was last seen at
-  int held_frame = -1;
-  auto close_arch = [&](const core::StepEvents& ev) {
-    for (size_t c = 0; c < ev.clogs_closed.size(); ++c) {
-      if (held_arch.empty() || held_frame < 0) continue;
-      ClogArch a;
-      a.clog = static_cast<int>(tracker.clogs().size() - ev.clogs_closed.size() + c + 1);
-      a.t = t[held_frame];
-      a.ids = held_arch;
-      for (int id : held_arch) a.track_ids.push_back(out.track_id[static_cast<size_t>(id)]);
-      a.descriptors = core::arch_descriptors(held_arch, pos[held_frame], out.radius);
-      out.clog_arches.push_back(std::move(a));
-      held_arch.clear();
-      held_frame = -1;
-    }
-  };
-  for (int k = 0; k < nf; ++k) {
-    core::StepEvents& ev = out.between[k];
-    for (int g : exits_at[k]) {
-      ev.exits.push_back({t[k], g, out.species[g]});
-      out.events.exits.push_back(ev.exits.back());
-      ++exits[static_cast<size_t>(core::species_index(out.species[g]))];
-      tracker.on_exit(t[k], ev);
-    }
-    close_arch(ev);
-    std::vector<int> arch = arch_by_distance(pos[k], out.radius, present[k], model, tol);
-    if (!arch.empty()) ++rep.frames_with_arch;
-    // At rest: the arch and the grains no farther from the outlet's centre held still over arrest_hold.
-    bool rest = false;
-    if (!arch.empty() && k > 0) {
-      int j = k - 1;
-      while (j > 0 && t[k] - t[j] < scene.arrest_hold) --j;
-      double reach = 0;
-      for (int id : arch) reach = std::max(reach, core::length(pos[k][id]) + out.radius[id]);
-      rest = true;
-      for (int g = 0; g < n && rest; ++g) {
-        if (!present[k][g] || core::length(pos[k][g]) > reach) continue;
-        if (!present[j][g]) {
-          rest = false;
-          break;
-        }
-        const core::Vec2 d = pos[k][g] - pos[j][g];
-        const double limit = scene.arrest_shift * out.radius[g];
-        if (core::dot(d, d) > limit * limit) rest = false;
+  void clogs_and_arches() {
+    const bool driven = model_.setup.drive.kick_impulse_max > 0 || model_.setup.drive.vibrating();
+    core::ClogTracker tracker(model_.scene.clog_min_gap, 0, driven);
+    std::vector<std::int64_t> exits(model_.setup.species.size(), 0);
+    out_.frames.resize(static_cast<size_t>(nf_));
+    out_.between.resize(static_cast<size_t>(nf_));
+    std::vector<int> held_arch;  // the open clog's arch, and the frame it was last seen at
+    int held_frame = -1;
+    auto close_arch = [&](const core::StepEvents& ev) {
+      for (size_t c = 0; c < ev.clogs_closed.size(); ++c) {
+        if (held_arch.empty() || held_frame < 0) continue;
+        ClogArch a;
+        a.clog = static_cast<int>(tracker.clogs().size() - ev.clogs_closed.size() + c + 1);
+        a.t = t_[held_frame];
+        a.ids = held_arch;
+        for (int id : held_arch) a.track_ids.push_back(out_.track_id[static_cast<size_t>(id)]);
+        a.descriptors = core::arch_descriptors(held_arch, pos_[held_frame], out_.radius);
+        out_.clog_arches.push_back(std::move(a));
+        held_arch.clear();
+        held_frame = -1;
       }
-    }
-    tracker.on_rest_check(t[k], rest, arch);
-    tracker.on_step_end(
-        t[k], [&] { return arch; }, ev);
-    const core::ClogState& st = tracker.state();
-    if (st.open) {
-      ++rep.frames_clogged;
-      rep.frames_clogged_with_arch += !arch.empty();
-    } else {
-      rep.frames_flowing_with_arch += !arch.empty();
-    }
-    if (st.open && !st.arch.empty()) {
-      held_arch = st.arch;
-      held_frame = k;
-    }
-
-    core::Frame& f = out.frames[k];
-    f.t = t[k];
-    f.step = static_cast<std::uint64_t>(k);
-    f.particles.resize(static_cast<size_t>(n));
-    for (int g = 0; g < n; ++g) {
-      core::Particle& p = f.particles[g];
-      p.radius = static_cast<float>(out.radius[g]);
-      p.species = out.species[g];
-      p.force = 0;
-      p.vx = p.vy = 0;
-      if (!present[k][g]) {
-        p.x = static_cast<float>(pos[k][g].x);
-        p.y = static_cast<float>(pos[k][g].y);
-        p.angle = 0;
-        continue;
+    };
+    for (int k = 0; k < nf_; ++k) {
+      core::throw_if_interrupted();
+      core::StepEvents& ev = out_.between[k];
+      for (int g : exits_at_[k]) {
+        ev.exits.push_back({t_[k], g, out_.species[g]});
+        out_.events.exits.push_back(ev.exits.back());
+        ++exits[static_cast<size_t>(core::species_index(out_.species[g]))];
+        tracker.on_exit(t_[k], ev);
       }
-      p.x = static_cast<float>(pos[k][g].x);
-      p.y = static_cast<float>(pos[k][g].y);
-      p.angle = angle[k][g];
-      const int a = k > 0 && present[k - 1][g] ? k - 1 : k;
-      const int b = k + 1 < nf && present[k + 1][g] ? k + 1 : k;
-      if (b > a) {
-        p.vx = static_cast<float>((pos[b][g].x - pos[a][g].x) / (t[b] - t[a]));
-        p.vy = static_cast<float>((pos[b][g].y - pos[a][g].y) / (t[b] - t[a]));
+      close_arch(ev);
+      std::vector<int> arch =
+          arch_by_distance(pos_[k], out_.radius, present_[k], model_, opt_.contact_tolerance);
+      if (!arch.empty()) ++rep_.frames_with_arch;
+      tracker.on_rest_check(t_[k], at_rest(k, arch), arch);
+      tracker.on_step_end(
+          t_[k], [&] { return arch; }, ev);
+      const core::ClogState& st = tracker.state();
+      if (st.open) {
+        ++rep_.frames_clogged;
+        rep_.frames_clogged_with_arch += !arch.empty();
+      } else {
+        rep_.frames_flowing_with_arch += !arch.empty();
       }
+      if (st.open && !st.arch.empty()) held_arch = st.arch, held_frame = k;
+      core::Frame& f = out_.frames[k];
+      f.t = t_[k];
+      f.step = static_cast<std::uint64_t>(k);
+      fill_particles(k, f);
+      f.clog_open = st.open;
+      f.clog_number = st.number;
+      f.clog_start = st.start;
+      f.clog_arrested = st.arrested;
+      if (st.open) f.arch = st.arch;
+      f.rule_due_in = INFINITY;
+      f.since_last_exit = tracker.since_last(t_[k]);
+      f.exits = exits;
     }
-    f.clog_open = st.open;
-    f.clog_number = st.number;
-    f.clog_start = st.start;
-    f.clog_arrested = st.arrested;
-    if (st.open) f.arch = st.arch;
-    f.rule_due_in = INFINITY;
-    f.since_last_exit = tracker.since_last(t[k]);
-    f.exits = exits;
+    tracker.finish(t_[nf_ - 1], out_.after);
+    close_arch(out_.after);
+    out_.events.clogs = tracker.clogs();
   }
-  tracker.finish(t[nf - 1], out.after);
-  close_arch(out.after);
-  out.events.clogs = tracker.clogs();
-  return out;
+};
+
+}  // namespace
+
+Imported import_tracks(const Tracks& tracks, const core::Model& model, const ImportOptions& opt) {
+  return Importer(tracks, model, opt).run();
 }
 
 }  // namespace lab

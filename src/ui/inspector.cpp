@@ -1,3 +1,8 @@
+// The inspector's state and typed actions (ui/inspector.h): navigation by frame, time, clog and arch, the
+// camera, the look, selection and tracking, the arch table and the pictures it makes. Over 400 lines because
+// they are one object's methods over one state, which the window, the script language and the tests all
+// drive; the script's parser (inspector_script.cpp), the session (inspector_session.cpp) and the grain
+// details (inspector_grains.cpp) are files of their own.
 #include "ui/inspector.h"
 
 #include <algorithm>
@@ -10,6 +15,7 @@
 #include "core/arch.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/interrupt.h"
 #include "core/scene.h"
 #include "render/draw_list.h"
 #include "render/grain_values.h"
@@ -276,6 +282,27 @@ void Inspector::set_overlay(const std::string& spec) {
   log("overlay " + spec);
 }
 
+void Inspector::set_look(const render::Style& st, const render::OverlayOptions& o,
+                         const std::vector<render::TimedNote>& n,
+                         const std::vector<render::Rgba>& species_colors) {
+  const std::vector<int> tracked = style.tracked;
+  const double trail = style.trail_s;
+  style = st;
+  style.tracked = tracked;
+  style.trail_s = trail;
+  overlay = o;
+  notes = n;
+  overlay_data.species_colors = species_colors;
+  for (const auto& line : state_lines())
+    if (line.rfind("palette", 0) == 0 || line.rfind("color", 0) == 0 || line.rfind("overlay", 0) == 0 ||
+        line.rfind("background", 0) == 0 || line.rfind("font-scale", 0) == 0 ||
+        line.rfind("species-color", 0) == 0 || line.rfind("arch", 0) == 0 || line.rfind("chains", 0) == 0)
+      log(line);
+  for (const auto& note : notes)
+    log("annotate " + core::format_g(note.t0, 9) + ":" + core::format_g(note.t1, 9) + ":" +
+        core::format_g(note.x, 9) + "," + core::format_g(note.y, 9) + ":" + note.text);
+}
+
 void Inspector::show_arch(bool on) {
   style.show_arch = on;
   log(on ? "arch on" : "arch off");
@@ -424,8 +451,9 @@ std::string Inspector::vector_key() const {
                   100 * overlay_data.diameter);
     k += line;
   }
-  if (k.empty()) return k;  // overlay none: the picture alone
-  return std::string("background\t") + (st.dark ? "dark" : "white") + "\n" + k;
+  // The background and text size always (overlay none: the picture alone, in its look).
+  return std::string("background\t") + (st.dark ? "dark" : "white") + "\nfont_scale\t" +
+         core::format_g(o.font_scale, 6) + "\n" + k;
 }
 
 std::string Inspector::snapshot(const std::string& pattern, int w, int h, Painter* painter) {
@@ -460,6 +488,7 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
   const long copies = freeze.copies(fps);
   using At = render::Freeze::At;
   for (long k = from; k <= to; ++k) {
+    core::throw_if_interrupted();  // the clip's partial file goes with its writer
     frame_ = k;
     const core::Image img = render_current(*painter, width, height);
     movie->add(img);

@@ -1,11 +1,15 @@
 // The inspector's script language (docs/inspector.md): each line parsed into one of the Inspector's typed
 // actions (ui/inspector.h), which do the work and log the line that repeats them.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
+#include "core/interrupt.h"
 #include "render/camera.h"
 #include "render/palette.h"
 #include "ui/inspector.h"
@@ -28,7 +32,7 @@ double to_double(const std::string& s, const char* what) {
 }
 const char* kCommands =
     "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
-    "freeze, select, snapshot, export, print, clogs";
+    "freeze, select, snapshot, export, print, clogs, background, font-scale, species-color";
 
 // A script line's words, a comment cut off.
 std::vector<std::string> words_of(const std::string& line) {
@@ -78,18 +82,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       if (a.size() == 4 && a[1] == "to") return pan_to(to_double(a[2], "X"), to_double(a[3], "Y"));
       return need(2, "pan DX DY | pan to X Y (metres)"), pan_by(to_double(a[1], "DX"), to_double(a[2], "DY"));
     }
-    if (cmd == "color") return color_command(a, line);
-    if (cmd == "chains") {
-      // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
-      need(1, "chains MIN[:MAX]|off (newtons)");
-      if (a[1] == "off") return style.chains = false, log("chains off");
-      if (!traj_.has_contacts())
-        throw core::InputError(
-            "chains: this trajectory has no contacts beside it (contacts.sscon: record and run "
-            "--trajectory-fps write one; runs made before they did have none)");
-      render::set_chains(style, a[1], "chains");
-      return log("chains " + a[1]);
-    }
+    if (look_command(a, line)) return;
     if (cmd == "camera-path") {
       // camera-path T:CAMERA,... | off: pictures follow the key frames by each frame's time (record
       // --camera-path).
@@ -106,28 +99,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       freeze = render::parse_freeze(a[1], a[2], "freeze", form);
       return log("freeze " + a[1] + " " + a[2]);
     }
-    if (cmd == "colormap")
-      return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
-                                                                log("colormap " + a[1]);
-    if (cmd == "palette")
-      return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]);
-    if (cmd == "overlay")
-      return need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale"), set_overlay(a[1]);
-    if (cmd == "arch") {
-      need(1, "arch on|off");
-      if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
-      return show_arch(a[1] == "on");
-    }
     if (cmd == "track") return track_command(a);
-    if (cmd == "annotate") {
-      // The note's text may hold spaces: everything after the command word.
-      if (a.size() < 2) throw core::InputError("usage: annotate T0:T1:X,Y:TEXT | annotate off");
-      if (a.size() == 2 && a[1] == "off") return notes.clear();
-      std::string spec;
-      for (size_t k = 1; k < a.size(); ++k) spec += (k > 1 ? " " : "") + a[k];
-      notes.push_back(render::parse_note(spec, "annotate"));
-      return;
-    }
     if (cmd == "select") {
       need(1, "select ID|off");
       return select_grain(a[1] == "off" ? -1 : to_long(a[1], "grain id"));
@@ -153,6 +125,63 @@ void Inspector::execute(const std::string& line, Painter* painter) {
   throw core::InputError("unknown command '" + cmd + "'; commands are " + kCommands);
 }
 
+// The look's commands (color, chains, colormap, palette, overlay, background, font-scale, species-color,
+// arch, annotate): true when `a` was one.
+bool Inspector::look_command(const std::vector<std::string>& a, const std::string& line) {
+  const std::string& cmd = a[0];
+  auto need = [&](size_t n, const char* usage) {
+    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
+  };
+  if (cmd == "color") return color_command(a, line), true;
+  if (cmd == "chains") {
+    // chains MIN[:MAX] | off: the force chains (record --force-chains), from the run's contacts.sscon.
+    need(1, "chains MIN[:MAX]|off (newtons)");
+    if (a[1] == "off") return style.chains = false, log("chains off"), true;
+    if (!traj_.has_contacts())
+      throw core::InputError(
+          "chains: this trajectory has no contacts beside it (contacts.sscon: record and run "
+          "--trajectory-fps write one; runs made before they did have none)");
+    render::set_chains(style, a[1], "chains");
+    return log("chains " + a[1]), true;
+  }
+  if (cmd == "colormap")
+    return need(1, "colormap viridis|magma|inferno|cividis"), style.colormap = render::parse_colormap(a[1]),
+                                                              log("colormap " + a[1]), true;
+  if (cmd == "palette")
+    return need(1, "palette paper|colorblind"), set_palette(render::parse_palette(a[1]), a[1]), true;
+  if (cmd == "overlay")
+    return need(1, "overlay all|none|time,counts,rate,timer,arch,legend,scale"), set_overlay(a[1]), true;
+  if (cmd == "background") {
+    need(1, "background white|dark");
+    if (a[1] != "white" && a[1] != "dark") throw core::InputError("usage: background white|dark");
+    style.dark = a[1] == "dark";
+    return log("background " + a[1]), true;
+  }
+  if (cmd == "font-scale") {
+    need(1, "font-scale F (0.5 to 4)");
+    const double f = to_double(a[1], "font-scale");
+    if (!(f >= 0.5 && f <= 4)) throw core::InputError("font-scale " + a[1] + ": allowed range is 0.5 to 4");
+    overlay.font_scale = f;
+    return log("font-scale " + a[1]), true;
+  }
+  if (cmd == "species-color") return species_color_command(a), true;
+  if (cmd == "arch") {
+    need(1, "arch on|off");
+    if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
+    return show_arch(a[1] == "on"), true;
+  }
+  if (cmd == "annotate") {
+    // The note's text may hold spaces: everything after the command word.
+    if (a.size() < 2) throw core::InputError("usage: annotate T0:T1:X,Y:TEXT | annotate off");
+    if (a.size() == 2 && a[1] == "off") return notes.clear(), true;
+    std::string spec;
+    for (size_t k = 1; k < a.size(); ++k) spec += (k > 1 ? " " : "") + a[k];
+    notes.push_back(render::parse_note(spec, "annotate"));
+    return true;
+  }
+  return false;
+}
+
 void Inspector::color_command(const std::vector<std::string>& a, const std::string& line) {
   // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
   // displacement; speed and force keep their defaults) and, for displacement, the reference time.
@@ -170,6 +199,31 @@ void Inspector::color_command(const std::vector<std::string>& a, const std::stri
   }
   style = next;
   return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
+}
+
+void Inspector::species_color_command(const std::vector<std::string>& a) {
+  // species-color NAME=#rrggbb[,NAME=#rrggbb...] | scene: each named species' colour (as --species-color);
+  // scene: the scene's own colours again.
+  const char* usage = "species-color NAME=#rrggbb[,NAME=#rrggbb...] | species-color scene";
+  if (a.size() != 2) throw core::InputError(std::string("usage: ") + usage);
+  std::vector<render::Rgba> colors = render::overlay_data_for(model_).species_colors;
+  colors.resize(overlay_data.species_names.size(), render::Rgba{0, 0, 0, 0});
+  if (a[1] != "scene") {
+    std::stringstream items(a[1]);
+    for (std::string item; std::getline(items, item, ',');) {
+      const size_t eq = item.find('=');
+      const std::string name = item.substr(0, eq);
+      const auto it = std::find(overlay_data.species_names.begin(), overlay_data.species_names.end(), name);
+      std::array<float, 3> rgb{};
+      if (eq == std::string::npos || it == overlay_data.species_names.end() ||
+          !core::parse_hex_color(item.substr(eq + 1), rgb))
+        throw core::InputError("species-color " + item +
+                               ": expected NAME=#rrggbb with NAME a species of the run");
+      colors[static_cast<size_t>(it - overlay_data.species_names.begin())] = {rgb[0], rgb[1], rgb[2], 1};
+    }
+  }
+  overlay_data.species_colors = colors;
+  log("species-color " + a[1]);
 }
 
 void Inspector::track_command(const std::vector<std::string>& a) {
@@ -228,6 +282,7 @@ int run_script(Inspector& insp, Painter& painter, const std::string& path) {
   int line_no = 0, commands = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
+    core::throw_if_interrupted();
     try {
       const size_t before = line.find_first_not_of(" \t");
       if (before == std::string::npos || line[before] == '#') continue;

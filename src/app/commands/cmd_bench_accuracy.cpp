@@ -241,7 +241,6 @@ void add_bench_accuracy_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<AccuracyOptions>();
   auto* cmd = bench.add_subcommand("accuracy",
                                    "speed versus accuracy of every numerical setting against a reference");
-  cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
   cmd->add_option("--realizations", o->realizations, "seeds per setting and scene")
       ->check(whole_number(1, 1000))

@@ -88,7 +88,6 @@ int bench_arch(const ArchBenchOptions& o) {
 void add_bench_arch_command(CLI::App& bench, Action& action) {
   auto opts = std::make_shared<ArchBenchOptions>();
   auto* cmd = bench.add_subcommand("arch", "time arch detection per call and its cost at every video frame");
-  cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd, false);
   cmd->add_option("--seconds", opts->seconds, "simulated seconds per repeat");
   cmd->add_option("--repeats", opts->repeats, "repeats (median reported)")->check(whole_number(1, 1000));

@@ -23,6 +23,7 @@
 #include "core/format.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/run.h"
 
 namespace app {
 
@@ -90,7 +91,8 @@ int bench_record(const RecordBenchOptions& o) {
       walls[c.name].push_back(wall);
       std::string row = c.name + "," + std::to_string(k) + "," + core::format_g(wall, 5) + ",";
       if (c.name != "run") {
-        toml::table t = toml::parse_file((out / "metadata.toml").string());
+        const io::Run rec = io::Run::open(out, "bench record");
+        const toml::table& t = rec.metadata();
         for (const char* s : {"sim", "draw", "readback", "convert", "encode", "png"})
           stage[c.name][s].push_back(t["run"][std::string("ms_per_frame_") + s].value_or(0.0));
         row += "%RATIO%," + std::to_string(t["run"]["frames"].value_or<std::int64_t>(0));
@@ -139,7 +141,6 @@ void add_bench_record_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<RecordBenchOptions>();
   auto* cmd =
       bench.add_subcommand("record", "filming cost: run vs record at 720p and 1080p (ratios), per stage");
-  cmd->set_version_flag("--version", io::version_string());
   o->scene.add_to(*cmd, false);
   cmd->add_option("--repeats", o->repeats, "repeats of each case (medians)")
       ->check(whole_number(1, 100))

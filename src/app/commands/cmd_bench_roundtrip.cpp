@@ -147,7 +147,6 @@ void add_bench_roundtrip_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<RoundTripOptions>();
   auto* cmd = bench.add_subcommand(
       "roundtrip", "detect and import against a recording's own truth, at several camera levels");
-  cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("--scene", o->scene, "the scene to record (default: the paper's)");
   cmd->add_option("--seed", o->seed, "its seed");
   cmd->add_option("--duration", o->duration, "simulated seconds");

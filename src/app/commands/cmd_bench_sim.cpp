@@ -197,13 +197,11 @@ int bench_sim(const BenchOptions& o) {
 }
 }  // namespace
 
-void add_bench_command(CLI::App& app, Action& action) {
-  auto* bench = app.add_subcommand("bench", "benchmarks that print tables and write CSV");
-  bench->set_version_flag("--version", io::version_string());
+void define_bench_command(CLI::App& command, Action& action) {
+  CLI::App* bench = &command;
   bench->require_subcommand(1);
   auto opts = std::make_shared<BenchOptions>();
   auto* cmd = bench->add_subcommand("sim", "time the simulation step by stage against a bare Box2D loop");
-  cmd->set_version_flag("--version", io::version_string());
   opts->scene.add_to(*cmd, false);
   cmd->add_option("--repeats", opts->repeats, "timed repeats (median reported)")
       ->check(whole_number(1, 1000));

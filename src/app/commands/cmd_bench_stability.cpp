@@ -117,7 +117,6 @@ void add_bench_stability_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<StabilityOptions>();
   auto* cmd = bench.add_subcommand("stability",
                                    "map time step x dipole strength: refused by the check, broken in fact");
-  cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("--seconds", o->seconds, "s of discharge per cell")->capture_default_str();
   cmd->add_option("--threads", o->threads, "cells run side by side")
       ->check(whole_number(1, 256))

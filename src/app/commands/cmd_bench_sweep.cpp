@@ -12,6 +12,7 @@
 #include "app/services/run_outputs.h"
 #include "app/services/terminal.h"
 #include "core/error.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
 
@@ -46,7 +47,7 @@ int bench_sweep(const SweepBenchOptions& o) {
                                " workers failed");
     }
     for (const auto& e : fs::recursive_directory_iterator(dir / "runs"))
-      runs[i] += e.path().filename() == "metadata.toml";
+      runs[i] += e.path().filename() == io::kMetadataFile;
   }
   fs::remove_all(tmp, ec);
   const double tp1 = 60 * runs[0] / wall[0], tpn = 60 * runs[1] / wall[1];
@@ -66,7 +67,6 @@ int bench_sweep(const SweepBenchOptions& o) {
 void add_bench_sweep_command(CLI::App& bench, Action& action) {
   auto o = std::make_shared<SweepBenchOptions>();
   auto* cmd = bench.add_subcommand("sweep", "throughput of a campaign with 1 and N workers");
-  cmd->set_version_flag("--version", io::version_string());
   cmd->add_option("campaign", o->campaign, "campaign file")->required();
   cmd->add_option("--workers", o->workers, "workers to compare with 1")
       ->check(whole_number(1, 256))

@@ -106,6 +106,8 @@ int detect(const DetectCliOptions& o) {
     throw core::InputError(o.input + ": the frame rate is unknown (a directory of frames): give --fps");
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "tracks", io::OutputKind::Csv, kHeader);
+  // The sidecar is an output too: never over a file of the user's, replaced by --force only as written.
+  io::check_destination(meta_out, o.force, "tracks' metadata", io::OutputKind::Csv, "# siloscope");
 
   Progress progress("detect", source.count() > 0 ? static_cast<double>(source.count()) : 1.0, !o.quiet);
   job.progress = [&](long k) { progress.update(static_cast<double>(k + 1)); };
@@ -135,10 +137,8 @@ int detect(const DetectCliOptions& o) {
           "\norigin_x_px = " + core::format_toml_float(job.cal.origin_x, 12) +
           "\norigin_y_px = " + core::format_toml_float(job.cal.origin_y, 12) +
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
-  io::write_file_atomic(out, csv);
-  io::record_output(out);
-  io::write_file_atomic(meta_out, meta);
-  io::record_output(meta_out);
+  io::write_output(out, csv);
+  io::write_output(meta_out, meta);
   if (!o.quiet)
     std::printf(
         "%ld frames, %ld disks (%.1f a frame; %ld outside the container dropped), %ld tracks, %.3f s a frame "
@@ -149,11 +149,9 @@ int detect(const DetectCliOptions& o) {
 }
 }  // namespace
 
-void add_detect_command(CLI::App& app, Action& action) {
+void define_detect_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<DetectCliOptions>();
-  auto* cmd = app.add_subcommand("detect",
-                                 "locate and track the disks of a film (a video or a directory of frames) "
-                                 "as the CSV import reads");
+  CLI::App* cmd = &command;
   cmd->add_option("input", o->input,
                   "a video (MP4, AVI, ...) or a directory of frames (PNG, JPEG, BMP, TIFF)")
       ->required();

@@ -17,6 +17,7 @@
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/run.h"
 #include "io/trajectory.h"
 #include "lab/import.h"
 
@@ -210,7 +211,7 @@ int import_run(ImportCliOptions o) {
     for (double v : im.radius) ti.radius.push_back(static_cast<float>(v));
     ti.species = im.species;
     ti.metadata = metadata;
-    io::TrajectoryWriter w(dir.file("trajectory.sstraj"), ti);
+    io::TrajectoryWriter w(dir.file(io::run_file::kTrajectory), ti);
     for (size_t k = 0; k < im.frames.size(); ++k) w.add(im.frames[k], 0, im.between[k]);
     w.add_events(im.after);
     w.close();
@@ -221,12 +222,12 @@ int import_run(ImportCliOptions o) {
                         analysis::avalanche_end_for(scene));
   io::write_events(dir.file(""), im.events, names);
   io::write_file_atomic(dir.file("arch_shapes.csv"), arch_shapes_csv(im.events, im.radius));
-  io::write_file_atomic(dir.file("clog_arches.csv"), clog_arches_csv(im, names));
+  io::write_file_atomic(dir.file(io::run_file::kClogArches), clog_arches_csv(im, names));
   io::write_file_atomic(dir.file("species.csv"), analysis::species_csv(model.setup, m));
   io::write_file_atomic(dir.file("summary.csv"),
                         analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
   io::write_file_atomic(dir.file("survival.csv"), analysis::survival_csv(scene, im.events.exits));
-  io::write_file_atomic(dir.file("metadata.toml"), metadata);
+  io::write_file_atomic(dir.file(io::run_file::kMetadata), metadata);
   dir.commit();
 
   if (!o.quiet) print_import(im, o, out);
@@ -234,11 +235,9 @@ int import_run(ImportCliOptions o) {
 }
 }  // namespace
 
-void add_import_command(CLI::App& app, Action& action) {
+void define_import_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<ImportCliOptions>();
-  auto* cmd = app.add_subcommand(
-      "import",
-      "a lab experiment's tracked particles (CSV) as a run: trajectory, exits, clogs and their arches");
+  CLI::App* cmd = &command;
   cmd->add_option("tracks", o->tracks,
                   "CSV, one row per particle per frame: t or frame, particle (id), x, y, optional r or "
                   "diameter, angle, species (trackpy's names work as they are)")

@@ -15,6 +15,7 @@
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/run.h"
 #include "io/trajectory.h"
 #include "sim/silo.h"
 
@@ -63,9 +64,8 @@ int simulate(const RunOptions& o, const core::Model& model) {
                                ? FrameClock::every(scene.dt, 1.0 / o.trajectory_fps, "--trajectory-fps")
                                : FrameClock::none();
   io::OutputDir dir(o.out, o.force, io::DirKind::Run);  // checked before hours of simulation, not after
-  install_interrupt_handler();
 
-  Progress progress("run", scene.duration, !o.quiet);
+  Progress progress("run", scene.duration, !o.quiet, false);
   auto wall0 = std::chrono::steady_clock::now();
   Session session({model});  // deposits, settles, opens: t = 0
   sim::Silo& hopper = session.world(0);
@@ -75,7 +75,7 @@ int simulate(const RunOptions& o, const core::Model& model) {
   if (clock.steps > 0) {
     io::RunInfo tinfo{command_line(), {}, {}};
     trajectory = std::make_unique<TrajectorySink>(
-        dir.file("trajectory.sstraj"),
+        dir.file(io::run_file::kTrajectory),
         trajectory_info(hopper, clock.frame_interval, io::metadata_toml(model, tinfo)));
     sinks.push_back(trajectory.get());
   }
@@ -122,10 +122,9 @@ int simulate(const RunOptions& o, const core::Model& model) {
 }
 }  // namespace
 
-void add_run_command(CLI::App& app, Action& action) {
+void define_run_command(CLI::App& command, Action& action) {
   auto opts = std::make_shared<RunOptions>();
-  auto* cmd = app.add_subcommand("run", "simulate a scene headless; write events, measurements and metadata");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   opts->scene.add_to(*cmd);
   cmd->add_option("--out", opts->out, "output directory (created whole when the run completes)")->required();
   cmd->add_option("--trajectory-fps", opts->trajectory_fps,

@@ -116,11 +116,9 @@ int scene_cmd(const SceneCmdOptions& o) {
 }
 }  // namespace
 
-void add_scene_command(CLI::App& app, Action& action) {
+void define_scene_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<SceneCmdOptions>();
-  auto* cmd =
-      app.add_subcommand("scene", "list every scene key (--keys), or validate and resolve a scene file");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   o->scene.add_to(*cmd, false);
   cmd->add_flag("--keys", o->keys, "list every key: unit, default, allowed values, meaning");
   cmd->add_flag(

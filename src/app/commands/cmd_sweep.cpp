@@ -33,10 +33,11 @@
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "core/stats.h"
+#include "core/median.h"
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/run.h"
 
 extern char** environ;
 
@@ -169,8 +170,8 @@ void prepare_results(const Campaign& c, const fs::path& dir) {
   for (size_t p = 0; p < c.points.size(); ++p) {
     char name[32];
     std::snprintf(name, sizeof name, "p%03zu.toml", p);
-    std::string text = "# point " + std::to_string(p) + " of campaign " + c.name + ": " + c.points[p].label +
-                       "\n" + core::scene_toml(c.points[p].scene);
+    std::string text = "# siloscope sweep: point " + std::to_string(p) + " of campaign " + c.name + ": " +
+                       c.points[p].label + "\n" + core::scene_toml(c.points[p].scene);
     io::write_file_atomic(dir / "scenes" / name, text);
   }
   // Runs of an earlier sweep that was killed (kill -9) may still be going: wait for those (they will finish
@@ -208,7 +209,7 @@ std::vector<Job> pending_jobs(const Campaign& c, const fs::path& dir, const std:
   for (int k = 0; k < last; ++k) {
     for (size_t p = 0; p < c.points.size(); ++p) {
       Job j{p, k, "runs/" + c.run_dir(p, k), {}, ""};
-      if (fs::exists(dir / j.dir / "metadata.toml")) {
+      if (fs::exists(dir / j.dir / io::run_file::kMetadata)) {
         // Finished: counted only while it holds what siloscope wrote (a cut, edited or half-copied run would
         // be believed done and then refused by analyze, or worse, analysed).
         try {
@@ -272,9 +273,9 @@ int print_status(const Campaign& c, const fs::path& dir, int up_to, int workers)
   for (size_t p = 0; p < c.points.size(); ++p)
     for (int k = 0; k < last; ++k) {
       const fs::path run = dir / "runs" / c.run_dir(p, k);
-      if (fs::exists(run / "metadata.toml")) {
+      if (fs::exists(run / io::run_file::kMetadata)) {
         ++finished, ++per_point[p];
-        if (double w = realization_wall_s(run / "metadata.toml"); w > 0) walls.push_back(w);
+        if (double w = realization_wall_s(run / io::run_file::kMetadata); w > 0) walls.push_back(w);
       } else if (fs::exists(run.string() + ".refused.toml")) {
         ++refused, ++per_point[p], ++refused_at[p];
       }
@@ -352,8 +353,7 @@ pid_t spawn_job(const Job& j, const fs::path& dir) {
 // is counted, a failure named in `failures`; Ctrl-C is passed on to the workers (their finished runs stay).
 void run_jobs(const std::vector<Job>& jobs, const fs::path& dir, int workers, bool quiet, size_t done,
               size_t total, size_t& refused, std::vector<std::string>& failures) {
-  install_interrupt_handler();
-  Progress progress("sweep", static_cast<double>(jobs.size()), !quiet);
+  Progress progress("sweep", static_cast<double>(jobs.size()), !quiet, false);
   std::map<pid_t, size_t> running;
   size_t next = 0, finished = 0;
   bool forwarded = false;
@@ -382,14 +382,14 @@ void run_jobs(const std::vector<Job>& jobs, const fs::path& dir, int workers, bo
     // A realization an orphan of an earlier (killed) sweep still owns: its run holds the output's lock (exit
     // 75) or finished it first (the directory exists). Adopt the orphan's result, or wait for it and run
     // again.
-    if (!ok && !interrupted() && fs::exists(dir / j.dir / "metadata.toml")) ok = true;
+    if (!ok && !interrupted() && fs::exists(dir / j.dir / io::run_file::kMetadata)) ok = true;
     if (!ok && !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 75) {
       if (!quiet)
         std::fprintf(stderr,
                      "\nsiloscope: %s is still being written by an earlier sweep's process; waiting\n",
                      j.dir.c_str());
       std::this_thread::sleep_for(std::chrono::milliseconds(300));
-      if (fs::exists(dir / j.dir / "metadata.toml")) {
+      if (fs::exists(dir / j.dir / io::run_file::kMetadata)) {
         ok = true;
       } else {
         running[spawn_job(j, dir)] = job_index;  // the orphan may have died: try again
@@ -489,11 +489,9 @@ int sweep(const SweepOptions& o) {
 }
 }  // namespace
 
-void add_sweep_command(CLI::App& app, Action& action) {
+void define_sweep_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<SweepOptions>();
-  auto* cmd =
-      app.add_subcommand("sweep", "run a campaign (a grid of scenes x realizations) on all cores, resumably");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("campaign", o->campaign, "campaign file, e.g. assets/campaigns/quick.toml")->required();
   cmd->add_option("--results", o->results, "results directory (default: results/NAME)");
   cmd->add_option("--workers", o->workers, "parallel realizations (default: all cores)")

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -27,6 +29,17 @@ void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
                "let the health monitor warn instead of stopping (results may be garbage)");
 }
 
+namespace {
+// A scene file siloscope wrote (a run's metadata, a sweep's point scene): its [siloscope] table, or the
+// comment sweep writes at the top of a point's scene.
+bool written_by_siloscope(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.find("\n[siloscope]\n") != std::string::npos || text.rfind("[siloscope]\n", 0) == 0 ||
+         text.rfind("# siloscope", 0) == 0;
+}
+}  // namespace
+
 core::Scene SceneOptions::load() const {
   return compile().scene;
 }
@@ -45,7 +58,14 @@ core::Model SceneOptions::compile() const {
   }
   if (unsafe) s.unsafe = true;
   core::Model m = core::compile(s);
-  for (const auto& w : core::ineffective_keys(m)) std::fprintf(stderr, "siloscope: warning: %s\n", w.c_str());
+  // Warnings about keys are for what the user wrote: a scene siloscope wrote itself (a run's metadata.toml, a
+  // sweep's point) holds every key, so of those only the command line's own settings are weighed.
+  core::Model weighed = m;
+  if (!path.empty() && written_by_siloscope(path))
+    for (auto it = weighed.scene.origin.begin(); it != weighed.scene.origin.end();)
+      it = it->second.rfind("--", 0) == 0 ? std::next(it) : weighed.scene.origin.erase(it);
+  for (const auto& w : core::ineffective_keys(weighed))
+    std::fprintf(stderr, "siloscope: warning: %s\n", w.c_str());
   return m;
 }
 
@@ -55,7 +75,9 @@ std::string command_line() {
 
 void set_command_line(int argc, char** argv) {
   g_command.clear();
-  for (int i = 0; i < argc; ++i) g_command += (i ? " " : "") + std::string(argv[i]);
+  // The program as its name, not the path it was started by: a figure's footer or a run's metadata names no
+  // directory of the machine that made it.
+  for (int i = 0; i < argc; ++i) g_command += i ? " " + std::string(argv[i]) : std::string("siloscope");
 }
 
 size_t edit_distance(const std::string& a, const std::string& b) {

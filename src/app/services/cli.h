@@ -1,5 +1,5 @@
 // The command line's shared pieces: the scene options every simulating command takes, integer checks,
-// "did you mean", the command line as one string, and the subcommands' registration.
+// "did you mean" and the command line as one string (the subcommands' table: app/services/commands.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -45,26 +45,13 @@ std::string command_line();
 void set_command_line(int argc, char** argv);
 
 using Action = std::function<int()>;
-void add_run_command(CLI::App& app, Action& action);
-void add_bench_command(CLI::App& app, Action& action);
-void add_analyze_command(CLI::App& app, Action& action);
-void add_record_command(CLI::App& app, Action& action);
-void add_sweep_command(CLI::App& app, Action& action);
-void add_inspect_command(CLI::App& app, Action& action);
-void add_figures_command(CLI::App& app, Action& action);
-void add_export_command(CLI::App& app, Action& action);
-void add_scene_command(CLI::App& app, Action& action);
-void add_gallery_command(CLI::App& app, Action& action);
-void add_timeline_command(CLI::App& app, Action& action);
-void add_claims_command(CLI::App& app, Action& action);
-void add_import_command(CLI::App& app, Action& action);
-void add_detect_command(CLI::App& app, Action& action);
 // Aggregate run directories (or directories holding them) into out_dir; see `siloscope analyze`.
 // Interrupted and unhealthy runs are left out (named on stderr) unless included. avalanche_end: "auto" (per
 // protocol: analysis::avalanche_end_for), "gaps" or "held" (analysis/measure.h).
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
                  bool include_interrupted = false, bool include_unhealthy = false,
                  const std::vector<std::string>& by = {}, const std::string& avalanche_end = "auto");
+// bench's own subcommands (bench is a row of the command table, app/services/commands.h).
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
 void add_bench_stability_command(CLI::App& bench, Action& action);

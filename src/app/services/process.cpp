@@ -4,11 +4,13 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <csignal>
 
 #include <cerrno>
 #include <cstring>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 extern char** environ;
 
@@ -37,7 +39,8 @@ std::string script_path(const std::string& name) {
   return (share_dir() / "figures" / name).string();
 }
 
-pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log) {
+pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log,
+            bool own_group) {
   if (argv.empty()) throw core::RuntimeFault("spawn: no command");
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -50,9 +53,16 @@ pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, const 
                                      0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   }
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (own_group) {
+    posix_spawnattr_setpgroup(&attr, 0);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  }
   pid_t pid = 0;
-  const int r = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  const int r = posix_spawnp(&pid, args[0], &actions, &attr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
   if (r != 0) throw core::RuntimeFault("cannot start " + argv[0] + ": " + std::strerror(r));
   return pid;
 }
@@ -62,7 +72,7 @@ int wait_child(pid_t pid, bool retry_on_interrupt) {
   for (;;) {
     if (::waitpid(pid, &status, 0) == pid) break;
     if (errno != EINTR) return -1;
-    if (!retry_on_interrupt) return -1;
+    if (!retry_on_interrupt && core::interrupt_requested()) return -1;
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
@@ -70,7 +80,14 @@ int wait_child(pid_t pid, bool retry_on_interrupt) {
 }
 
 int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log) {
-  return wait_child(spawn(argv, cwd, log));
+  // The child has a process group of its own, so a Ctrl-C at the terminal reaches this process alone (a
+  // Python child would die printing a traceback); on Ctrl-C this process ends the child and stops.
+  const pid_t pid = spawn(argv, cwd, log, true);
+  const int status = wait_child(pid, false);
+  if (status != -1 || !core::interrupt_requested()) return status;
+  ::kill(pid, SIGTERM);
+  wait_child(pid, true);
+  throw core::Interrupted();
 }
 
 int run_python(const std::string& script, const std::vector<std::string>& args) {

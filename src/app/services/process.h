@@ -22,11 +22,15 @@ std::filesystem::path share_dir();
 std::string script_path(const std::string& name);
 
 // Start argv (argv[0] a path, or a name looked up on PATH) in `cwd` (empty: this one) with stdout and stderr
-// to `log` (empty: inherited). Returns the child's pid; throws core::RuntimeFault if it cannot start.
-pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd = "", const std::string& log = "");
-// Wait for a child: its exit code, 128 + the signal that ended it, or -1 if interrupted (EINTR).
+// to `log` (empty: inherited), in a process group of its own if `own_group` (a terminal's Ctrl-C then
+// reaches only this process, which decides what the child is told). Returns the child's pid; throws
+// core::RuntimeFault if it cannot start.
+pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd = "", const std::string& log = "",
+            bool own_group = false);
+// Wait for a child: its exit code, 128 + the signal that ended it, or -1 if interrupted (Ctrl-C while
+// waiting, when !retry_on_interrupt).
 int wait_child(pid_t pid, bool retry_on_interrupt = true);
-// Start and wait.
+// Start and wait; on Ctrl-C the child is ended (SIGTERM) and core::Interrupted thrown.
 int run_process(const std::vector<std::string>& argv, const std::string& cwd = "",
                 const std::string& log = "");
 

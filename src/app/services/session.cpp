@@ -1,5 +1,7 @@
 #include "app/services/session.h"
 
+#include "core/interrupt.h"
+
 #include <algorithm>
 #include <cmath>
 #include <future>
@@ -211,6 +213,9 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
         for (auto& w : worlds_) w->take_events();
       if (progress) progress(worlds_[0]->time());
       if (stop && stop()) return false;
+      // A caller without its own way of ending an interrupted run (run and record keep what they have) stops
+      // here on Ctrl-C: core::Interrupted unwinds to the command frame, removing what was being built.
+      if (!stop) core::throw_if_interrupted();
     }
   }
   return true;

@@ -92,7 +92,7 @@ class Session {
 
   // Step every world from where it stands to `end` s, with frames by `clock` to `sinks`. `stop` is polled
   // every half simulated second (Ctrl-C); `progress(t)` too. Returns false if a sink or `stop` ended it
-  // early.
+  // early. Without `stop`, Ctrl-C throws core::Interrupted at those polls.
   bool run(double end, const FrameClock& clock, const std::vector<Sink*>& sinks,
            const std::function<bool()>& stop = {}, const std::function<void(double)>& progress = {});
   // The step index of time `end`: where t >= end - dt/2.

@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/interrupt.h"
+
 namespace app {
 
 namespace {
 std::atomic<int> g_signals{0};
 void on_signal(int sig) {
+  core::raise_interrupt();
   if (g_signals.fetch_add(1) >= 1) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
@@ -28,18 +31,29 @@ void install_interrupt_handler() {
   sa.sa_flags = 0;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  // A parent may have started us with these signals blocked (some job runners do): Ctrl-C must still work. A
+  // signal already pending is delivered here, before any work starts.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  sigprocmask(SIG_UNBLOCK, &set, nullptr);
 }
 
 bool interrupted() {
-  return g_signals.load() > 0;
+  return core::interrupt_requested();
 }
 
-Progress::Progress(std::string label, double total, bool enabled)
-    : label_(std::move(label)), total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {
+Progress::Progress(std::string label, double total, bool enabled, bool throws_on_interrupt)
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled && ::isatty(STDERR_FILENO)),
+      throws_(throws_on_interrupt) {
   start_ = last_ = std::chrono::steady_clock::now();
 }
 
 void Progress::update(double done, const std::string& extra) {
+  if (throws_) core::throw_if_interrupted();  // every long loop reports its progress: there it stops
   if (!enabled_) return;
   auto now = std::chrono::steady_clock::now();
   if (now - last_ < std::chrono::milliseconds(200)) return;
