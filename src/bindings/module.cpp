@@ -17,7 +17,9 @@
 #include "core/model.h"
 #include "core/scene.h"
 #include "io/events_csv.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
+#include "io/run.h"
 #include "sim/silo.h"
 
 namespace py = pybind11;
@@ -149,9 +151,9 @@ class Simulation {
   py::dict event_files() const {
     const auto names = silo_->setup().species_names();
     py::dict d;
-    d["exits.csv"] = io::exits_csv(silo_->events(), names);
-    d["clogs.csv"] = io::clogs_csv(silo_->events());
-    d["arches.csv"] = io::arches_csv(silo_->events(), names);
+    d[io::run_file::kExits] = io::exits_csv(silo_->events(), names);
+    d[io::run_file::kClogs] = io::clogs_csv(silo_->events());
+    d[io::run_file::kArches] = io::arches_csv(silo_->events(), names);
     return d;
   }
   // Close the open clog as censored, as a run's end does (once, at the end).
@@ -211,6 +213,16 @@ PYBIND11_MODULE(_siloscope, m) {
   py::register_exception<core::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<core::Unstable>(m, "Unstable", PyExc_RuntimeError);
   py::register_exception<core::RuntimeFault>(m, "RuntimeFault", PyExc_RuntimeError);
+  // The C++ readers' checks, so that the package reads a run's files as the binary does (one reader per file
+  // kind): a file's FNV-1a 64 hash (the manifest's), a run opened and its whole manifest checked, a run's
+  // contacts read with their bounds and tied to its trajectory. Each raises ValueError with the binary's
+  // message.
+  m.def("file_hash", [](const std::string& path) { return io::file_hash(path); });
+  m.def("check_run", [](const std::string& path) { (void)io::Run::open(path, "read_run"); });
+  m.def("check_contacts", [](const std::string& path) {
+    const io::Run run = io::Run::open(path, "read_contacts", io::Run::kTrajectory);
+    (void)run.contacts();
+  });
   py::class_<Simulation>(m, "Simulation")
       .def(py::init<const std::string&, long long, const std::vector<std::string>&>())
       .def("step", &Simulation::step)

@@ -347,7 +347,7 @@ void check_input_file(const std::string& path, const std::string& what, std::uin
 }
 
 Scene load_scene(const std::string& path) {
-  check_text_file(path, "scene file", "metadata.toml");
+  check_text_file(path, "scene file", kMetadataFile);
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open scene file");
   std::stringstream text;

@@ -91,7 +91,7 @@ struct Scene {
   double clog_timeout = 5.0;  // s without an exit before the blocking arch is removed (the 5 s rule); 0: off
   double clog_min_gap = 0.5;  // s; an exit gap at least this long is recorded as a clog
   // A clog is "arrested" at a kick when a blocking arch stands and every grain near the outlet moved less
-  // than arrest_shift of its own radius over the arrest_hold seconds before the kick (see sim/clog.h).
+  // than arrest_shift of its own radius over the arrest_hold seconds before the kick (see core/clog.h).
   double arrest_hold = 0.05;      // s
   double arrest_shift = 0.1;      // fraction of a grain's radius
   double arch_wall_reach = 1.36;  // m; wall contacts below this height anchor arches (default: the hopper)
@@ -161,6 +161,8 @@ constexpr std::size_t kMaxSpecies = 16;
 // Scene and campaign files are small text files: a regular file of at most this many bytes. A directory, a
 // device or a larger file is refused with a message that says which (a directory: "did you mean DIR/HINT?").
 constexpr std::uintmax_t kMaxTextFileBytes = 1u << 20;
+// The file every output directory keeps its metadata in; a run's [scene] table loads back as a scene file.
+constexpr const char* kMetadataFile = "metadata.toml";
 void check_text_file(const std::string& path, const std::string& what, const std::string& dir_hint);
 // The same for any file siloscope reads, at most `max_bytes` (links are followed: a link to a device is
 // refused as the device), so no input can exhaust memory or block.

@@ -1,6 +1,8 @@
 #include "io/contacts.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -59,11 +61,24 @@ void ContactsWriter::close() {
     throw core::RuntimeFault("cannot finish contacts " + path_ + ": " + std::strerror(ok ? errno : err));
 }
 
-Contacts::Contacts(const std::filesystem::path& path, std::uint32_t n_particles) {
+std::uint64_t Contacts::max_bytes(std::uint32_t n_particles, long max_frames) {
+  const std::uint64_t per_frame = 8 + 12 * static_cast<std::uint64_t>(max_per_frame(n_particles));
+  return 16 + per_frame * static_cast<std::uint64_t>(std::max(0L, max_frames));
+}
+
+Contacts::Contacts(const std::filesystem::path& path, std::uint32_t n_particles, long max_frames) {
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw core::InputError(name + ": not a contacts file (not a regular file)");
+  // Bounded before anything is read: no file of a run of this size holds more.
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  const std::uint64_t bound = max_bytes(n_particles, max_frames);
+  if (ec || size > bound)
+    throw core::InputError(name + ": " + std::to_string(size) + " bytes, more than the contacts of " +
+                           std::to_string(max_frames) + " frames of " + std::to_string(n_particles) +
+                           " grains can take (" + std::to_string(bound) +
+                           " bytes): not the contacts of this run");
   std::ifstream in(path, std::ios::binary);
   data_.assign(std::istreambuf_iterator<char>(in), {});
   if (data_.size() < 16 || std::memcmp(data_.data(), kMagic, 8) != 0)
@@ -80,14 +95,23 @@ Contacts::Contacts(const std::filesystem::path& path, std::uint32_t n_particles)
     if (frame != offsets_.size())
       throw core::InputError(name + ": frame " + std::to_string(frame) + " where frame " +
                              std::to_string(offsets_.size()) + " was due");
+    if (count > max_per_frame(n_particles))
+      throw core::InputError(name + ": frame " + std::to_string(frame) + " lists " + std::to_string(count) +
+                             " contacts; " + std::to_string(n_particles) +
+                             " grains in a plane have at most " + std::to_string(max_per_frame(n_particles)));
     const size_t end = at + 8 + 12 * static_cast<size_t>(count);
     if (end > data_.size()) break;  // a partial last frame (a crash): dropped
     for (size_t k = at + 8; k < end; k += 12) {
-      const std::uint32_t a = get32(&data_[k]), b = get32(&data_[k + 4]);
+      const std::uint32_t a = get32(&data_[k]), b = get32(&data_[k + 4]), fbits = get32(&data_[k + 8]);
       if (a >= n_particles || b >= n_particles)
         throw core::InputError(name + ": frame " + std::to_string(frame) + " names grain " +
                                std::to_string(std::max(a, b)) + "; ids run from 0 to " +
                                std::to_string(n_particles - 1));
+      float force;
+      std::memcpy(&force, &fbits, 4);
+      if (!std::isfinite(force) || force < 0)
+        throw core::InputError(name + ": frame " + std::to_string(frame) +
+                               " holds a non-finite or negative force");
     }
     offsets_.push_back(at + 4);
     at = end;

@@ -39,8 +39,14 @@ class ContactsWriter {
 class Contacts {
  public:
   // Throws core::InputError naming the file and what is wrong (foreign, another version, another grain count,
-  // ids out of range, frames out of order).
-  Contacts(const std::filesystem::path& path, std::uint32_t n_particles);
+  // ids out of range, frames out of order, more frames or contacts than a run of this size has). The file's
+  // size is checked against max_bytes() before anything is read. io::Run opens a run's contacts (and ties
+  // them to its trajectory); nothing else should.
+  Contacts(const std::filesystem::path& path, std::uint32_t n_particles, long max_frames);
+  // At most this many contacts in a frame: the contact graph of grains in a plane is planar (3n - 6 edges),
+  // with room for the slight overlaps of a soft solver.
+  static std::uint32_t max_per_frame(std::uint32_t n_particles) { return 3 * n_particles + 16; }
+  static std::uint64_t max_bytes(std::uint32_t n_particles, long max_frames);
   long size() const { return static_cast<long>(offsets_.size()); }
   // Frame k's contacts (empty beyond the last complete frame).
   std::vector<core::Contact> frame(long k) const;

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include "io/output.h"
+#include "io/run.h"
 
 namespace io {
 
@@ -131,16 +132,16 @@ std::string arches_csv(const core::Events& ev, const SpeciesNames& names) {
 }
 
 void write_events(const std::filesystem::path& dir, const core::Events& ev, const SpeciesNames& names) {
-  write_file_atomic(dir / "exits.csv", exits_csv(ev, names));
-  write_file_atomic(dir / "clogs.csv", clogs_csv(ev));
-  write_file_atomic(dir / "arches.csv", arches_csv(ev, names));
+  write_file_atomic(dir / run_file::kExits, exits_csv(ev, names));
+  write_file_atomic(dir / run_file::kClogs, clogs_csv(ev));
+  write_file_atomic(dir / run_file::kArches, arches_csv(ev, names));
 }
 
 core::Events read_events(const std::filesystem::path& dir, const SpeciesNames& names) {
   core::Events ev;
   std::vector<std::string> c;
   {
-    CsvReader r(dir / "exits.csv", kExitsHeader, names);
+    CsvReader r(dir / run_file::kExits, kExitsHeader, names);
     double last = -INFINITY;
     while (r.next(c)) {
       core::ExitEvent e{r.real(c[0], "t_s"), static_cast<int>(r.integer(c[1], "id")), r.species(c[2])};
@@ -150,7 +151,7 @@ core::Events read_events(const std::filesystem::path& dir, const SpeciesNames& n
     }
   }
   {
-    CsvReader r(dir / "clogs.csv", kClogsHeader, names);
+    CsvReader r(dir / run_file::kClogs, kClogsHeader, names);
     while (r.next(c)) {
       core::ClogEvent e{r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous,
                         c[4] == "1"};
@@ -164,7 +165,7 @@ core::Events read_events(const std::filesystem::path& dir, const SpeciesNames& n
     }
   }
   {
-    CsvReader r(dir / "arches.csv", kArchesHeader, names);
+    CsvReader r(dir / run_file::kArches, kArchesHeader, names);
     while (r.next(c)) {
       core::ArchEvent a;
       a.t = r.real(c[0], "t_s");

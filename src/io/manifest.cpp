@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 
@@ -109,8 +110,8 @@ constexpr const char* kSiloscopeTable = "\n[siloscope]\n";
 // The head of DIR/metadata.toml, where its [siloscope] table is ("" when there is none).
 std::string metadata_head(const fs::path& dir, size_t bytes) {
   std::error_code ec;
-  if (!fs::is_regular_file(fs::symlink_status(dir / "metadata.toml", ec))) return "";
-  std::ifstream in(dir / "metadata.toml", std::ios::binary);
+  if (!fs::is_regular_file(fs::symlink_status(dir / kMetadataFile, ec))) return "";
+  std::ifstream in(dir / kMetadataFile, std::ios::binary);
   std::string buf(bytes, '\0');
   in.read(buf.data(), static_cast<std::streamsize>(bytes));
   buf.resize(static_cast<size_t>(in.gcount()));
@@ -119,7 +120,7 @@ std::string metadata_head(const fs::path& dir, size_t bytes) {
 }  // namespace
 
 void declare_manifest(const fs::path& dir) {
-  const fs::path meta = dir / "metadata.toml";
+  const fs::path meta = dir / kMetadataFile;
   std::error_code ec;
   if (!fs::is_regular_file(fs::symlink_status(meta, ec))) return;
   std::ifstream in(meta, std::ios::binary);
@@ -183,7 +184,6 @@ bool read_manifest(const fs::path& dir, Manifest& out) {
   return true;
 }
 
-namespace {
 std::string entry_mismatch(const fs::path& dir, const ManifestEntry& e, bool hashes) {
   const fs::path p = dir / e.name;
   std::error_code ec;
@@ -198,9 +198,9 @@ std::string entry_mismatch(const fs::path& dir, const ManifestEntry& e, bool has
     return e.name + " differs from what siloscope wrote (changed by hand?)";
   return "";
 }
-}  // namespace
 
-std::string manifest_mismatch(const fs::path& dir, const Manifest& m, bool hashes) {
+std::string manifest_mismatch(const fs::path& dir, const Manifest& m, bool hashes,
+                              const std::function<bool(const std::string&)>& siloscope_made) {
   std::string odd;
   auto files = listing(dir, odd);
   if (!odd.empty()) return odd;
@@ -209,24 +209,24 @@ std::string manifest_mismatch(const fs::path& dir, const Manifest& m, bool hashe
     if (!why.empty()) return why;
     files.erase(e.name);
   }
-  if (!files.empty())
-    return files.begin()->first + " is not in its manifest (a file added after siloscope wrote it)";
+  for (const auto& [name, size] : files)
+    if (!siloscope_made || !siloscope_made(name))
+      return name + " is not in its manifest (a file added after siloscope wrote it)";
   return "";
 }
 
-namespace {
 // `dir`: named when the caller named a file inside it; empty when the caller named the directory itself.
-std::string missing_why(const fs::path& dir) {
+std::string missing_manifest_why(const fs::path& dir) {
   return (dir.empty() ? std::string("no manifest.toml") : (dir / "").string() + " has no manifest.toml") +
          ", though its metadata.toml says siloscope wrote one (removed after?), so what the output holds "
          "cannot be checked";
 }
-}  // namespace
 
 void verify_manifest(const fs::path& dir, const std::string& what, const std::vector<std::string>& only) {
   Manifest m;
   if (!read_manifest(dir, m)) {
-    if (declares_manifest(dir)) throw core::InputError(what + " " + dir.string() + ": " + missing_why({}));
+    if (declares_manifest(dir))
+      throw core::InputError(what + " " + dir.string() + ": " + missing_manifest_why({}));
     return;
   }
   for (const auto& e : m.files) {
@@ -242,7 +242,8 @@ void verify_listed(const fs::path& file, const std::string& what) {
     Manifest m;
     if (!read_manifest(dir, m)) {
       if (declares_manifest(dir))
-        throw core::InputError(what + " " + file.string() + ": " + missing_why(dir) + ": make it again");
+        throw core::InputError(what + " " + file.string() + ": " + missing_manifest_why(dir) +
+                               ": make it again");
       continue;
     }
     const std::string rel = file.lexically_relative(dir).generic_string();

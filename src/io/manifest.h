@@ -6,8 +6,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "core/scene.h"
 
 namespace io {
 
@@ -27,6 +30,8 @@ struct Manifest {
 };
 
 constexpr const char* kManifestName = "manifest.toml";
+// Every output directory's record of what made it (a run's, an analysis', an export's).
+constexpr const char* kMetadataFile = core::kMetadataFile;
 // A manifest larger than this is not one siloscope wrote.
 constexpr std::uintmax_t kMaxManifestBytes = 16u << 20;
 
@@ -54,7 +59,17 @@ bool read_manifest(const std::filesystem::path& dir, Manifest& out);
 // Why `dir` does not hold exactly what its manifest lists: empty when it does. `hashes`: compare contents too
 // (sizes and names always). Names the first difference: "exits.csv is 120 bytes where its manifest says 4312
 // (truncated?)", "notes.txt is not in its manifest (a file added after siloscope wrote it)".
-std::string manifest_mismatch(const std::filesystem::path& dir, const Manifest& m, bool hashes = true);
+// `siloscope_made`: a file not in the manifest that siloscope made later with another command (a figure of
+// the run saved into it, with its record) is no user's addition when this says so.
+std::string manifest_mismatch(const std::filesystem::path& dir, const Manifest& m, bool hashes = true,
+                              const std::function<bool(const std::string&)>& siloscope_made = {});
+
+// Why the file of entry `e` under `dir` is not as listed (missing, another size, another hash when `hashes`):
+// empty when it is.
+std::string entry_mismatch(const std::filesystem::path& dir, const ManifestEntry& e, bool hashes);
+// Why a directory's manifest is missing, for messages: its metadata declares one. `dir` is named when not
+// empty.
+std::string missing_manifest_why(const std::filesystem::path& dir);
 
 // For readers: if `dir` has a manifest, every file it lists (or only those of `only` that it lists) must be
 // there with its size and hash; throws core::InputError naming `what`, the file and the difference. Files

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <fstream>
+#include <iterator>
 
 #include <toml++/toml.h>
 
@@ -106,6 +108,10 @@ std::string metadata_toml(const core::Model& model, const RunInfo& info) {
     s += "\n[run]\n";
     for (const auto& f : info.facts) s += f.key() + " = " + f.toml() + "\n";
   }
+  if (!info.look.empty()) {
+    s += "\n[look]\n";
+    for (const auto& f : info.look) s += f.key() + " = " + f.toml() + "\n";
+  }
   if (!info.health.empty()) {
     s += "\n[health]\n";
     for (const auto& f : info.health) s += f.key() + " = " + f.toml() + "\n";
@@ -114,10 +120,16 @@ std::string metadata_toml(const core::Model& model, const RunInfo& info) {
 }
 
 RunRecord read_run_record(const std::string& path) {
-  core::check_text_file(path, "run metadata", "metadata.toml");
+  core::check_text_file(path, "run metadata", core::kMetadataFile);
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return run_record_of(text, path);
+}
+
+RunRecord run_record_of(const std::string& text, const std::string& path) {
   toml::table t;
   try {
-    t = toml::parse_file(path);
+    t = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw core::InputError(path + ": malformed TOML: " + std::string(e.description()));
   }

@@ -36,6 +36,7 @@ struct RunInfo {
   std::string command;  // the command line
   Facts facts;          // written under [run]
   Facts health;         // written under [health]
+  Facts look;           // written under [look]: how its pictures were drawn (a recording's)
 };
 
 // What a run's metadata says about its health and coverage (defaults when the tables or keys are absent).
@@ -53,6 +54,8 @@ struct RunRecord {
 };
 // Throws core::InputError naming the file when it is not valid TOML.
 RunRecord read_run_record(const std::string& metadata_path);
+// The same from the metadata's text (`path` names it in errors).
+RunRecord run_record_of(const std::string& text, const std::string& path);
 
 std::string version_string();  // "0.1.0 (git abc1234, Release)"
 std::string metadata_toml(const core::Model& model, const RunInfo& info);

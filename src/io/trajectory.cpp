@@ -1,5 +1,9 @@
+// The trajectory file (io/trajectory.h): its writer and its reader, both versions. Over 400 lines because
+// one binary format is written and read in one place, so that the two never disagree on a byte; the checks a
+// reader makes of a file it did not write (bounds, order, finite values) are most of it.
 #include "io/trajectory.h"
 #include "core/format.h"
+#include "io/run.h"
 
 #include <cerrno>
 #include <cmath>
@@ -186,7 +190,7 @@ Trajectory::Trajectory(const std::filesystem::path& path) {
   const std::string p = path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
-    throw core::InputError(p + " is a directory; did you mean " + (path / "trajectory.sstraj").string() +
+    throw core::InputError(p + " is a directory; did you mean " + (path / run_file::kTrajectory).string() +
                            "?");
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw core::InputError(p + ": a trajectory must be a regular file (this is a device, pipe or socket)");

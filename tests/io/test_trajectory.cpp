@@ -147,7 +147,7 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
     w.add({{1, 3, 7.25f}});
     w.close();
   }
-  io::Contacts c(p, 4);
+  io::Contacts c(p, 4, 3);
   REQUIRE(c.size() == 3);
   const auto f0 = c.frame(0);
   REQUIRE(f0.size() == 2);
@@ -159,17 +159,30 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
   CHECK(c.frame(3).empty());  // beyond the last frame: none
   // Cut inside the last frame: two frames remain.
   std::filesystem::resize_file(p, std::filesystem::file_size(p) - 5);
-  CHECK(io::Contacts(p, 4).size() == 2);
+  CHECK(io::Contacts(p, 4, 3).size() == 2);
   // Foreign, another grain count, an id out of range: named.
-  CHECK_THROWS_WITH(io::Contacts(p, 5), Catch::Contains("holds 4 grains where the trajectory has 5"));
+  CHECK_THROWS_WITH(io::Contacts(p, 5, 3), Catch::Contains("holds 4 grains where the trajectory has 5"));
   std::ofstream(d / "x.sscon") << "SILOTRAJ and more bytes";
-  CHECK_THROWS_WITH(io::Contacts(d / "x.sscon", 4), Catch::Contains("no SILOCONT header"));
+  CHECK_THROWS_WITH(io::Contacts(d / "x.sscon", 4, 3), Catch::Contains("no SILOCONT header"));
   {
     io::ContactsWriter w(d / "bad.sscon", 4);
     w.add({{0, 9, 1.0f}});
     w.close();
   }
-  CHECK_THROWS_WITH(io::Contacts(d / "bad.sscon", 4), Catch::Contains("names grain 9; ids run from 0 to 3"));
+  CHECK_THROWS_WITH(io::Contacts(d / "bad.sscon", 4, 3),
+                    Catch::Contains("names grain 9; ids run from 0 to 3"));
+  // Bounded before it is read: more bytes than the frames of a run of this size can take (a valid header
+  // padded to gigabytes: sparse, so no disk is used), or more contacts in a frame than grains in a plane
+  // have.
+  std::filesystem::resize_file(p, std::uintmax_t(20) << 30);
+  CHECK_THROWS_WITH(io::Contacts(p, 4, 3), Catch::Contains("more than the contacts of 3 frames of 4 grains"));
+  {
+    io::ContactsWriter w(d / "many.sscon", 4);
+    w.add(std::vector<core::Contact>(40, core::Contact{0, 1, 1.0f}));
+    w.close();
+  }
+  CHECK_THROWS_WITH(io::Contacts(d / "many.sscon", 4, 3),
+                    Catch::Contains("grains in a plane have at most 28"));
 }
 
 TEST_CASE("a version-1 trajectory still opens: its clogs rebuilt from the timers, no arch in a flowing frame",

@@ -499,10 +499,21 @@ TEST_CASE("the inspector draws force chains from a recording's contacts, and say
           0);
   const Png direct = read_png(d / "direct.png"), stepped = read_png(d / "stepped.png");
   CHECK(direct.px == stepped.px);
-  // Without the contacts file: one clear line.
+  // Its contacts file removed: the run is refused, naming the file its manifest lists.
   fs::remove(d / "run" / "contacts.sscon");
   std::ofstream(d / "t.txt") << "chains 2\n";
   auto r = test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "t.txt").string());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Contains("contacts.sscon is missing"));
+  // A run written before contacts were kept (and before manifests): the chains command says there are none.
+  fs::remove(d / "run" / "manifest.toml");
+  {
+    std::string meta = test::slurp(d / "run" / "metadata.toml");
+    const std::string declared = "manifest = \"manifest.toml\"\n";
+    meta.erase(meta.find(declared), declared.size());
+    std::ofstream(d / "run" / "metadata.toml") << meta;
+  }
+  r = test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "t.txt").string());
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Contains("t.txt:1") && Contains("no contacts beside it"));
 }
@@ -653,11 +664,11 @@ TEST_CASE(
     const std::string file = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/" + scene + ".toml";
     REQUIRE(sh(kBin + " record " + file + " --duration 4 --size 320x240 --fps 10 --quiet --out " +
                (d / "rec").string()) == 0);
-    io::Trajectory t((d / "rec" / "trajectory.sstraj").string());
-    io::Contacts contacts((d / "rec" / "contacts.sscon").string(), t.info().n_particles);
-    const app::TrajectoryFrames frames(t, &contacts);
+    const io::Run run = io::Run::open(d / "rec", "test", io::Run::kTrajectory);
+    const io::Trajectory& t = run.trajectory();
+    const app::TrajectoryFrames frames(run);
     const app::RecordFiles files;
-    const core::Model model = app::run_model(t, (d / "rec").string());
+    const core::Model& model = run.model();
     ui::Inspector insp(frames, model, &files);
     ui::Painter painter;
     ImGuiContext* ctx = ImGui::CreateContext();

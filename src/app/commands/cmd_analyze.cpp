@@ -12,13 +12,13 @@
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/interrupt.h"
 #include "core/physics.h"
 #include "core/setup.h"
-#include "io/events_csv.h"
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "io/trajectory.h"
+#include "io/run.h"
 
 namespace app {
 
@@ -40,7 +40,7 @@ void find_runs(const fs::path& root, std::vector<fs::path>& out, std::vector<fs:
   std::error_code ec;
   if (!fs::is_directory(root, ec))
     throw core::InputError("analyze: " + root.string() + " is not a directory");
-  if (fs::exists(root / "metadata.toml") && fs::exists(root / "exits.csv")) {
+  if (io::is_run_directory(root)) {
     out.push_back(root);
     return;
   }
@@ -76,11 +76,9 @@ void check_campaign_member(const fs::path& d, const io::RunRecord& rec) {
 
 // Where each species sits in the column, from the run's trajectory when it kept one (run --trajectory-fps,
 // record, or a campaign's trajectory_fps); checked against the run's manifest like its other files.
-void measure_column(const fs::path& d, analysis::Run& r) {
-  const fs::path file = d / "trajectory.sstraj";
-  if (!fs::exists(file)) return;
-  io::verify_listed(file, "analyze: run");
-  const io::Trajectory traj(file);
+void measure_column(const io::Run& run, analysis::Run& r) {
+  if (!run.has_trajectory()) return;
+  const io::Trajectory& traj = run.trajectory();
   analysis::ColumnMeter meter(r.scene.tilt * core::kPi / 180.0, static_cast<int>(r.setup.species.size()));
   for (long k = 0; k < traj.size(); ++k) {
     const core::Frame f = traj.frame(k);
@@ -89,6 +87,98 @@ void measure_column(const fs::path& d, analysis::Run& r) {
   }
   r.m.column_rank = meter.ranks();
   r.m.column_frames = meter.frames();
+}
+
+// Run `d` opened once (its manifest checked, its scene compiled, its events read) and measured into `r`;
+// false (with the reason in `left_out`) when it is left out: interrupted or unhealthy, unless included.
+bool read_run(const fs::path& d, const AnalyzeOptions& o, analysis::Run& r,
+              std::vector<std::string>& left_out) {
+  r.source = d.string();
+  // Each run opened once, here: its manifest checked, its scene compiled, its events read.
+  const io::Run run = io::Run::open(d, "analyze", io::Run::kEvents);
+  r.scene = run.model().scene;
+  r.setup = run.model().setup;
+  const core::Setup& setup = r.setup;
+  const io::RunRecord& rec = run.record();
+  check_campaign_member(d, rec);
+  r.events = run.events();
+  // A run counts for the discharge time it covered, not the time it planned.
+  double covered = rec.covered_s >= 0 ? std::min(rec.covered_s, r.scene.duration) : r.scene.duration;
+  if (covered <= 0)
+    throw core::InputError("analyze: " + r.source + " was stopped before the aperture opened (" +
+                           core::format_g(rec.covered_s) + " s of discharge); remove it or rerun it");
+  if (rec.interrupted && !o.include_interrupted) {
+    left_out.push_back(r.source + ": interrupted after " + core::format_g(covered, 4) + " of " +
+                       core::format_g(r.scene.duration, 4) +
+                       " s (--include-interrupted counts it for that time)");
+    return false;
+  }
+  if (rec.health_warnings > 0 && !o.include_unhealthy) {
+    left_out.push_back(r.source + ": unhealthy, " + std::to_string(rec.health_warnings) +
+                       " --unsafe warnings (--include-unhealthy counts it)");
+    return false;
+  }
+  const analysis::AvalancheEnd end = o.avalanche_end == "auto"   ? analysis::avalanche_end_for(r.scene)
+                                     : o.avalanche_end == "held" ? analysis::AvalancheEnd::Held
+                                                                 : analysis::AvalancheEnd::Gaps;
+  r.m =
+      analysis::measure(r.events, covered, r.scene.clog_min_gap, static_cast<int>(setup.species.size()), end);
+  r.m.health_warnings = rec.health_warnings;
+  r.m.ballistic = rec.ballistic;
+  r.m.airborne_fraction = rec.airborne_fraction;
+  r.m.drain_outcome = rec.drain_outcome;
+  r.m.drain_end_s = rec.drain_end_s;
+  r.m.drain_remaining = static_cast<int>(rec.drain_remaining);
+  measure_column(run, r);
+  return true;
+}
+
+// The table analyze prints: each point's runs and its Q~ (or Q and each species' flow for scenes of their
+// own species), a mean and its interval in 18 columns, never "nan": what is missing is said instead.
+void print_points(const std::vector<analysis::Run>& runs, const std::vector<analysis::Point>& points,
+                  const std::string& out, bool drain, bool column) {
+  auto pm = [](const analysis::Estimate& e, const char* missing) {
+    char b[64];
+    if (!std::isfinite(e.mean))
+      std::snprintf(b, sizeof b, "%18s", missing);
+    else if (!std::isfinite(e.half_width))
+      std::snprintf(b, sizeof b, "%9.3f (1 run)   ", e.mean);
+    else
+      std::snprintf(b, sizeof b, "%9.3f +- %5.3f", e.mean, e.half_width);
+    return std::string(b);
+  };
+  if (!runs.front().scene.shorthand()) {
+    // A scene of its own species: the --by keys, Q and each species' flow.
+    std::printf("%-32s %4s %18s   %s\n", "point", "runs", "Q [1/s]", "per species [1/s]");
+    for (const auto& p : points) {
+      std::string label;
+      for (const auto& [k, v] : p.extra) label += (label.empty() ? "" : ", ") + k + " = " + v;
+      if (label.empty()) label = "(one point)";
+      std::string per;
+      for (const auto& e : p.species) per += e.name + " " + core::format_g(e.q.mean, 4) + "  ";
+      std::printf("%-32s %4zu %s   %s\n", label.c_str(), p.runs.size(), pm(p.q, "no flow").c_str(),
+                  per.c_str());
+    }
+    if (drain) std::printf("drain outcomes and the jamming probability J: %s/drain.csv\n", out.c_str());
+    if (column)
+      std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
+                  out.c_str());
+    return;
+  }
+  std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
+              "chi_eff");
+  for (const auto& p : points) {
+    char label[64];
+    std::snprintf(label, sizeof label, "%g, %g, %g, %g", p.scene.size_ratio, p.scene.chi, p.scene.mu,
+                  p.scene.kick_impulse_max);
+    const std::string chi_eff =
+        std::isfinite(p.chi_eff.mean) ? core::format_g(p.chi_eff.mean, 3) : std::string("no exits");
+    std::printf("%-32s %4zu %s %s %14s\n", label, p.runs.size(), pm(p.q_tilde, "no exits").c_str(),
+                pm(p.q_tilde_over_qp, "no pure point").c_str(), chi_eff.c_str());
+  }
+  if (column)
+    std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
+                out.c_str());
 }
 
 }  // namespace
@@ -115,50 +205,9 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
   runs.reserve(dirs.size());
   std::vector<std::string> left_out;
   for (const auto& d : dirs) {
+    core::throw_if_interrupted();
     analysis::Run r;
-    r.source = d.string();
-    const std::string meta = (d / "metadata.toml").string();
-    for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
-      io::verify_listed(d / f, "analyze: run");
-    // Each run's scene compiled once, here where it is read.
-    {
-      core::Model m = core::compile(core::load_scene(meta));
-      r.scene = std::move(m.scene);
-      r.setup = std::move(m.setup);
-    }
-    const core::Setup& setup = r.setup;
-    const io::RunRecord rec = io::read_run_record(meta);
-    check_campaign_member(d, rec);
-    r.events = io::read_events(d, setup.species_names());
-    // A run counts for the discharge time it covered, not the time it planned.
-    double covered = rec.covered_s >= 0 ? std::min(rec.covered_s, r.scene.duration) : r.scene.duration;
-    if (covered <= 0)
-      throw core::InputError("analyze: " + r.source + " was stopped before the aperture opened (" +
-                             core::format_g(rec.covered_s) + " s of discharge); remove it or rerun it");
-    if (rec.interrupted && !o.include_interrupted) {
-      left_out.push_back(r.source + ": interrupted after " + core::format_g(covered, 4) + " of " +
-                         core::format_g(r.scene.duration, 4) +
-                         " s (--include-interrupted counts it for that time)");
-      continue;
-    }
-    if (rec.health_warnings > 0 && !o.include_unhealthy) {
-      left_out.push_back(r.source + ": unhealthy, " + std::to_string(rec.health_warnings) +
-                         " --unsafe warnings (--include-unhealthy counts it)");
-      continue;
-    }
-    const analysis::AvalancheEnd end = o.avalanche_end == "auto"   ? analysis::avalanche_end_for(r.scene)
-                                       : o.avalanche_end == "held" ? analysis::AvalancheEnd::Held
-                                                                   : analysis::AvalancheEnd::Gaps;
-    r.m = analysis::measure(r.events, covered, r.scene.clog_min_gap, static_cast<int>(setup.species.size()),
-                            end);
-    r.m.health_warnings = rec.health_warnings;
-    r.m.ballistic = rec.ballistic;
-    r.m.airborne_fraction = rec.airborne_fraction;
-    r.m.drain_outcome = rec.drain_outcome;
-    r.m.drain_end_s = rec.drain_end_s;
-    r.m.drain_remaining = static_cast<int>(rec.drain_remaining);
-    measure_column(d, r);
-    runs.push_back(std::move(r));
+    if (read_run(d, o, r, left_out)) runs.push_back(std::move(r));
   }
   for (const auto& l : left_out) std::fprintf(stderr, "siloscope: analyze leaves out %s\n", l.c_str());
   if (runs.empty())
@@ -198,65 +247,20 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                     {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
                                                      [](const analysis::Run& r) { return r.m.ballistic; })}},
                    {}};
-  io::write_file_atomic(out.file("metadata.toml"),
+  io::write_file_atomic(out.file(io::kMetadataFile),
                         io::metadata_toml({runs.front().scene, runs.front().setup}, info));
   out.commit();
   if (quiet) return 0;
   std::printf(
       "%zu runs, %zu points -> %s/{points,realizations,survival,avalanches,species,clog_survival}.csv\n",
       runs.size(), points.size(), o.out.c_str());
-  // A mean and its interval in 18 columns; never "nan": what is missing is said instead.
-  auto pm = [](const analysis::Estimate& e, const char* missing) {
-    char b[64];
-    if (!std::isfinite(e.mean))
-      std::snprintf(b, sizeof b, "%18s", missing);
-    else if (!std::isfinite(e.half_width))
-      std::snprintf(b, sizeof b, "%9.3f (1 run)   ", e.mean);
-    else
-      std::snprintf(b, sizeof b, "%9.3f +- %5.3f", e.mean, e.half_width);
-    return std::string(b);
-  };
-  if (!runs.front().scene.shorthand()) {
-    // A scene of its own species: the --by keys, Q and each species' flow.
-    std::printf("%-32s %4s %18s   %s\n", "point", "runs", "Q [1/s]", "per species [1/s]");
-    for (const auto& p : points) {
-      std::string label;
-      for (const auto& [k, v] : p.extra) label += (label.empty() ? "" : ", ") + k + " = " + v;
-      if (label.empty()) label = "(one point)";
-      std::string per;
-      for (const auto& e : p.species) per += e.name + " " + core::format_g(e.q.mean, 4) + "  ";
-      std::printf("%-32s %4zu %s   %s\n", label.c_str(), p.runs.size(), pm(p.q, "no flow").c_str(),
-                  per.c_str());
-    }
-    if (!drain.empty())
-      std::printf("drain outcomes and the jamming probability J: %s/drain.csv\n", o.out.c_str());
-    if (!column.empty())
-      std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
-                  o.out.c_str());
-    return 0;
-  }
-  std::printf("%-32s %4s %18s %18s %14s\n", "point (r, chi, mu, kick)", "runs", "Q~ [1/s]", "Q~/Q_p",
-              "chi_eff");
-  for (const auto& p : points) {
-    char label[64];
-    std::snprintf(label, sizeof label, "%g, %g, %g, %g", p.scene.size_ratio, p.scene.chi, p.scene.mu,
-                  p.scene.kick_impulse_max);
-    const std::string chi_eff =
-        std::isfinite(p.chi_eff.mean) ? core::format_g(p.chi_eff.mean, 3) : std::string("no exits");
-    std::printf("%-32s %4zu %s %s %14s\n", label, p.runs.size(), pm(p.q_tilde, "no exits").c_str(),
-                pm(p.q_tilde_over_qp, "no pure point").c_str(), chi_eff.c_str());
-  }
-  if (!column.empty())
-    std::printf("where each species sits in the column (from the trajectories): %s/column.csv\n",
-                o.out.c_str());
+  print_points(runs, points, o.out, !drain.empty(), !column.empty());
   return 0;
 }
 
-void add_analyze_command(CLI::App& app, Action& action) {
+void define_analyze_command(CLI::App& command, Action& action) {
   auto opts = std::make_shared<AnalyzeOptions>();
-  auto* cmd =
-      app.add_subcommand("analyze", "aggregate run directories into tidy CSV with 95% confidence intervals");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("dirs", opts->inputs, "run directories, or directories holding them")->required();
   cmd->add_option("--out", opts->out, "output directory")->required();
   cmd->add_option("--by", opts->by,

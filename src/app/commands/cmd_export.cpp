@@ -17,11 +17,12 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/geometry.h"
+#include "core/interrupt.h"
 #include "core/setup.h"
-#include "io/contacts.h"
+#include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "io/trajectory.h"
+#include "io/run.h"
 #include "io/vtu.h"
 
 namespace app {
@@ -72,10 +73,11 @@ std::string num(double v) {
 // ParaView: a directory with one VTK UnstructuredGrid per frame (grains_NNNNNN.vtu), the container's walls
 // (walls.vtu, or walls_NNNNNN.vtu when it vibrates), trajectory.pvd tying them into a time series, and the
 // run's metadata.
-int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajectory& t, long first, long last,
-               const core::Model& model) {
+int export_vtu(const ExportOptions& o, const io::Run& run, long first, long last) {
+  const io::Trajectory& t = run.trajectory();
+  const core::Model& model = run.model();
   const core::Setup& setup = model.setup;
-  const fs::path out = o.out.empty() ? traj.parent_path() / "vtu" : fs::path(o.out);
+  const fs::path out = o.out.empty() ? run.dir() / "vtu" : fs::path(o.out);
   io::OutputDir dir(out.string(), o.force, io::DirKind::Export);
   std::vector<io::PvdEntry> entries;
   const bool moving = setup.drive.vibrating();
@@ -85,9 +87,7 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
   bool polygons = false;
   for (const auto& sp : setup.species) polygons = polygons || (sp.count > 0 && sp.polygon());
   // Force chains when the recording kept its contacts (record always does).
-  std::unique_ptr<io::Contacts> contacts;
-  if (fs::exists(traj.parent_path() / "contacts.sscon"))
-    contacts = std::make_unique<io::Contacts>(traj.parent_path() / "contacts.sscon", t.info().n_particles);
+  const io::Contacts* contacts = run.contacts();
   if (!moving) {
     io::write_file_atomic(dir.file("walls.vtu"), io::vtu_walls(setup.geo, 0, 0, enc), false);
     if (obstacle)
@@ -131,18 +131,18 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
       io::write_file_atomic(dir.file(chains), io::vtu_chains(f, contacts->frame(k), enc), false);
       entries.push_back({f.t, 4, chains});
     }
-    if (interrupted()) throw core::RuntimeFault("interrupted; nothing written");
+    core::throw_if_interrupted();
   }
   io::write_file_atomic(dir.file("trajectory.pvd"), io::pvd(entries), false);
   io::RunInfo info{command_line(),
                    {{"export", "vtu"},
-                    {"trajectory", fs::absolute(traj).string()},
+                    {"trajectory", fs::absolute(run.dir() / io::run_file::kTrajectory).string()},
                     {"first_frame", first},
                     {"vtu_encoding", o.vtu_encoding},
                     {"last_frame", last},
                     {"open_in_paraview", "trajectory.pvd"}},
                    {}};
-  io::write_file_atomic(dir.file("metadata.toml"), io::metadata_toml(model, info));
+  io::write_file_atomic(dir.file(io::kMetadataFile), io::metadata_toml(model, info));
   dir.commit();
   std::printf(
       "%ld frames of %d grains -> %s/trajectory.pvd (ParaView: open it and Apply; disks: Point Gaussian "
@@ -153,9 +153,10 @@ int export_vtu(const ExportOptions& o, const fs::path& traj, const io::Trajector
 
 // GSD (HOOMD-blue; OVITO reads it): each species a type with its shape, orientations as quaternions. Written
 // by the package's writer (src/python/siloscope/_gsd.py, python3-gsd) under a temporary name.
-int export_gsd(const ExportOptions& o, const fs::path& traj, long first, long last,
-               const core::Geometry& geo) {
-  const fs::path out = o.out.empty() ? traj.parent_path() / "trajectory.gsd" : fs::path(o.out);
+int export_gsd(const ExportOptions& o, const io::Run& run, long first, long last) {
+  const core::Geometry& geo = run.model().setup.geo;
+  const fs::path traj = run.dir() / io::run_file::kTrajectory;
+  const fs::path out = o.out.empty() ? run.dir() / "trajectory.gsd" : fs::path(o.out);
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "export file", io::OutputKind::Gsd);
   const fs::path partial = out.string() + ".partial-" + std::to_string(::getpid()) + ".gsd";
@@ -168,8 +169,7 @@ int export_gsd(const ExportOptions& o, const fs::path& traj, long first, long la
     fs::remove(partial, ec);
     throw core::RuntimeFault("export: the GSD writer (export_gsd.py, python3-gsd) failed");
   }
-  io::rename_into_place(partial, out);
-  io::record_output(out);
+  io::place_output(partial, out);
   std::printf("%ld frames -> %s (GSD: a type per species with its shape, orientations as quaternions)\n",
               last - first + 1, out.c_str());
   return 0;
@@ -191,24 +191,21 @@ int export_run(const ExportOptions& o) {
     throw core::InputError("--vtu-encoding is for --format vtu (this is --format " + o.format + ")");
   if (o.format != "xyz" && o.format != "csv" && o.format != "vtu" && o.format != "gsd")
     throw core::InputError("--format " + o.format + " is not allowed; allowed values are xyz, csv, vtu, gsd");
-  fs::path traj = o.run;
-  if (fs::is_directory(traj)) traj /= "trajectory.sstraj";
-  if (!fs::exists(traj))
-    throw core::InputError(o.run + ": no trajectory here (record writes one; run needs --trajectory-fps)");
-  io::Trajectory t(traj);
-  if (t.size() == 0) throw core::InputError(traj.string() + ": the trajectory holds no frames");
+  const io::Run run = io::Run::open(o.run, "export", io::Run::kTrajectory);
+  const io::Trajectory& t = run.trajectory();
+  if (t.size() == 0) throw core::InputError(o.run + ": the trajectory holds no frames");
   long first = 0, last = 0;
   frame_range(o.frames, t.size(), first, last);
-  const core::Model& model = run_model(t, traj.string());
+  const core::Model& model = run.model();
   const core::Setup& setup = model.setup;
   const core::Geometry& geo = setup.geo;
   const std::vector<std::string> names = setup.species_names();
   std::string names_text;
   for (const auto& nm : names) names_text += (names_text.empty() ? "" : " ") + nm;
 
-  if (o.format == "vtu") return export_vtu(o, traj, t, first, last, model);
-  if (o.format == "gsd") return export_gsd(o, traj, first, last, geo);
-  fs::path out = o.out.empty() ? traj.parent_path() / ("trajectory." + o.format) : fs::path(o.out);
+  if (o.format == "vtu") return export_vtu(o, run, first, last);
+  if (o.format == "gsd") return export_gsd(o, run, first, last);
+  fs::path out = o.out.empty() ? run.dir() / ("trajectory." + o.format) : fs::path(o.out);
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "export file",
                         o.format == "csv" ? io::OutputKind::Csv : io::OutputKind::Xyz,
@@ -221,6 +218,7 @@ int export_run(const ExportOptions& o) {
   // unit thickness; a vibrating container's displacement is in each frame's `container`.
   const double w = geo.x_right - geo.x_left, h = geo.total_height;
   for (long k = first; k <= last; ++k) {
+    core::throw_if_interrupted();
     const core::Frame f = t.frame(k);
     std::vector<char> in_arch(n, 0);
     for (int id : f.arch) in_arch[static_cast<size_t>(id)] = 1;
@@ -250,17 +248,15 @@ int export_run(const ExportOptions& o) {
                 std::to_string(p.sides) + "\n";
     }
   }
-  io::write_file_atomic(out, text);
-  io::record_output(out);
+  io::write_output(out, text);
   std::printf("%ld frames of %zu grains -> %s\n", last - first + 1, n, out.c_str());
   return 0;
 }
 }  // namespace
 
-void add_export_command(CLI::App& app, Action& action) {
+void define_export_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<ExportOptions>();
-  auto* cmd = app.add_subcommand("export", "a recording's trajectory as extended XYZ (OVITO, ASE) or CSV");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("run", o->run,
                   "a recording (or run with --trajectory-fps) directory, or its trajectory.sstraj")
       ->required();

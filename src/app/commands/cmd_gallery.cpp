@@ -12,7 +12,9 @@
 #include <sstream>
 
 #include "app/services/cli.h"
+#include "app/services/looks.h"
 #include "app/services/process.h"
+#include "app/services/replay.h"
 #include "app/services/run_outputs.h"
 #include "app/services/session.h"
 #include "app/services/terminal.h"
@@ -25,7 +27,7 @@
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/output.h"
-#include "io/trajectory.h"
+#include "io/run.h"
 #include "render/camera.h"
 #include "render/draw_list.h"
 #include "render/overlay.h"
@@ -37,10 +39,10 @@ namespace {
 namespace fs = std::filesystem;
 
 struct GalleryOptions {
-  std::string run, out, palette = "paper";
-  std::string chains;  // --force-chains MIN[:MAX]: the contact network of each tile
+  std::string run, out;
   int tile = 480, columns = 0, max_arches = 60;
   bool force = false;
+  LookOptions looks;  // the run's own look unless given
 };
 
 // The index's row of one tile: the arch's time, members, species and the descriptors of the literature
@@ -66,10 +68,52 @@ std::string tile_row(const std::string& name, const core::ArchEvent& a, const co
          core::format_g(ad.angle_sd_deg, 4) + "," + core::format_g(window_m, 6) + "\n";
 }
 
+// An imported run's tiles: each clog's arch (clog_arches.csv) at the frame of its trajectory the import took
+// it from. Returns the frames' indices; the arches go into `recorded` in place of the rule's removals.
+std::vector<long> imported_arches(const io::Run& run, core::Events& recorded) {
+  const io::Trajectory& traj = run.trajectory();
+  std::vector<long> at;
+  recorded.arches.clear();
+  for (const io::Run::ClogArch& c : run.clog_arches()) {
+    core::ArchEvent a;
+    a.t = c.t;
+    a.clog_duration = a.t - recorded.clogs[static_cast<size_t>(c.clog) - 1].start;
+    long k = 0;
+    while (k + 1 < traj.size() && traj.time(k) < a.t - 1e-6) ++k;
+    const core::Frame f = traj.frame(k);
+    for (int id : c.ids) {
+      a.ids.push_back(id);
+      a.species.push_back(f.particles[static_cast<size_t>(id)].species);
+    }
+    std::vector<core::Vec2> pos;
+    std::vector<double> radius;
+    for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
+    a.geometry = core::arch_geometry(a.ids, pos, radius);
+    recorded.arches.push_back(std::move(a));
+    at.push_back(k);
+  }
+  return at;
+}
+
+// The sheet's title: the run, its scene (r, chi, mu, kick and seed for the paper's shorthand), how many
+// arches of how many, and the force chains' scale.
+std::string sheet_title(const io::Run& run, bool imported, size_t n, size_t of, const render::Style& style) {
+  const core::Scene& scene = run.model().scene;
+  const std::string what =
+      imported ? std::string("from tracked particles, contacts by distance")
+      : run.model().setup.shorthand
+          ? "r = " + core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) +
+                ", mu = " + core::format_g(scene.mu) + " A m^2, kick " +
+                core::format_g(scene.kick_impulse_max) + " N s, seed " + std::to_string(scene.seed)
+          : render::overlay_data_for(run.model()).title;
+  return (imported ? "clogs' arches of the imported run " : "long-lasting arches of ") + run.name() + ": " +
+         what + " (" + std::to_string(n) + " of " + std::to_string(of) + ")" +
+         (style.chains ? "; force chains from " + core::format_g(style.chain_min, 4) + " N, viridis to " +
+                             core::format_g(style.chain_max, 4) + " N"
+                       : "");
+}
+
 int gallery(const GalleryOptions& o) {
-  const fs::path run = o.run;
-  if (!fs::is_directory(run) || !fs::exists(run / "metadata.toml") || !fs::exists(run / "arches.csv"))
-    throw core::InputError("gallery: " + o.run + " is not a run directory (metadata.toml and arches.csv)");
   const fs::path out = o.out;
   const std::string ext = out.extension().string();
   if (ext != ".pdf" && ext != ".svg" && ext != ".png")
@@ -77,54 +121,19 @@ int gallery(const GalleryOptions& o) {
   if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
     throw core::InputError("--tile " + std::to_string(o.tile) +
                            ": allowed are even sizes from 120 to 2000 pixels");
-  // What the run's manifest lists must be as written (a cut or edited metadata.toml would re-simulate
-  // another run).
-  for (const char* f : {"metadata.toml", "exits.csv", "clogs.csv", "arches.csv"})
-    if (fs::exists(run / f)) io::verify_listed(run / f, "gallery: run");
-  // The run's scene compiled once: the re-simulation, the pictures and the species' names share it.
-  const core::Model model = core::compile(core::load_scene((run / "metadata.toml").string()));
+  // The run opened once: its manifest checked, its scene compiled (the re-simulation, the pictures and the
+  // species' names share it), its events read.
+  const io::Run run = io::Run::open(o.run, "gallery", io::Run::kEvents);
+  const core::Model& model = run.model();
   const core::Scene& scene = model.scene;
   const core::Setup& setup = model.setup;
   const std::vector<std::string> names = setup.species_names();
-  core::Events recorded = io::read_events(run, names);
+  core::Events recorded = run.events();
   // A lab run (siloscope import) has no rule and nothing to re-simulate: its tiles are its clogs' arches, at
   // the frame of its trajectory the import took each from (clog_arches.csv).
-  const bool imported = fs::exists(run / "clog_arches.csv") && fs::exists(run / "trajectory.sstraj");
-  std::unique_ptr<io::Trajectory> traj;
+  const bool imported = run.has(io::run_file::kClogArches) && run.has_trajectory();
   std::vector<long> traj_frame;
-  if (imported) {
-    for (const char* f : {"clog_arches.csv", "trajectory.sstraj"}) io::verify_listed(run / f, "gallery: run");
-    traj = std::make_unique<io::Trajectory>(run / "trajectory.sstraj");
-    const io::CsvTable rows =
-        io::CsvTable::read((run / "clog_arches.csv").string(), "an imported run's clog arches");
-    recorded.arches.clear();
-    for (size_t r = 0; r < rows.rows(); ++r) {
-      core::ArchEvent a;
-      a.t = rows.num(r, "t_s");
-      const double clog = rows.num(r, "clog");
-      if (!(clog >= 1) || clog > static_cast<double>(recorded.clogs.size()))
-        throw core::InputError((run / "clog_arches.csv").string() + ":" + std::to_string(r + 2) + ": clog " +
-                               rows.text(r, "clog") + " is not a row of clogs.csv");
-      a.clog_duration = a.t - recorded.clogs[static_cast<size_t>(clog) - 1].start;
-      long k = 0;
-      while (k + 1 < traj->size() && traj->time(k) < a.t - 1e-6) ++k;
-      const core::Frame f = traj->frame(k);
-      std::istringstream ids(rows.text(r, "ids"));
-      for (int id; ids >> id;) {
-        if (id < 0 || static_cast<size_t>(id) >= f.particles.size())
-          throw core::InputError((run / "clog_arches.csv").string() + ":" + std::to_string(r + 2) +
-                                 ": grain " + std::to_string(id) + " is not in the trajectory");
-        a.ids.push_back(id);
-        a.species.push_back(f.particles[static_cast<size_t>(id)].species);
-      }
-      std::vector<core::Vec2> pos;
-      std::vector<double> radius;
-      for (const auto& p : f.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
-      a.geometry = core::arch_geometry(a.ids, pos, radius);
-      recorded.arches.push_back(std::move(a));
-      traj_frame.push_back(k);
-    }
-  }
+  if (imported) traj_frame = imported_arches(run, recorded);
   if (recorded.arches.empty())
     throw core::InputError("gallery: " + o.run +
                            (imported ? " has no clog with an arch (clog_arches.csv is empty)"
@@ -145,14 +154,13 @@ int gallery(const GalleryOptions& o) {
     }
   } cleanup{tmp};
 
-  render::Style style;
-  style.palette = for_flag("--palette", [&] { return render::parse_palette(o.palette); });
-  if (!o.chains.empty()) render::set_chains(style, o.chains, "--force-chains");  // as record's
+  LookOptions looks = o.looks;
+  looks.inherit(run.metadata());
+  const Look look = looks.resolve(model);
+  render::Style style = look.style;
   const core::Geometry& geo = setup.geo;
   // The outlet camera of a square tile: the window each tile shows.
   const render::View view = render::layout_views(render::parse_camera("outlet"), geo, o.tile, o.tile).front();
-  const render::OverlayData data = render::overlay_data_for(model);  // the species' colours
-  style.species_colors = data.species_colors;
   // Re-simulate the run, one frame one step before each recorded rule firing: the clog as it stood. Each tile
   // is the draw list of that frame as a table (vector shapes: the sheet draws them as circles, polygons and
   // paths in PDF and SVG alike), with the arch's descriptors (core::arch_descriptors) in the index.
@@ -185,66 +193,39 @@ int gallery(const GalleryOptions& o) {
   };
   tiles.on_frame = [&](const FrameTick& tick) { make_tile(tick.frames[0]); };
   if (imported) {
-    for (size_t i = 0; i < n; ++i) make_tile(traj->frame(traj_frame[i]));
+    for (size_t i = 0; i < n; ++i) make_tile(run.trajectory().frame(traj_frame[i]));
   } else {
-    Progress progress("gallery: re-simulating", until, true);
-    Session session({model});
-    session.run(until, FrameClock::at_steps(at), {&tiles}, {}, [&](double t) {
-      progress.update(t, std::to_string(k) + " of " + std::to_string(n) + " arches");
-    });
-    progress.finish();
-    // The re-simulation must give the recorded arches: the same physics, build and seed.
-    const auto& again = session.world(0).events().arches;
-    for (size_t i = 0; i < n; ++i)
-      if (again.size() <= i || again[i].ids != recorded.arches[i].ids)
-        throw core::RuntimeFault("gallery: re-simulating " + o.run + " did not reproduce its arch " +
-                                 std::to_string(i) + " at t = " + core::format_g(recorded.arches[i].t, 6) +
-                                 " s (a different build or physics?)");
+    // The re-simulation must give the recorded arches: the same physics, build and seed (resimulate checks).
+    resimulate(run, until, FrameClock::at_steps(at), {&tiles}, "gallery: re-simulating");
   }
   io::write_file_atomic(tmp / "index.csv", index);
-  const std::string title =
-      (imported ? "clogs' arches of the imported run " : "long-lasting arches of ") +
-      fs::absolute(run).filename().string() + ": " +
-      (imported ? std::string("from tracked particles, contacts by distance")
-       : setup.shorthand
-           ? "r = " + core::format_g(scene.size_ratio) + ", chi = " + core::format_g(scene.chi) +
-                 ", mu = " + core::format_g(scene.mu) + " A m^2, kick " +
-                 core::format_g(scene.kick_impulse_max) + " N s, seed " + std::to_string(scene.seed)
-           : data.title) +
-      " (" + std::to_string(n) + " of " + std::to_string(recorded.arches.size()) + ")" +
-      (style.chains ? "; force chains from " + core::format_g(style.chain_min, 4) + " N, viridis to " +
-                          core::format_g(style.chain_max, 4) + " N"
-                    : "");
+  const std::string title = sheet_title(run, imported, n, recorded.arches.size(), style);
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
   const int status = run_python(
       script_path("gallery.py"),
-      imported ? std::vector<std::string>{tmp.string(), partial.string(), title, io::version_string(),
-                                          std::to_string(o.columns), std::to_string(o.tile),
-                                          "members ringed, bonds dark; each clog's arch at the last frame "
-                                          "it stood, found from positions (contacts by distance, import's "
-                                          "--contact-tolerance); h/(s/2): rise over half the span; "
-                                          "\u03b8max: the largest bead angle; defects: bead angles above "
-                                          "180\u00b0"}
-               : std::vector<std::string>{tmp.string(), partial.string(), title, io::version_string(),
-                                          std::to_string(o.columns), std::to_string(o.tile)});
+      {tmp.string(), partial.string(), title, io::version_string(), std::to_string(o.columns),
+       std::to_string(o.tile),
+       imported
+           ? "members ringed, bonds dark; each clog's arch at the last frame it stood, found from positions "
+             "(contacts by distance, import's --contact-tolerance); h/(s/2): rise over half the span; "
+             "\u03b8max: the largest bead angle; defects: bead angles above 180\u00b0"
+           : "",
+       look.figure_spec()});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
     throw core::RuntimeFault("gallery: the matplotlib script gallery.py failed");
   }
-  io::rename_into_place(partial, out);
-  io::record_output(out);
+  io::place_output(partial, out);
   std::printf("%zu arches -> %s\n", n, out.c_str());
   return 0;
 }
 }  // namespace
 
-void add_gallery_command(CLI::App& app, Action& action) {
+void define_gallery_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<GalleryOptions>();
-  auto* cmd =
-      app.add_subcommand("gallery", "one sheet (PDF, SVG or PNG) with every long-lasting arch of a run");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("run", o->run, "a run or recording directory (metadata.toml, arches.csv)")->required();
   cmd->add_option("--out", o->out, "the sheet: .pdf, .svg or .png")->required();
   cmd->add_option("--tile", o->tile, "tile size in pixels of a PNG sheet (PDF and SVG are vector)")
@@ -254,11 +235,7 @@ void add_gallery_command(CLI::App& app, Action& action) {
   cmd->add_option("--max", o->max_arches, "at most this many arches, the first ones")
       ->check(whole_number(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--palette", o->palette, "paper or colorblind")->capture_default_str();
-  cmd->add_option(
-      "--force-chains", o->chains,
-      "draw each tile's contact network: pairs with a normal force of at least MIN newtons, width and "
-      "colour growing up to MAX (MIN or MIN:MAX)");
+  o->looks.add_to(*cmd);
   cmd->add_flag("--force", o->force, "replace an earlier gallery sheet");
   cmd->callback([o, &action] { action = [o] { return gallery(*o); }; });
 }

@@ -7,8 +7,9 @@
 
 #include <toml++/toml.h>
 
-#include "core/stats.h"
+#include "core/median.h"
 #include "io/output.h"
+#include "io/run.h"
 
 namespace app {
 
@@ -33,7 +34,7 @@ double median_wall_s(const Campaign& c, const fs::path& dir) {
   std::vector<double> walls;
   for (size_t p = 0; p < c.points.size(); ++p)
     for (int k = 0; k < c.realizations; ++k)
-      if (double w = realization_wall_s(dir / "runs" / c.run_dir(p, k) / "metadata.toml"); w > 0)
+      if (double w = realization_wall_s(dir / "runs" / c.run_dir(p, k) / io::run_file::kMetadata); w > 0)
         walls.push_back(w);
   return walls.empty() ? 0.0 : core::median(walls);
 }

@@ -1,4 +1,5 @@
 #include "app/services/inspect_files.h"
+#include <toml++/toml.h>
 #include <unistd.h>
 #include "app/services/process.h"
 #include "core/error.h"
@@ -11,11 +12,25 @@
 
 namespace app {
 
-const core::Model& run_model(const io::Trajectory& t, const std::string& path) {
-  if (t.model()) return *t.model();
-  // Compiled again only to name what is wrong with it.
-  (void)core::compile(core::parse_scene(t.info().metadata, path + " (its metadata)"));
-  throw core::InputError(path + ": the trajectory's metadata holds no valid scene");
+void title_imported(ui::Inspector& insp, const io::Run& run) {
+  if (!run.imported()) return;
+  toml::table t;
+  try {
+    t = toml::parse(run.metadata_text());
+  } catch (const toml::parse_error&) {
+    return;
+  }
+  insp.overlay_data.title =
+      "imported: " +
+      std::filesystem::path(t["run"]["imported_from"].value_or(std::string())).filename().string() +
+      " (contacts: gap <= " + core::format_g(t["run"]["contact_tolerance"].value_or(0.0), 3) + " d)";
+}
+
+Look apply_look(ui::Inspector& insp, LookOptions looks, const io::Run& run) {
+  looks.inherit(run.metadata());
+  const Look look = looks.resolve(run.model());
+  insp.set_look(look.style, look.overlay, look.notes, look.species_colors);
+  return look;
 }
 
 namespace {

@@ -2,19 +2,19 @@
 // MP4 files.
 #pragma once
 
-#include "io/contacts.h"
-#include "io/trajectory.h"
+#include "app/services/looks.h"
+#include "io/run.h"
+#include "ui/inspector.h"
 #include "ui/sources.h"
 
 namespace app {
 
-// The run's scene as a trajectory's metadata holds it, compiled once by the reader; throws core::InputError
-// naming the file and what is wrong with the scene when it holds no valid one.
-const core::Model& run_model(const io::Trajectory& t, const std::string& path);
-
 class TrajectoryFrames : public ui::FrameSource {
  public:
-  // With the run's contacts (contacts.sscon), frames carry them: force chains and the solver's coordination.
+  // A run's trajectory, with its contacts when it kept them (recordings do): frames carry them, for force
+  // chains and the solver's coordination.
+  explicit TrajectoryFrames(const io::Run& run) : t_(run.trajectory()), contacts_(run.contacts()) {}
+  // A trajectory read already (the tests' synthetic ones).
   explicit TrajectoryFrames(const io::Trajectory& t, const io::Contacts* contacts = nullptr)
       : t_(t), contacts_(contacts) {}
   long size() const override { return t_.size(); }
@@ -35,6 +35,13 @@ class TrajectoryFrames : public ui::FrameSource {
   const io::Trajectory& t_;
   const io::Contacts* contacts_;
 };
+
+// An imported lab run (siloscope import) is named as such in the inspector's information box, not by the
+// geometry scene's r, chi and mu (which it was not made with).
+void title_imported(ui::Inspector& insp, const io::Run& run);
+// The look of a picture of `run`: the options given, the recording's own look for the rest, applied to the
+// inspector that draws it.
+Look apply_look(ui::Inspector& insp, LookOptions looks, const io::Run& run);
 
 class RecordFiles : public ui::ImageFiles {
  public:

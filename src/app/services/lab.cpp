@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "io/run.h"
 #include "render/camera.h"
 
 namespace app {
@@ -18,24 +19,19 @@ namespace app {
 namespace fs = std::filesystem;
 
 bool movie_calibration(const fs::path& input, Calibration& cal, core::Model& model, std::string& why) {
-  fs::path meta;
-  for (const fs::path& candidate :
-       {fs::path(input).replace_extension("") / "metadata.toml", input.parent_path() / "metadata.toml"})
-    if (fs::is_regular_file(candidate)) {
-      meta = candidate;
+  fs::path dir;
+  for (const fs::path& candidate : {fs::path(input).replace_extension(""), input.parent_path()})
+    if (fs::is_regular_file(candidate / io::run_file::kMetadata)) {
+      dir = candidate;
       break;
     }
-  if (meta.empty()) {
+  if (dir.empty()) {
     why = "no recording's metadata.toml beside it";
     return false;
   }
-  toml::table t;
-  try {
-    t = toml::parse_file(meta.string());
-  } catch (const toml::parse_error& e) {
-    why = meta.string() + " is not valid TOML";
-    return false;
-  }
+  const fs::path meta = dir / io::run_file::kMetadata;
+  const io::Run run = io::Run::open(dir, "detect");
+  const toml::table& t = run.metadata();
   const auto size = t["run"]["size"].value<std::string>();
   const auto camera = t["run"]["camera"].value<std::string>();
   const auto interval = t["run"]["frame_interval_s"].value<double>();
@@ -48,7 +44,7 @@ bool movie_calibration(const fs::path& input, Calibration& cal, core::Model& mod
     why = "its camera moves or its clock stops (a camera path, slow motion or freezes)";
     return false;
   }
-  model = core::compile(core::load_scene(meta.string()));
+  model = run.model();
   int w = 0, h = 0;
   render::parse_size(*size, "size", w, h);
   const render::CameraSpec spec = render::parse_camera(*camera);

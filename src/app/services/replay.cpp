@@ -3,34 +3,57 @@
 
 #include <cmath>
 
-#include "app/services/inspect_files.h"
+#include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "sim/silo.h"
 
 namespace app {
 
 namespace fs = std::filesystem;
 
-Replay::Replay(const std::string& run) {
-  fs::path p = run;
-  if (fs::is_directory(p)) p /= "trajectory.sstraj";
-  if (!fs::exists(p))
-    throw core::InputError("--compare-run " + run +
-                           ": no trajectory.sstraj (a recording, an imported run, or a run "
-                           "written with --trajectory-fps)");
-  traj_ = std::make_unique<io::Trajectory>(p);
-  model_ = &run_model(*traj_, p.string());
-  name_ = fs::absolute(fs::path(run)).lexically_normal().filename().string();
-  if (name_.empty() || name_ == "trajectory.sstraj")
-    name_ = fs::absolute(p).parent_path().filename().string();
-  imported_ = traj_->info().metadata.find("\nimported = true") != std::string::npos;
-}
+Replay::Replay(const std::string& run)
+    : run_(io::Run::open(run, "--compare-run " + run, io::Run::kTrajectory)) {}
 
 core::Frame Replay::at(double t) {
-  const long n = traj_->size();
-  while (k_ + 1 < n && traj_->time(k_ + 1) <= t + 1e-9) ++k_;
-  while (k_ > 0 && traj_->time(k_) > t + 1e-9) --k_;
-  return traj_->frame(k_);
+  const io::Trajectory& traj = run_.trajectory();
+  const long n = traj.size();
+  while (k_ + 1 < n && traj.time(k_ + 1) <= t + 1e-9) ++k_;
+  while (k_ > 0 && traj.time(k_) > t + 1e-9) --k_;
+  return traj.frame(k_);
+}
+
+void resimulate(const io::Run& run, double until, const FrameClock& clock, const std::vector<Sink*>& sinks,
+                const std::string& label) {
+  resimulate(
+      run, until, clock, [&](const sim::Silo&) { return sinks; }, label);
+}
+
+void resimulate(const io::Run& run, double until, const FrameClock& clock, const SinksFor& sinks_for,
+                const std::string& label) {
+  const core::Events& recorded = run.events();
+  const core::Model& model = run.model();
+  Session session({model});
+  const std::vector<Sink*> sinks = sinks_for(session.world(0));
+  Progress progress(label, until, true);
+  session.run(until, clock, sinks, {}, [&](double t) { progress.update(t); });
+  session.finish(sinks);
+  progress.finish();
+  const core::Events& again = session.world(0).events();
+  auto differs = [&](const std::string& what) {
+    return core::RuntimeFault("re-simulating " + run.dir().string() + " from its metadata did not give its " +
+                              what + " (a different build or physics?)");
+  };
+  const double t_end = session.world(0).time();
+  for (size_t k = 0; k < recorded.exits.size() && recorded.exits[k].t <= t_end + 0.5 * model.scene.dt; ++k)
+    if (k >= again.exits.size() || again.exits[k].id != recorded.exits[k].id ||
+        std::fabs(again.exits[k].t - recorded.exits[k].t) > 1e-6)
+      throw differs("exit " + std::to_string(k + 1) + " at t = " + core::format_g(recorded.exits[k].t, 6) +
+                    " s");
+  for (size_t k = 0; k < recorded.arches.size() && recorded.arches[k].t <= t_end + 0.5 * model.scene.dt; ++k)
+    if (k >= again.arches.size() || again.arches[k].ids != recorded.arches[k].ids)
+      throw differs("long-lasting arch " + std::to_string(k + 1) +
+                    " at t = " + core::format_g(recorded.arches[k].t, 6) + " s");
 }
 
 std::string container_difference(const core::Geometry& a, const core::Geometry& b) {

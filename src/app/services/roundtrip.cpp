@@ -12,9 +12,9 @@
 #include "app/services/lab.h"
 #include "core/arch.h"
 #include "core/error.h"
-#include "core/stats.h"
+#include "core/median.h"
 #include "io/output.h"
-#include "io/trajectory.h"
+#include "io/run.h"
 #include "lab/import.h"
 
 namespace app {
@@ -31,77 +31,40 @@ double quantile_of(std::vector<double> v, double q) {
 
 }  // namespace
 
-RoundTripRow round_trip(const fs::path& recording, double level, double drop, std::uint64_t seed,
-                        const fs::path& tracks_csv, double contact_tolerance, bool reuse_tracks) {
-  const io::Trajectory truth(recording / "trajectory.sstraj");
-  toml::table meta;
-  try {
-    meta = toml::parse_file((recording / "metadata.toml").string());
-  } catch (const toml::parse_error&) {
-    throw core::InputError((recording / "metadata.toml").string() + ": not valid TOML");
-  }
-  const auto movie_name = meta["run"]["movie"].value<std::string>();
-  if (!movie_name) throw core::InputError(recording.string() + ": not a recording (no [run] movie)");
-  const fs::path movie = recording.parent_path() / *movie_name;
+namespace {
+
+// What the round trip compares: the recording's truth, and the tracks and run the camera's picture of it
+// gave.
+struct Trip {
   Calibration cal;
   core::Model model;
-  std::string why;
-  if (!movie_calibration(movie, cal, model, why))
-    throw core::InputError(movie.string() + ": cannot serve as ground truth: " + why);
   int width = 0, height = 0;
-  {
-    vision::FrameSource probe(movie.string());
-    width = probe.width(), height = probe.height();
-  }
+  lab::Tracks tracks;
+  lab::Imported im;
+  // Per frame of the tracks: file id -> the true grain it was matched to.
+  std::vector<std::map<long, int>> truth_of;
+};
 
-  DetectJob job;
-  job.cal = cal;
-  for (const core::SpeciesDef& sp : model.setup.species)
-    job.detect.radius_px.push_back(sp.radius / cal.scale);
-  job.camera = [level, seed](const cv::Mat& clean, long k) {
-    return vision::add_camera(clean, level, seed * 1000003ULL + static_cast<std::uint64_t>(k));
-  };
-  job.drop = drop;
-  job.seed = seed;
-  DetectStats st;
-  if (!reuse_tracks || !fs::exists(tracks_csv)) {
-    vision::FrameSource source(movie.string());
-    io::write_file_atomic(tracks_csv, detect_tracks(source, job, model, st), false);
-  } else {
-    st.seconds = NAN;
-  }
-
-  lab::Units units;
-  units.scale = cal.scale;
-  units.origin_x = cal.origin_x;
-  units.origin_y = cal.origin_y;
-  const lab::Tracks tracks = lab::read_tracks(tracks_csv.string(), {}, units, model.setup, model.setup.geo);
-  lab::ImportOptions opt;
-  opt.contact_tolerance = contact_tolerance;
-  const lab::Imported im = lab::import_tracks(tracks, model, opt);
-
-  RoundTripRow row;
-  row.level = level;
-  row.drop = drop;
-  row.frames = static_cast<long>(tracks.frames.size());
-  row.detect_s_per_frame = st.seconds / std::max(1L, st.frames);
-  row.contact_tolerance = contact_tolerance;
-  row.frames_clogged = im.report.frames_clogged;
-  row.clogged_with_arch = im.report.frames_clogged_with_arch;
-  row.flowing_with_arch = im.report.frames_flowing_with_arch;
-
-  // Grains, frame by frame: each detection matched to the nearest true grain within half its radius.
+// Grains, frame by frame: each detection matched to the nearest true grain within half its radius; recall,
+// precision, position errors and id switches into `row`.
+void score_grains(const io::Trajectory& truth, Trip& trip, RoundTripRow& row) {
+  const lab::Tracks& tracks = trip.tracks;
+  const Calibration& cal = trip.cal;
   long tp = 0, fn = 0, fp = 0, grain_frames = 0;
   std::vector<double> errors;
   std::map<int, long> last_track;  // true grain -> the track it was last matched to
-  std::vector<std::map<long, int>> truth_of(tracks.frames.size());  // per frame: file id -> true grain
-  std::vector<core::Frame> gt_frames;
+  trip.truth_of.assign(tracks.frames.size(), {});
+  auto whole_in_view = [&](const core::Particle& p) {
+    const double px = cal.origin_x + p.x / cal.scale, py = cal.origin_y - p.y / cal.scale,
+                 r = p.radius / cal.scale;
+    return px - r >= 0 && px + r <= trip.width - 1 && py - r >= 0 && py + r <= trip.height - 1;
+  };
   for (size_t k = 0; k < tracks.frames.size(); ++k) {
     const long fk = tracks.frames[k].number;
     if (fk < 0 || fk >= truth.size()) continue;
     const core::Frame g = truth.frame(fk);
     row.arch_frames_true += g.clog_open && !g.arch.empty();
-    row.arch_frames_found += im.frames[k].clog_open && !im.frames[k].arch.empty();
+    row.arch_frames_found += trip.im.frames[k].clog_open && !trip.im.frames[k].arch.empty();
     const auto& found = tracks.frames[k].found;
     std::vector<std::pair<double, std::pair<size_t, int>>> pairs;
     for (size_t a = 0; a < found.size(); ++a)
@@ -115,31 +78,21 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
     for (const auto& [d, ab] : pairs) {
       if (det_used[ab.first] || true_used[static_cast<size_t>(ab.second)]) continue;
       det_used[ab.first] = true_used[static_cast<size_t>(ab.second)] = true;
-      truth_of[k][found[ab.first].id] = ab.second;
+      trip.truth_of[k][found[ab.first].id] = ab.second;
     }
-    auto whole_in_view = [&](const core::Particle& p) {
-      const double px = cal.origin_x + p.x / cal.scale, py = cal.origin_y - p.y / cal.scale,
-                   r = p.radius / cal.scale;
-      return px - r >= 0 && px + r <= width - 1 && py - r >= 0 && py + r <= height - 1;
-    };
-    for (size_t b = 0; b < g.particles.size(); ++b) {
-      if (!whole_in_view(g.particles[b])) continue;
-      if (true_used[b])
-        ++tp;
-      else
-        ++fn;
-    }
+    for (size_t b = 0; b < g.particles.size(); ++b)
+      if (whole_in_view(g.particles[b])) (true_used[b] ? tp : fn) += 1;
     for (size_t a = 0; a < found.size(); ++a)
       if (!det_used[a]) ++fp;
-    for (const auto& [id, b] : truth_of[k]) {
+    for (const auto& [id, b] : trip.truth_of[k]) {
       const core::Particle& p = g.particles[static_cast<size_t>(b)];
       for (const auto& f : found)
         if (f.id == id) errors.push_back(std::hypot(f.x - p.x, f.y - p.y) / (2 * p.radius));
       ++grain_frames;
       // A switch: the same grain under another id, from one frame to the next, without having left.
       auto it = last_track.find(b);
-      if (it != last_track.end() && it->second != id && k > 0 && truth_of[k - 1].count(it->second) &&
-          truth_of[k - 1].at(it->second) == b)
+      if (it != last_track.end() && it->second != id && k > 0 && trip.truth_of[k - 1].count(it->second) &&
+          trip.truth_of[k - 1].at(it->second) == b)
         ++row.id_switches;
       last_track[b] = id;
     }
@@ -150,14 +103,51 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
   row.error_p95_d = quantile_of(errors, 0.95);
   row.switches_per_1000 =
       grain_frames > 0 ? 1000.0 * static_cast<double>(row.id_switches) / grain_frames : NAN;
+}
 
-  // Clogs: each true clog matched to the found clog whose start is nearest, within 0.25 s.
+// The arch the import holds for found clog `best`, against the recording's arch at the same frame: member
+// recall and precision, descriptor errors.
+struct ArchScore {
+  long members_true = 0, members_found = 0, members_both = 0;
+  std::vector<double> span_err, rise_err, theta_err;
+};
+void score_arch(const io::Trajectory& truth, const Trip& trip, size_t best, ArchScore& sc,
+                RoundTripRow& row) {
+  for (const lab::ClogArch& a : trip.im.clog_arches) {
+    if (a.clog != static_cast<int>(best) + 1) continue;
+    size_t k = 0;
+    while (k + 1 < trip.im.frames.size() && trip.im.frames[k].t < a.t - 1e-9) ++k;
+    const core::Frame g = truth.frame(trip.tracks.frames[k].number);
+    if (g.arch.empty()) return;
+    std::set<int> truth_members(g.arch.begin(), g.arch.end()), found_members;
+    for (long track : a.track_ids) {
+      auto it = trip.truth_of[k].find(track);
+      if (it != trip.truth_of[k].end()) found_members.insert(it->second);
+    }
+    sc.members_true += static_cast<long>(truth_members.size());
+    sc.members_found += static_cast<long>(a.track_ids.size());
+    for (int m : found_members) sc.members_both += truth_members.count(m);
+    std::vector<core::Vec2> pos;
+    std::vector<double> radius;
+    for (const core::Particle& p : g.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
+    const core::ArchDescriptors dt = core::arch_descriptors(g.arch, pos, radius);
+    const double d = 2 * trip.model.setup.reference_radius;
+    sc.span_err.push_back(std::fabs(a.descriptors.span - dt.span) / d);
+    sc.rise_err.push_back(std::fabs(a.descriptors.rise - dt.rise) / d);
+    sc.theta_err.push_back(std::fabs(a.descriptors.theta_max_deg - dt.theta_max_deg));
+    ++row.arches_compared;
+    return;
+  }
+}
+
+// Clogs: each true clog matched to the found clog whose start is nearest, within 0.25 s, and its arch.
+void score_clogs(const io::Trajectory& truth, const Trip& trip, RoundTripRow& row) {
   const auto& tc = truth.events().clogs;
-  const auto& fc = im.events.clogs;
+  const auto& fc = trip.im.events.clogs;
   row.true_clogs = static_cast<long>(tc.size());
   row.found_clogs = static_cast<long>(fc.size());
-  std::vector<double> dstart, dend, span_err, rise_err, theta_err;
-  long members_true = 0, members_found = 0, members_both = 0;
+  std::vector<double> dstart, dend;
+  ArchScore sc;
   std::set<size_t> used;
   for (const core::ClogEvent& c : tc) {
     size_t best = fc.size();
@@ -170,41 +160,71 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
     ++row.matched_clogs;
     dstart.push_back(std::fabs(fc[best].start - c.start));
     dend.push_back(std::fabs(fc[best].end - c.end));
-    // Its arch, as the import holds it, against the recording's arch at the same frame.
-    for (const lab::ClogArch& a : im.clog_arches) {
-      if (a.clog != static_cast<int>(best) + 1) continue;
-      size_t k = 0;
-      while (k + 1 < im.frames.size() && im.frames[k].t < a.t - 1e-9) ++k;
-      const long fk = tracks.frames[k].number;
-      const core::Frame g = truth.frame(fk);
-      if (g.arch.empty()) break;
-      std::set<int> truth_members(g.arch.begin(), g.arch.end()), found_members;
-      for (long track : a.track_ids) {
-        auto it = truth_of[k].find(track);
-        if (it != truth_of[k].end()) found_members.insert(it->second);
-      }
-      members_true += static_cast<long>(truth_members.size());
-      members_found += static_cast<long>(a.track_ids.size());
-      for (int m : found_members) members_both += truth_members.count(m);
-      std::vector<core::Vec2> pos;
-      std::vector<double> radius;
-      for (const core::Particle& p : g.particles) pos.push_back({p.x, p.y}), radius.push_back(p.radius);
-      const core::ArchDescriptors dt = core::arch_descriptors(g.arch, pos, radius);
-      const double d = 2 * model.setup.reference_radius;
-      span_err.push_back(std::fabs(a.descriptors.span - dt.span) / d);
-      rise_err.push_back(std::fabs(a.descriptors.rise - dt.rise) / d);
-      theta_err.push_back(std::fabs(a.descriptors.theta_max_deg - dt.theta_max_deg));
-      ++row.arches_compared;
-      break;
-    }
+    score_arch(truth, trip, best, sc, row);
   }
   row.start_error_s = core::median(dstart);
   row.end_error_s = core::median(dend);
-  row.member_recall = members_true > 0 ? static_cast<double>(members_both) / members_true : NAN;
-  row.member_precision = members_found > 0 ? static_cast<double>(members_both) / members_found : NAN;
-  row.span_error_d = core::median(span_err);
-  row.rise_error_d = core::median(rise_err);
-  row.theta_error_deg = core::median(theta_err);
+  row.member_recall = sc.members_true > 0 ? static_cast<double>(sc.members_both) / sc.members_true : NAN;
+  row.member_precision = sc.members_found > 0 ? static_cast<double>(sc.members_both) / sc.members_found : NAN;
+  row.span_error_d = core::median(sc.span_err);
+  row.rise_error_d = core::median(sc.rise_err);
+  row.theta_error_deg = core::median(sc.theta_err);
+}
+
+}  // namespace
+
+RoundTripRow round_trip(const fs::path& recording, double level, double drop, std::uint64_t seed,
+                        const fs::path& tracks_csv, double contact_tolerance, bool reuse_tracks) {
+  const io::Run run = io::Run::open(recording, "bench roundtrip", io::Run::kTrajectory);
+  const io::Trajectory& truth = run.trajectory();
+  const auto movie_name = run.metadata()["run"]["movie"].value<std::string>();
+  if (!movie_name) throw core::InputError(recording.string() + ": not a recording (no [run] movie)");
+  const fs::path movie = recording.parent_path() / *movie_name;
+  Trip trip;
+  std::string why;
+  if (!movie_calibration(movie, trip.cal, trip.model, why))
+    throw core::InputError(movie.string() + ": cannot serve as ground truth: " + why);
+  {
+    vision::FrameSource probe(movie.string());
+    trip.width = probe.width(), trip.height = probe.height();
+  }
+  // The movie through the camera's noise and losses, detected, then imported.
+  DetectJob job;
+  job.cal = trip.cal;
+  for (const core::SpeciesDef& sp : trip.model.setup.species)
+    job.detect.radius_px.push_back(sp.radius / trip.cal.scale);
+  job.camera = [level, seed](const cv::Mat& clean, long k) {
+    return vision::add_camera(clean, level, seed * 1000003ULL + static_cast<std::uint64_t>(k));
+  };
+  job.drop = drop;
+  job.seed = seed;
+  DetectStats st;
+  if (!reuse_tracks || !fs::exists(tracks_csv)) {
+    vision::FrameSource source(movie.string());
+    io::write_file_atomic(tracks_csv, detect_tracks(source, job, trip.model, st), false);
+  } else {
+    st.seconds = NAN;
+  }
+  lab::Units units;
+  units.scale = trip.cal.scale;
+  units.origin_x = trip.cal.origin_x;
+  units.origin_y = trip.cal.origin_y;
+  trip.tracks = lab::read_tracks(tracks_csv.string(), {}, units, trip.model.setup, trip.model.setup.geo);
+  lab::ImportOptions opt;
+  opt.contact_tolerance = contact_tolerance;
+  trip.im = lab::import_tracks(trip.tracks, trip.model, opt);
+
+  RoundTripRow row;
+  row.level = level;
+  row.drop = drop;
+  row.frames = static_cast<long>(trip.tracks.frames.size());
+  row.detect_s_per_frame = st.seconds / std::max(1L, st.frames);
+  row.contact_tolerance = contact_tolerance;
+  row.frames_clogged = trip.im.report.frames_clogged;
+  row.clogged_with_arch = trip.im.report.frames_clogged_with_arch;
+  row.flowing_with_arch = trip.im.report.frames_flowing_with_arch;
+  score_grains(truth, trip, row);
+  score_clogs(truth, trip, row);
   return row;
 }
 

@@ -1,6 +1,7 @@
 // A run's outputs, written the same way by run and record: events, measurements, metadata, the trajectory's
 // header.
 #include "app/services/run_outputs.h"
+#include "io/run.h"
 
 #include "analysis/tidy.h"
 #include "core/arch.h"
@@ -73,7 +74,7 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
     info.facts.push_back({"arrest_skips", h.arrest_skips()});
     info.facts.push_back({"arrest_skipped_s", h.skipped_seconds()});
   }
-  io::write_file_atomic(dir / "metadata.toml", io::metadata_toml(h.model(), info));
+  io::write_file_atomic(dir / io::run_file::kMetadata, io::metadata_toml(h.model(), info));
   return m;
 }
 

@@ -5,6 +5,7 @@
 
 #include "app/services/session.h"
 #include "io/contacts.h"
+#include "io/run.h"
 #include "io/trajectory.h"
 #include "sim/silo.h"
 
@@ -16,7 +17,7 @@ class TrajectorySink : public Sink {
   // Beside the trajectory, contacts.sscon keeps each frame's contacts with their forces (io/contacts.h).
   TrajectorySink(const std::filesystem::path& path, const io::TrajectoryInfo& info, size_t world = 0)
       : writer_(path, info),
-        contacts_(path.parent_path() / "contacts.sscon", info.n_particles),
+        contacts_(path.parent_path() / io::run_file::kContacts, info.n_particles),
         world_(world) {}
   void frame(const FrameTick& t) override {
     const core::StepEvents& e = t.events[world_];

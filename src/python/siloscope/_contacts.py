@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from ._errors import SiloscopeError
+from ._native import checked
 from ._manifest import verify_listed
 from ._tables import regular_file
 
@@ -19,6 +20,10 @@ def read_contacts(path, n_particles=None):
         path = os.path.join(path, "contacts.sscon")
     regular_file(path, "contacts file")
     verify_listed(path)
+    # With the compiled module, read first as the binary reads it: bounded by the run's size and tied to the
+    # trajectory beside it (the grains it names must touch there).
+    if os.path.exists(os.path.join(os.path.dirname(path), "trajectory.sstraj")):
+        checked("check_contacts", os.path.dirname(path) or ".")
     raw = open(path, "rb").read()
     if len(raw) < 16 or raw[:8] != b"SILOCONT":
         raise SiloscopeError(f"{path}: not a siloscope contacts file (no SILOCONT header)")

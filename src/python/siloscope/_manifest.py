@@ -5,11 +5,12 @@ import os
 import tomllib
 
 from ._errors import SiloscopeError
+from ._native import checked, module_or_none
 
 MANIFEST = "manifest.toml"
 MAX_MANIFEST_BYTES = 16 << 20
-# FNV-1a is a byte-by-byte loop; in Python it costs about 0.3 s per MB. Files above this size (trajectories) are
-# checked by their size only here; `siloscope inspect` and `analyze` check their hash too.
+# FNV-1a is a byte-by-byte loop; in Python it costs about 0.3 s per MB. With the compiled module the binary's own
+# hash checks every file; without it, files above this size (trajectories) are checked by their size only here.
 HASH_LIMIT_BYTES = 4 << 20
 
 
@@ -20,6 +21,9 @@ def _fnv(h, data):
 
 
 def fnv1a64(path):
+    native = checked("file_hash", path)
+    if native is not None:
+        return native
     h = 0xCBF29CE484222325
     with open(path, "rb") as f:
         while chunk := f.read(1 << 16):
@@ -102,6 +106,6 @@ def _mismatch(path, name, size, digest):
     if actual != size:
         return (f"{name} is {actual} bytes where its manifest says {size}" +
                 (" (truncated?)" if actual < size else " (changed after siloscope wrote it)"))
-    if actual <= HASH_LIMIT_BYTES and fnv1a64(path) != digest:
+    if (actual <= HASH_LIMIT_BYTES or module_or_none() is not None) and fnv1a64(path) != digest:
         return f"{name} differs from what siloscope wrote (changed by hand?)"
     return ""

@@ -6,6 +6,7 @@ import subprocess
 import numpy as np
 
 from ._errors import SiloscopeError
+from ._native import checked
 from ._metadata import read_metadata, species_of
 from ._tables import read_table
 from ._trajectory import Trajectory
@@ -29,6 +30,8 @@ class Run:
         meta_path = os.path.join(path, "metadata.toml")
         if not os.path.isdir(path):
             raise SiloscopeError(f"{path}: not a directory (a run directory holds metadata.toml and exits.csv)")
+        # With the compiled module, the run is opened as the binary opens it: its whole manifest checked.
+        checked("check_run", path)
         self.metadata = read_metadata(meta_path)
         self.scene = self.metadata["scene"]
         self.species_names, _ = species_of(self.scene)

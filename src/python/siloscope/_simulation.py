@@ -11,33 +11,22 @@ between steps, and the keys that may change during a run set between them.
     >>> s.clog, s.arch                 # the open clog (None when flowing), the arch over the outlet now
     >>> s.set("outlet_open", False)    # keys that may change during a run: siloscope.Simulation.SETTABLE
 """
-import glob
-import importlib.util
 import numbers
 import os
 
 import numpy as np
 
 from ._errors import SiloscopeError
+from ._native import module_or_none
 
 
 def _module():
     """The compiled module: installed beside this file, else the one a build of this clone staged."""
-    try:
-        from . import _siloscope
-        return _siloscope
-    except ImportError:
-        pass
-    here = os.path.dirname(os.path.abspath(__file__))
-    staged = os.path.join(here, "..", "..", "..", "build", "share", "siloscope", "python", "siloscope")
-    found = sorted(glob.glob(os.path.join(staged, "_siloscope*.so")))
-    if not found:
+    m = module_or_none()
+    if m is None:
         raise SiloscopeError("siloscope.Simulation needs the compiled module _siloscope: build the project "
                              "(bash .ci/bootstrap) or install the package (pip install ./)")
-    spec = importlib.util.spec_from_file_location("siloscope._siloscope", found[0])
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return m
 
 
 def _toml(value):
