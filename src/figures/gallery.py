@@ -3,7 +3,9 @@
 their index.csv -> one PDF, SVG or PNG. Grains are drawn as circles and regular polygons, walls, bonds and
 halos as paths: the PDF and SVG are vector throughout (no bitmap), text stays text in the SVG.
 
-    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX] [FOOTER]
+    python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX] [FOOTER] [LOOK]
+
+LOOK: "background=dark;font_scale=2" (look.py), the run's look.
 """
 import math
 import os
@@ -13,12 +15,14 @@ import textwrap
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import siloscope  # noqa: E402  one reader of siloscope's files
 from siloscope._tables import read_table  # noqa: E402
+from look import Look  # noqa: E402
 
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.patches as mpatches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 plt.rcParams.update({"svg.hashsalt": "siloscope", "svg.fonttype": "none", "font.size": 8})
 
@@ -33,7 +37,7 @@ def colour(text):
     return tuple(v)
 
 
-def draw_tile(ax, table, window, height=None, width_in=TILE_IN):
+def draw_tile(ax, table, window, height=None, width_in=TILE_IN, look=None):
     """A draw list in its own frame: the window [-w/2, w/2] x [-h/2, h/2] in metres (h = w: a square tile),
     on axes about width_in inches wide."""
     half, half_h = 0.5 * window, 0.5 * (height if height else window)
@@ -44,7 +48,7 @@ def draw_tile(ax, table, window, height=None, width_in=TILE_IN):
     ax.set_yticks([])
     for side in ax.spines.values():
         side.set_linewidth(0.4)
-        side.set_color("#999999")
+        side.set_color(look.frame if look else "#999999")
     # Metres to points: the axes are TILE_IN wide (less a little) for `window` metres.
     pt_per_m = 0.92 * width_in * 72 / window
     clip = ax.patch
@@ -94,7 +98,9 @@ def label(k, r):
             f"{int(float(r['defects']))} defect{'s' if int(float(r['defects'])) != 1 else ''}")
 
 
-def main(tiles, out, title, version, columns=0, tile_px=480, footer=None):
+def main(tiles, out, title, version, columns=0, tile_px=480, footer=None, look_spec=""):
+    look = Look(look_spec)
+    look.apply(plt)
     try:
         rows = read_table(os.path.join(tiles, "index.csv"), ("tile", "t_s")).to_dict("records")
         tables = [read_table(os.path.join(tiles, r["tile"]), ("kind", "x", "y")) for r in rows]
@@ -107,25 +113,28 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None):
     width = TILE_IN * cols
     # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer; the sheet is as tall
     # as its tiles plus the lines of both, so neither runs into a tile.
-    chars = max(30, int(width * 72 / (9 * 0.55)))
+    chars = max(30, int(width * 72 / (look.size(9) * 0.55)))
     title_lines = textwrap.wrap(title, chars)
     footer = f"siloscope {version}; {footer}" if footer else (
         f"siloscope {version}; members ringed, bonds dark; the state one time step before the clog rule "
         f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
         f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
-    footer_lines = textwrap.wrap(footer, int(width * 72 / (6 * 0.55)))
-    title_in = len(title_lines) * 9 * 1.3 / 72 + 0.1
-    footer_in = len(footer_lines) * 6 * 1.3 / 72 + 0.1
-    height = (TILE_IN + 0.55) * nrows + title_in + footer_in
+    footer_lines = textwrap.wrap(footer, int(width * 72 / (look.size(6) * 0.55)))
+    title_in = len(title_lines) * look.size(9) * 1.3 / 72 + 0.1
+    footer_in = len(footer_lines) * look.size(6) * 1.3 / 72 + 0.1
+    height = (TILE_IN + 0.55 * look.font_scale) * nrows + title_in + footer_in
     fig, axes = plt.subplots(nrows, cols, figsize=(width, height), squeeze=False)
     for k, ax in enumerate(axes.flat):
         if k >= n:
             ax.axis("off")
             continue
-        draw_tile(ax, tables[k], float(rows[k]["window_m"]))
-        ax.set_title(label(k, rows[k]), fontsize=6.5)
-    fig.suptitle("\n".join(title_lines), fontsize=9)
-    fig.text(0.01, 0.003, "\n".join(footer_lines), ha="left", va="bottom", fontsize=6, color="#444444")
+        draw_tile(ax, tables[k], float(rows[k]["window_m"]), look=look)
+        # Each caption wrapped to its tile's width at the look's text size: neighbours never run together.
+        chars = max(12, int(TILE_IN * 72 / (look.size(6.5) * 0.55)))
+        text = "\n".join(w for line in label(k, rows[k]).split("\n") for w in textwrap.wrap(line, chars) or [""])
+        ax.set_title(text, fontsize=look.size(6.5))
+    fig.suptitle("\n".join(title_lines), fontsize=look.size(9))
+    fig.text(0.01, 0.003, "\n".join(footer_lines), ha="left", va="bottom", fontsize=look.size(6), color=look.muted)
     fig.tight_layout(rect=(0, footer_in / height, 1, 1 - title_in / height))
     # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
     tag = f"siloscope gallery {version}"
@@ -142,5 +151,7 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None):
 if __name__ == "__main__":
     if len(sys.argv) < 5:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0,
-         int(sys.argv[6]) if len(sys.argv) > 6 else 480, sys.argv[7] if len(sys.argv) > 7 else None)
+    guarded("gallery", lambda: main(
+        sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 0,
+        int(sys.argv[6]) if len(sys.argv) > 6 else 480, sys.argv[7] if len(sys.argv) > 7 and sys.argv[7] else None,
+        sys.argv[8] if len(sys.argv) > 8 else ""))

@@ -19,16 +19,20 @@ import gallery  # noqa: E402  the tile drawing, shared
 import matplotlib  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 
 def read_key(path):
-    key = {"background": "white", "info": [], "species": [], "arch": [], "colorbar": None, "scale": None}
+    key = {"background": "white", "font_scale": 1.0, "info": [], "species": [], "arch": [], "colorbar": None,
+           "scale": None}
     with open(path, encoding="utf-8") as f:
         for line in f.read().splitlines():
             parts = line.split("\t")
             kind = parts[0]
             if kind == "background" and len(parts) == 2:
                 key["background"] = parts[1]
+            elif kind == "font_scale" and len(parts) == 2:
+                key["font_scale"] = float(parts[1])
             elif kind == "info" and len(parts) == 2:
                 key["info"].append(parts[1])
             elif kind in ("species", "arch") and len(parts) == 3:
@@ -45,10 +49,11 @@ def read_key(path):
 
 def draw_key(fig, ax, side, key, width_m, height_m):
     ink = "#eeeeee" if key["background"] == "dark" else "#111111"
+    fs = key["font_scale"]
     side.axis("off")
     y = 1.0
     for text in key["info"]:
-        side.text(0.0, y, text, fontsize=7, color=ink, va="top", ha="left", transform=side.transAxes)
+        side.text(0.0, y, text, fontsize=7 * fs, color=ink, va="top", ha="left", transform=side.transAxes)
         y -= 0.04
     handles = [Line2D([], [], marker="o", linestyle="", markersize=7, markerfacecolor=c, markeredgecolor="#555555",
                       label=name) for name, c in key["species"]]
@@ -56,7 +61,7 @@ def draw_key(fig, ax, side, key, width_m, height_m):
                        markeredgewidth=2, label=name) for name, c in key["arch"]]
     if handles:
         legend = side.legend(handles=handles, loc="upper left", bbox_to_anchor=(0.0, y - 0.02), frameon=False,
-                             fontsize=7, labelcolor=ink)
+                             fontsize=7 * fs, labelcolor=ink)
         legend.set_in_layout(False)
         y -= 0.045 * len(handles) + 0.04
     if key["colorbar"]:
@@ -65,13 +70,19 @@ def draw_key(fig, ax, side, key, width_m, height_m):
         bar = fig.add_axes([pos.x0, pos.y0 + pos.height * max(0.05, y - 0.06), pos.width * 0.9, 0.025])
         cb = fig.colorbar(matplotlib.cm.ScalarMappable(norm=matplotlib.colors.Normalize(lo, hi), cmap=cmap),
                           cax=bar, orientation="horizontal")
-        cb.set_label(label, fontsize=7, color=ink)
-        cb.ax.tick_params(labelsize=6, colors=ink)
-    if key["scale"]:
-        d, text = key["scale"]
-        x0, y0 = -0.5 * width_m + 0.04 * width_m, -0.5 * height_m + 0.05 * height_m
-        ax.plot([x0, x0 + d], [y0, y0], color=ink, lw=2.5, solid_capstyle="butt")
-        ax.text(x0, y0 + 0.015 * height_m, text, fontsize=7, color=ink, va="bottom", ha="left")
+        cb.set_label(label, fontsize=7 * fs, color=ink)
+        cb.ax.tick_params(labelsize=6 * fs, colors=ink)
+    draw_scale(ax, key, width_m, height_m)
+
+
+def draw_scale(ax, key, width_m, height_m):
+    if not key["scale"]:
+        return
+    ink = "#eeeeee" if key["background"] == "dark" else "#111111"
+    d, text = key["scale"]
+    x0, y0 = -0.5 * width_m + 0.04 * width_m, -0.5 * height_m + 0.05 * height_m
+    ax.plot([x0, x0 + d], [y0, y0], color=ink, lw=2.5, solid_capstyle="butt")
+    ax.text(x0, y0 + 0.015 * height_m, text, fontsize=7 * key["font_scale"], color=ink, va="bottom", ha="left")
 
 
 def main(table, out, width_m, height_m, caption, version, key_path=None):
@@ -83,7 +94,8 @@ def main(table, out, width_m, height_m, caption, version, key_path=None):
     key = read_key(key_path) if key_path else None
     width_in = 7.0
     height_in = width_in * height_m / width_m + 0.5
-    if key:
+    side_panel = bool(key) and bool(key["info"] or key["species"] or key["arch"] or key["colorbar"])
+    if side_panel:
         fig, (ax, side) = plt.subplots(1, 2, figsize=(width_in + 2.4, height_in),
                                        gridspec_kw={"width_ratios": [width_in, 2.4]})
     else:
@@ -93,9 +105,11 @@ def main(table, out, width_m, height_m, caption, version, key_path=None):
     if dark:
         fig.patch.set_facecolor("#121217")
         ax.set_facecolor("#121217")
-    ax.set_title(caption, fontsize=8, color="#eeeeee" if dark else "black")
-    if key:
+    ax.set_title(caption, fontsize=8 * (key["font_scale"] if key else 1), color="#eeeeee" if dark else "black")
+    if side_panel:
         draw_key(fig, ax, side, key, width_m, height_m)
+    elif key:
+        draw_scale(ax, key, width_m, height_m)
     tag = f"siloscope snapshot {version}"
     meta = {"CreationDate": None, "ModDate": None, "Creator": tag} if out.endswith(".pdf") else \
         {"Date": None, "Creator": tag}
@@ -105,5 +119,5 @@ def main(table, out, width_m, height_m, caption, version, key_path=None):
 if __name__ == "__main__":
     if len(sys.argv) not in (7, 8):
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5], sys.argv[6],
-         sys.argv[7] if len(sys.argv) == 8 else None)
+    guarded("snapshot", lambda: main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5],
+                                     sys.argv[6], sys.argv[7] if len(sys.argv) == 8 else None))

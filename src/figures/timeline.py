@@ -4,15 +4,18 @@
 by itself, still standing at the run's end), axis ticks and labels, a legend and the run named; the command
 that made it in the footer. Vector in PDF and SVG, text kept as text.
 
-    python3 timeline.py RUN OUT FROM TO VERSION COMMAND [COLORS]      (called by `siloscope timeline`)
+    python3 timeline.py RUN OUT FROM TO VERSION COMMAND [COLORS] [LOOK]    (called by `siloscope timeline`)
 
 COLORS: each species' colour as #rrggbb, comma-separated, as the movies draw them (default: matplotlib's).
+LOOK: "background=dark;font_scale=2" (look.py), the run's look.
 """
 import os
 import sys
+import textwrap
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import siloscope  # noqa: E402  one reader of siloscope's files
+from look import Look  # noqa: E402
 
 import matplotlib  # noqa: E402
 
@@ -20,6 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 import numpy as np  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 ENDED = {"rule": ("#c0392b", "clog ended by the rule (arch removed)"),
          "vibration": ("#2e86c1", "clog broken by the drive"),
@@ -27,10 +31,12 @@ ENDED = {"rule": ("#c0392b", "clog ended by the rule (arch removed)"),
          "run_end": ("#7d3c98", "clogged at the run's end")}
 
 
-def main(run_dir, out, t0, t1, version, command, species_colors=""):
+def main(run_dir, out, t0, t1, version, command, species_colors="", look_spec=""):
     r = siloscope.read_run(run_dir)
+    look = Look(look_spec)
     plt.rcParams.update({"svg.fonttype": "none", "pdf.fonttype": 42, "font.size": 9})
-    fig, ax = plt.subplots(figsize=(8, 3.6))
+    look.apply(plt)
+    fig, ax = plt.subplots(figsize=(8 + 2.2 * look.font_scale, 3.6 + 0.6 * (look.font_scale - 1)))
     seen = set()
     for _, c in r.clogs.iterrows():
         a, b = max(float(c["start_s"]), t0), min(float(c["end_s"]), t1)
@@ -58,12 +64,15 @@ def main(run_dir, out, t0, t1, version, command, species_colors=""):
     ax.grid(alpha=0.3)
     handles, _labels = ax.get_legend_handles_labels()
     handles += [Patch(color=ENDED[e][0], alpha=0.25, label=ENDED[e][1]) for e in ENDED if e in seen]
-    ax.legend(handles=handles, fontsize=7, loc="upper left")
+    # Beside the axes, never on the data.
+    ax.legend(handles=handles, fontsize=look.size(7), loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              borderaxespad=0.0)
     sc = r.scene
     ax.set_title(f"{os.path.basename(os.path.abspath(run_dir))}: {len(r.clogs)} clogs, seed {sc['seed']}, "
-                 f"{sc['duration']:g} s", fontsize=9)
-    fig.text(0.01, 0.005, f"siloscope {version}: {command}", fontsize=6, color="#555555", ha="left", va="bottom")
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
+                 f"{sc['duration']:g} s", fontsize=look.size(9))
+    footer = "\n".join(textwrap.wrap(f"siloscope {version}: {command}", int(8 * 72 / (look.size(6) * 0.6))))
+    fig.text(0.01, 0.005, footer, fontsize=look.size(6), color=look.muted, ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.015 + 0.02 * look.font_scale * (footer.count("\n") + 1), 1, 1))
     tag = f"siloscope timeline {version}"  # lets `siloscope timeline --force` recognise its own figure
     meta = ({"CreationDate": None, "ModDate": None, "Creator": tag} if out.endswith(".pdf") else
             {"Date": None, "Creator": tag} if out.endswith(".svg") else {"Software": tag})
@@ -71,6 +80,7 @@ def main(run_dir, out, t0, t1, version, command, species_colors=""):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (7, 8):
+    if len(sys.argv) not in (7, 8, 9):
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5], sys.argv[6], *sys.argv[7:8])
+    guarded("timeline", lambda: main(sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5],
+                                     sys.argv[6], *sys.argv[7:9]))

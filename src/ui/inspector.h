@@ -8,6 +8,7 @@
 //   zoom to F                    the magnification on top of the camera (1: as the camera frames it)
 //   pan DX DY | pan to X Y       move the view by / to an offset from the camera's centre, metres
 //   color species|speed|force    palette paper|colorblind    overlay all|none|time,counts,...    arch on|off
+//   background white|dark        font-scale F (0.5-4)        species-color NAME=#rrggbb[,...]|scene
 //   snapshot FILE.png [WxH]      re-render the current view off-screen at any resolution (default 1920x1080)
 //   export FILE.mp4 FROM TO [WxH] [FPS]    frames FROM..TO as a movie
 //   export clog FILE.mp4 [WxH] [FPS]       the clog at or after this frame, 1 s before to 0.5 s after
@@ -88,6 +89,11 @@ class Inspector {
   void set_palette(render::Palette p, const std::string& name);
   void set_overlay(const std::string& spec);
   void show_arch(bool on);
+  // A whole look at once (the command line's, or a recording's own: app/services/looks.h): the style (its
+  // tracked grains kept), the overlay's elements, text size and placement, the notes and each species' colour
+  // (alpha 0: the scene's or palette's). Written into the session as the lines that make it.
+  void set_look(const render::Style& style, const render::OverlayOptions& overlay,
+                const std::vector<render::TimedNote>& notes, const std::vector<render::Rgba>& species_colors);
   // Follow the grains whose centres are in the box (m) in this frame, or the members of the arch where
   // `goto clog K` / `goto arch K` lands (found without moving).
   void track_region(double x0, double y0, double x1, double y1);
@@ -183,6 +189,8 @@ class Inspector {
   // The script's `color` and `track` commands (execute() hands them over with the line's words).
   void color_command(const std::vector<std::string>& a, const std::string& line);
   void track_command(const std::vector<std::string>& a);
+  void species_color_command(const std::vector<std::string>& a);
+  bool look_command(const std::vector<std::string>& a, const std::string& line);
   std::vector<std::string> history_;
   std::vector<std::string> recorded_;  // state_lines() as history_ last left it (sync_history)
   bool synced_tail_ = false;           // history_'s last line came from sync_history (it may be merged)

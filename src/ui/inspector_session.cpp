@@ -70,6 +70,14 @@ std::vector<std::string> Inspector::state_lines() const {
   lines.push_back(style.chains ? "chains " + num(style.chain_min) + ":" + num(style.chain_max)
                                : "chains off");
   lines.push_back("overlay " + overlay_spec(overlay));
+  lines.push_back(std::string("background ") + (style.dark ? "dark" : "white"));
+  lines.push_back("font-scale " + num(overlay.font_scale));
+  std::string colors;
+  for (size_t k = 0; k < overlay_data.species_colors.size() && k < overlay_data.species_names.size(); ++k)
+    if (overlay_data.species_colors[k].a > 0)
+      colors += (colors.empty() ? "" : ",") + overlay_data.species_names[k] + "=" +
+                render::hex_rgb(overlay_data.species_colors[k]);
+  lines.push_back("species-color " + (colors.empty() ? std::string("scene") : colors));
   std::string ids;
   for (int id : style.tracked) ids += (ids.empty() ? "" : ",") + std::to_string(id);
   lines.push_back("track " + (ids.empty() ? std::string("off") : ids));

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/stats.h"
+#include "core/median.h"
 #include "render/context.h"
 #include "render/painter.h"
 #include "render/target.h"
@@ -378,6 +378,8 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   Painter painter;
   LiveState st;
   st.edit = source.scene();
+  st.style = o.style;
+  st.overlay = o.overlay;
   st.overlay.place_clear = st.overlay.may_leave = true;
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {

@@ -18,6 +18,9 @@ struct WindowOptions {
   int frames = 0;          // > 0: close after this many frames (tests, screenshots)
   const ImageFiles* files = nullptr;  // where screenshots and snapshots go (none: they are refused)
   std::string source_name;            // the run or trajectory shown (a saved session names it)
+  // The live window's look (the inspector's is set on the Inspector): style and overlay elements.
+  render::Style style;
+  render::OverlayOptions overlay;
 };
 
 // Returns the median redraw time (ms) of frames where the shown frame changed, 0 if none.

@@ -122,7 +122,7 @@ app::RecordOptions options(const std::string& scene, const std::string& size, do
   o.scene.path = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/" + scene;
   o.scene.seed = 3;
   o.size = size;
-  o.overlay = "all+plot";
+  o.looks.overlay = "all+plot";
   o.looks.font_scale = font;
   o.quiet = true;
   return o;

@@ -30,6 +30,7 @@
 #include "io/events_csv.h"
 #include "io/metadata.h"
 #include "io/output.h"
+#include "io/run.h"
 #include "io/trajectory.h"
 #include "record/mp4.h"
 #include "render/camera.h"
@@ -201,7 +202,7 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
   const double per = 1e3 / std::max(1L, encoded);
   io::Facts facts = {{"movie", o.no_movie ? std::string() : movie_path.filename().string()},
                      {"frames", encoded},
-                     {"trajectory", "trajectory.sstraj"},
+                     {"trajectory", io::run_file::kTrajectory},
                      {"trajectory_bytes_per_frame",
                       io::TrajectoryWriter::frame_bytes(static_cast<std::uint32_t>(h.particle_count()))},
                      {"size", std::to_string(plan.video.width) + "x" + std::to_string(plan.video.height)},
@@ -217,17 +218,12 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
                      {"camera_path", o.camera_path},
                      {"freeze", o.freeze},
                      {"frozen_frames", frozen_frames},
-                     {"palette", o.palette},
-                     {"color", o.color},
                      {"color_scale_min", plan.style.color_min, 6},
                      {"color_scale_max", render::color_scale_max(plan.style), 6},
                      {"color_scale", plan.style.color == render::ColorMode::Displacement &&
                                              !(plan.style.displacement_max > 0)
                                          ? "each frame's largest"
                                          : "fixed"},
-                     {"colormap", o.colormap},
-                     {"displacement_from_s", o.displacement_from, 6},
-                     {"overlay", o.overlay},
                      {"crf", o.crf},
                      {"preset", o.preset},
                      {"png_every", o.png_every},
@@ -243,7 +239,7 @@ io::Facts recording_facts(const RecordOptions& o, const Plan& plan, const Panel&
                      {"ms_per_frame_convert", st.convert * per, 6},
                      {"ms_per_frame_encode", st.encode * per, 6},
                      {"ms_per_frame_png", st.png * per, 6}};
-  for (auto& f : o.looks.facts(plan.style)) facts.push_back(std::move(f));
+  for (auto& f : o.track.facts(plan.style)) facts.push_back(std::move(f));
   return facts;
 }
 
@@ -263,6 +259,9 @@ std::vector<analysis::Measurements> write_recording_outputs(
     io::RunInfo pinfo = info;
     pinfo.facts = recording_facts(o, plan, panels[k], h, st, encoded, slow_frames, frozen_frames, n_panels,
                                   was_interrupted, gl_renderer, wall, movie_path);
+    Look look = plan.look;
+    look.style.species_colors = look.species_colors = panels[k].odata.species_colors;
+    pinfo.look = o.looks.facts(look);
     ms.push_back(write_run_outputs(dir.file(panels[k].subdir), h, analysed, pinfo));
   }
   if (n_panels > 1) {
@@ -277,11 +276,37 @@ std::vector<analysis::Measurements> write_recording_outputs(
                    {"interrupted", was_interrupted},
                    {"simulated_s", session.world(0).time(), 6},
                    {"wall_s", wall, 6}};
-    io::write_file_atomic(dir.file("metadata.toml"),
+    io::write_file_atomic(dir.file(io::run_file::kMetadata),
                           "# a comparison movie: each panelK/ holds one panel's run\n" +
                               io::metadata_toml(panels.front().model, cinfo));
   }
   return ms;
+}
+
+// recordings/NAME, recordings/NAME.mp4 or recordings/NAME/: the recording's directory, NAME.
+fs::path recording_base(const std::string& out) {
+  fs::path base = out;
+  if (base.extension() == ".mp4") base.replace_extension();
+  if (base.filename().empty()) base = base.parent_path();  // recordings/NAME/ names NAME
+  if (base.filename().empty() || base.filename() == "." || base.filename() == "..")
+    throw core::InputError("--out " + out + ": expected recordings/NAME");
+  return base;
+}
+
+// What the pictures could not do as asked, said once at the end.
+void print_picture_notes(long covered, long encoded, long widened_freezes) {
+  if (covered > 0)
+    std::fprintf(
+        stderr,
+        "siloscope: in %ld of %ld pictures a box of the overlay found no clear space and covers part "
+        "of the container or its grains: a larger --size, a smaller --font-scale, fewer elements "
+        "(--overlay) or --overlay-at would give them room\n",
+        covered, encoded);
+  if (widened_freezes > 0)
+    std::fprintf(stderr,
+                 "siloscope: at %ld freeze%s the camera had part of the arch out of view: the held picture "
+                 "widens to show it whole\n",
+                 widened_freezes, widened_freezes == 1 ? "" : "s");
 }
 
 int record_movie(const RecordOptions& o) {
@@ -290,11 +315,7 @@ int record_movie(const RecordOptions& o) {
   const core::Scene& scene = panels.front().model.scene;
   const size_t n_panels = panels.size();
 
-  fs::path base = o.out;
-  if (base.extension() == ".mp4") base.replace_extension();
-  if (base.filename().empty()) base = base.parent_path();  // recordings/NAME/ names NAME
-  if (base.filename().empty() || base.filename() == "." || base.filename() == "..")
-    throw core::InputError("--out " + o.out + ": expected recordings/NAME");
+  const fs::path base = recording_base(o.out);
   fs::path movie_path = base;
   movie_path += ".mp4";
   // The directory's lock also guards NAME.mp4: one writer for both.
@@ -308,7 +329,6 @@ int record_movie(const RecordOptions& o) {
     if (!p.subdir.empty()) fs::create_directory(dir.file(p.subdir));
   io::RunInfo info;
   info.command = command_line();
-  install_interrupt_handler();
 
   // --- the back half: render and encode stages on threads of their own (app/pipeline.h) ---
   Stages st;
@@ -328,7 +348,7 @@ int record_movie(const RecordOptions& o) {
                          o.quiet);
 
   // --- the front half: one session steps every panel's world on one clock ---
-  Progress progress("record", scene.duration, !o.quiet);
+  Progress progress("record", scene.duration, !o.quiet, false);
   auto wall0 = Clock::now();
   bool completed = false;
   std::exception_ptr sim_error;
@@ -345,7 +365,7 @@ int record_movie(const RecordOptions& o) {
       const std::string meta =
           n_panels == 1 && !video.comment.empty() ? video.comment : io::metadata_toml(panels[k].model, info);
       trajectories.push_back(std::make_unique<TrajectorySink>(
-          dir.file(panels[k].subdir + "trajectory.sstraj"),
+          dir.file(panels[k].subdir + io::run_file::kTrajectory),
           trajectory_info(session->world(k), plan.clock.frame_interval, meta), k));
       sinks.push_back(trajectories.back().get());
     }
@@ -394,27 +414,14 @@ int record_movie(const RecordOptions& o) {
   if (!o.quiet)
     print_recording(o, st, encoded, movie->last_t, wall, was_interrupted, pipeline.gl_renderer(), panels,
                     *session, ms, movie_path, base);
-  if (!o.quiet && pipeline.covered_frames() > 0)
-    std::fprintf(
-        stderr,
-        "siloscope: in %ld of %ld pictures a box of the overlay found no clear space and covers part "
-        "of the container or its grains: a larger --size, a smaller --font-scale, fewer elements "
-        "(--overlay) or --overlay-at would give them room\n",
-        pipeline.covered_frames(), encoded);
-  if (!o.quiet && movie->widened_freezes > 0)
-    std::fprintf(stderr,
-                 "siloscope: at %ld freeze%s the camera had part of the arch out of view: the held picture "
-                 "widens to show it whole\n",
-                 movie->widened_freezes, movie->widened_freezes == 1 ? "" : "s");
+  if (!o.quiet) print_picture_notes(pipeline.covered_frames(), encoded, movie->widened_freezes);
   return was_interrupted ? 130 : 0;
 }
 }  // namespace
 
-void add_record_command(CLI::App& app, Action& action) {
+void define_record_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<RecordOptions>();
-  auto* cmd = app.add_subcommand("record",
-                                 "film a discharge: an MP4 movie, optional PNG frames, events and metadata");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   o->scene.add_to(*cmd);
   cmd->add_option("--out", o->out, "recordings/NAME: writes NAME.mp4 and the directory NAME/")->required();
   cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT in pixels (even for movies)")
@@ -450,31 +457,10 @@ void add_record_command(CLI::App& app, Action& action) {
       ->check(whole_number(0, 51))
       ->capture_default_str();
   cmd->add_option("--preset", o->preset, "x264 preset, ultrafast .. veryslow")->capture_default_str();
-  cmd->add_option("--palette", o->palette, "paper (red/blue) or colorblind (Okabe-Ito)")
-      ->capture_default_str();
-  cmd->add_option("--color", o->color,
-                  "colour grains by species, speed, force (summed contact force), displacement (since "
-                  "--displacement-from), coordination (contacts per grain) or id (distinct colours)")
-      ->capture_default_str();
-  cmd->add_option("--colormap", o->colormap, "viridis, magma, inferno or cividis (perceptually uniform)")
-      ->capture_default_str();
-  cmd->add_option("--displacement-from", o->displacement_from,
-                  "--color displacement: from where each grain stood at this time, s (0: the outlet opens)")
-      ->capture_default_str();
-  cmd->add_option(
-         "--overlay", o->overlay,
-         "all, all+plot, none, or a list of time,counts,rate,timer,arch,legend,scale,events,zoombox,plot,"
-         "colorbar,ids")
-      ->capture_default_str();
   o->looks.add_to(*cmd);
-  cmd->add_flag("--transparent", o->transparent, "transparent background in PNG frames");
+  o->track.add_to(*cmd);
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
-  cmd->add_option(
-      "--color-max", o->color_max,
-      "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts), or auto (speed and "
-      "force: the 99th percentile of the first 2 s of discharge; displacement: each frame's largest); "
-      "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts) the same in every movie, displacement auto");
   cmd->add_option("--panel-title", o->panel_titles,
                   "each panel's title, first in its information box, in order (repeatable, one per panel; "
                   "default: the --compare keys, the scene's name, or the run's)");

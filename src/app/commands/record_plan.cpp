@@ -101,9 +101,8 @@ std::vector<Panel> make_panels(const RecordOptions& o) {
   return panels;
 }
 
-Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
-  Plan plan;
-  const core::Scene& scene = panels.front().model.scene;
+// The video and its clock: size, rate, quality, speed and slow motion, checked.
+static void plan_video(const RecordOptions& o, const core::Scene& scene, Plan& plan) {
   record::VideoSettings& video = plan.video;
   render::parse_size(o.size, "--size", video.width, video.height);
   video.fps = o.fps;
@@ -123,12 +122,19 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     throw core::InputError("--png-every " + std::to_string(o.png_every) + ": must be >= 0");
   if (o.no_movie && o.png_every == 0)
     throw core::InputError("--no-movie without --png-every would record nothing");
-  plan.style.palette = for_flag("--palette", [&] { return render::parse_palette(o.palette); });
-  plan.style.color = for_flag("--color", [&] { return render::parse_color_mode(o.color); });
-  plan.style.transparent = o.transparent;
-  plan.overlay = for_flag("--overlay", [&] { return render::parse_overlay(o.overlay); });
+}
+
+Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
+  Plan plan;
+  record::VideoSettings& video = plan.video;
+  plan_video(o, panels.front().model.scene, plan);
+  // The look, checked and resolved once (app/services/looks.h).
+  plan.look = o.looks.resolve(panels.front().model);
+  plan.style = plan.look.style;
+  plan.overlay = plan.look.overlay;
+  plan.notes = plan.look.notes;
   const core::Setup& setup = panels.front().model.setup;
-  o.looks.apply(setup.n_total, o.transparent, plan.style, plan.overlay);
+  o.track.apply(setup.n_total, plan.style);
   // The information box goes to the corner of each panel that covers the least of the container and its
   // grains (below the outlet in the default split view), as in the windows; it stays there unless another
   // corner is strictly clearer. With the discharge plot on request, the plot takes the free space below the
@@ -149,22 +155,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
       throw core::InputError(
           "--freeze rule: the scene's clog rule is off (clog_timeout = 0); use clog:SECONDS");
   }
-  plan.style.colormap = for_flag("--colormap", [&] { return render::parse_colormap(o.colormap); });
-  if (!(o.displacement_from >= 0) || o.displacement_from > 1e6)
-    throw core::InputError("--displacement-from " + num6(o.displacement_from) +
-                           ": allowed range is 0 to 1e6 s");
-  if (o.displacement_from > 0 && plan.style.color != render::ColorMode::Displacement)
-    throw core::InputError("--displacement-from applies to --color displacement, not " + o.color);
-  plan.style.displacement_from = o.displacement_from;
-  const bool look_ahead = o.color_max == "auto" && (plan.style.color == render::ColorMode::Speed ||
-                                                    plan.style.color == render::ColorMode::Force);
-  if (!o.color_max.empty() && !look_ahead) {
-    try {
-      render::set_color_range(plan.style, o.color_max);
-    } catch (const core::InputError& e) {
-      throw core::InputError("--color-max " + o.color_max + ": " + e.what());
-    }
-  }
+  const bool look_ahead = plan.look.color_scale_from_data;
   double top = 0;
   // Panels side by side, equal widths, the same camera (and so the same scales) in each.
   const size_t n_panels = panels.size();
@@ -173,7 +164,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     Panel& p = panels[k];
     p.geo = p.model.setup.geo;
     p.odata = render::overlay_data_for(p.model);
-    o.looks.color_species(p.odata);
+    p.odata.species_colors = o.looks.resolve(p.model).species_colors;
     if (n_panels > 1) {
       p.odata.title = p.replay ? p.label : p.label + "  |  " + p.odata.title;
       p.odata.panel_x = static_cast<int>(k) * panel_w;
@@ -243,8 +234,8 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   }
   if (top > 0)
     (plan.style.color == render::ColorMode::Speed ? plan.style.speed_max : plan.style.force_max) = top;
-  plan.notes = o.looks.notes();
-  o.looks.resolve_tags(panels.front().model, plan.style, o.quiet);
+  o.track.resolve_tags(panels.front().model, plan.style, o.quiet);
+  plan.look.style = plan.style;  // with the scale the look-ahead found and the grains followed
   return plan;
 }
 

@@ -23,21 +23,18 @@ namespace app {
 
 struct RecordOptions {
   SceneOptions scene;
-  std::string out, size = "1920x1080", camera = "split", palette = "paper", color = "species",
-                   overlay = "all";
+  std::string out, size = "1920x1080", camera = "split";
   int fps = 30, crf = 20, png_every = 0;
   double speed = 1.0, slowmo = 1.0;
-  std::string color_max;  // the colour scale: MAX or MIN:MAX; "": the fixed default; "auto"
-  std::string colormap = "viridis";
   std::string camera_path;                          // key frames T:CAMERA,... (render/camera.h)
   std::string freeze;                               // EVENT:SECONDS, EVENT clog or rule
-  double displacement_from = 0;                     // s: --color displacement measures from here
   std::vector<std::string> compare, compare_scene;  // comparison panels: key=value[,...] sets, or scene files
   std::string compare_run;                // a recorded or imported run played back beside the simulation
   std::vector<std::string> panel_titles;  // --panel-title: each panel's title, in order (default: its label)
   std::string preset = "veryfast";
-  LookOptions looks;  // background, text size, force chains, tracked grains
-  bool transparent = false, no_movie = false, force = false, quiet = false;
+  LookOptions looks;   // how every picture looks (app/services/looks.h)
+  TrackOptions track;  // grains followed
+  bool no_movie = false, force = false, quiet = false;
 };
 
 // One scene of a recording: a single movie has one panel; `--compare` movies have 2 to 4 side by side.
@@ -61,6 +58,9 @@ std::vector<Panel> make_panels(const RecordOptions& o);
 struct Plan {
   record::VideoSettings video;
   FrameClock clock;
+  // The look resolved for the first panel's scene (each panel has its species' colours): its style, overlay
+  // options and notes.
+  Look look;
   render::Style style;
   render::OverlayOptions overlay;
   render::CameraPath path;               // a camera move (empty: the camera stands)

@@ -22,7 +22,13 @@ class LiveSilo final : public ui::LiveSource {
   void advance(double seconds) override;
   core::Frame frame(bool forces) const override;
   const core::Geometry& geometry() const override;
-  render::OverlayData overlay_data() const override { return render::overlay_data_for(model_); }
+  render::OverlayData overlay_data() const override {
+    render::OverlayData d = render::overlay_data_for(model_);
+    for (size_t k = 0; k < species_colors.size() && k < d.species_colors.size(); ++k)
+      if (species_colors[k].a > 0) d.species_colors[k] = species_colors[k];
+    return d;
+  }
+  std::vector<render::Rgba> species_colors;  // the look's (--species-color), by species index
   const core::Scene& scene() const override { return model_.scene; }
   // The keys worth changing live: the paper's shorthand (r, chi, mu, the kick), or a scene's drive, outlet,
   // obstacle, tilt and each species' dipole.

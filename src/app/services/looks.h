@@ -1,12 +1,20 @@
-// How a recording looks, beyond palette and colouring: the background, the text size, force chains and
-// tracked grains. Their command-line options, parsed and checked once, applied to the renderer's style and
-// the overlay's options (record; anything else that records pictures can take the same options).
+// One look for every picture: how grains, walls, text and marks are drawn (palette, species colours, the
+// colouring and its scale, background, text size, overlay elements and where they go, notes, the arch's
+// halo, force chains). One set of options, parsed and checked here, taken by every command that draws:
+// record, frame, filmstrip, gallery, timeline, inspect and live. A recording keeps its look in its
+// metadata's [look] table, and a picture made from it (frame, filmstrip, gallery, timeline, inspect) uses
+// that look for every option the command line does not give.
+//
+// Following grains (--track and its kin) is record's alone: it simulates ahead (TrackOptions).
 #pragma once
 
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <toml++/toml.h>
 
 #include "core/model.h"
 #include "core/scene.h"
@@ -16,36 +24,69 @@
 
 namespace app {
 
+// A look resolved for one scene: what the renderer, the overlay and the figure scripts take.
+struct Look {
+  render::Style style;
+  render::OverlayOptions overlay;
+  std::vector<render::TimedNote> notes;
+  // Each species' colour by index (alpha 0: the palette's), for the overlay's legend and the figures.
+  std::vector<render::Rgba> species_colors;
+  // --color-max auto on speed or force: the scale comes from simulating ahead (record), or, for a picture of
+  // a recording, from the scale the recording used.
+  bool color_scale_from_data = false;
+  // "#rrggbb" of each species in this look, comma-separated (figure scripts).
+  std::string species_hex(const core::Model& model) const;
+  // What the figure scripts take of it (src/figures/look.py): "background=dark;font_scale=2".
+  std::string figure_spec() const;
+};
+
 struct LookOptions {
+  std::string palette = "paper", color = "species", colormap = "viridis", overlay = "all";
+  std::string color_max;  // "": each colouring's fixed scale; MAX, MIN:MAX, or auto
+  double displacement_from = 0;
   std::string background = "white";  // white | dark
-  std::string overlay_at = "auto";   // where the boxes go: auto, a corner, or ELEMENT=CORNER,... (render)
   double font_scale = 1.0;
-  std::string chains;              // "": off; "MIN" or "MIN:MAX" in N
-  std::string chain_colormap;      // "": render::chain_colormap's choice; else viridis|magma|inferno|cividis
-  std::string arch_halo = "on";    // on | off: the gold halo and bonds of the blocking arch
-  std::vector<std::string> track;  // grain ids to follow
+  std::string overlay_at = "auto";         // auto, a corner, or ELEMENT=CORNER,... (render::parse_placement)
+  std::string chains;                      // "": off; "MIN" or "MIN:MAX" in N
+  std::string chain_colormap;              // "": render::chain_colormap's choice
+  std::string arch_halo = "on";            // on | off
+  bool transparent = false;                // PNG frames without a background
+  std::vector<std::string> annotate;       // "T0:T1:X,Y:TEXT"
+  std::vector<std::string> species_color;  // "NAME=#rrggbb"
+
+  // Registers every look option on `cmd`, the same way for every command.
+  void add_to(CLI::App& cmd);
+  // The options not given on the command line take the values of a recording's [look] table (`metadata`:
+  // its metadata.toml; a metadata without one, written before looks were kept, leaves the defaults).
+  void inherit(const toml::table& metadata);
+  // Checked (throws core::InputError naming the option, the value and what is allowed) and resolved for a
+  // scene.
+  Look resolve(const core::Model& model) const;
+  // The [look] table a recording keeps: the options as they take effect (a scale from the data as the
+  // numbers it used).
+  io::Facts facts(const Look& look) const;
+
+ private:
+  std::vector<std::pair<std::string, CLI::Option*>> options_;  // key in [look], the option
+  bool given(const std::string& key) const;
+};
+
+// record's grains to follow: a ring and a trail.
+struct TrackOptions {
+  std::vector<std::string> track;  // grain ids
   std::string track_region;        // "X0,Y0,X1,Y1@T": the grains whose centres are in this box at T s
   int track_arch = 0;              // K >= 1: the members of the K-th long-lasting arch (the rule removed)
   int track_clog = 0;              // K >= 1: the members of the arch standing as the K-th clog forms
   double trail_s = 2.0;
-  std::vector<std::string> annotate;       // "T0:T1:X,Y:TEXT": a note with an arrow, shown from T0 to T1 s
-  std::vector<std::string> species_color;  // "NAME=#rrggbb": a species' colour (the shorthand's too)
 
   void add_to(CLI::App& cmd);
-  // Checked against a scene of n_grains grains (the tracked ids) and --transparent; throws core::InputError
-  // naming the option.
-  void apply(int n_grains, bool transparent, render::Style& style, render::OverlayOptions& overlay) const;
-  // What the metadata records of them, from the style they were applied to.
+  // The ids and the trail, checked against a scene of n_grains grains; throws core::InputError naming the
+  // option.
+  void apply(int n_grains, render::Style& style) const;
   io::Facts facts(const render::Style& style) const;
   // Grains tagged by region or by role, found by simulating the scene ahead from the same seed (a run is
   // repeatable, so the recording shows these grains doing what the look-ahead saw); added to style.tracked.
-  // Call after apply (which checks the options' form) and after every other check: it costs a simulation.
   void resolve_tags(const core::Model& model, render::Style& style, bool quiet) const;
-  // --species-color applied to a panel's overlay data (its species' colours, which the painter uses); throws
-  // core::InputError naming the option, the species the scene has and the colour's form.
-  void color_species(render::OverlayData& d) const;
-  // The notes of --annotate, parsed (throws core::InputError naming the note).
-  std::vector<render::TimedNote> notes() const;
 };
 
 }  // namespace app
