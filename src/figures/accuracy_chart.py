@@ -23,6 +23,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 
 def read(path):
@@ -98,4 +99,4 @@ def main(src, out):
 if __name__ == "__main__":
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    guarded("accuracy_chart", lambda: main(sys.argv[1], sys.argv[2]))

@@ -6,12 +6,14 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import siloscope  # noqa: E402
 from siloscope._gsd import write_gsd  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
+
+
+def main():
+    t = siloscope.read_trajectory(sys.argv[1])
+    write_gsd(t, sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), tuple(float(v) for v in sys.argv[5:9]))
+
 
 if len(sys.argv) != 9:
     sys.exit(__doc__)
-try:
-    t = siloscope.read_trajectory(sys.argv[1])
-    write_gsd(t, sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), tuple(float(v) for v in sys.argv[5:9]))
-except siloscope.SiloscopeError as e:
-    print(f"siloscope: {e}", file=sys.stderr)
-    sys.exit(2)
+guarded("export_gsd", main)

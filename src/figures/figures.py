@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
 """Figures like the paper's (Carlevaro et al., Granular Matter 24, 2022) from the tidy CSV of `siloscope analyze`.
+Over 400 lines because every figure of a campaign is drawn here from the same tables and style: the paper's
+(Q~ against r and mu, chi_eff, survival, avalanches) and those of scenes of one's own.
 
     python3 figures.py ANALYSIS_DIR OUT_DIR
 
@@ -18,6 +20,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 200, "font.size": 10, "axes.grid": True,
                      "grid.alpha": 0.3, "svg.hashsalt": "siloscope", "legend.fontsize": 8})
@@ -152,6 +155,50 @@ def main(src, out):
         sys.exit(2)
 
 
+def chi_eff_figure(points, mixed, chi0, r4, out):
+    """Q~ versus chi_eff (magnetic) beside Q~ versus chi (non-magnetic), at r near 0.4."""
+    if not any(p["size_ratio"] == r4 and p["mu"] == 0 and 0 < p["chi"] for p in points if abs(p["chi"] - chi0) > 1e-9):
+        print(f"note qtilde_vs_chi_eff: no other non-magnetic chi at r = {r4:g}, the chi curve has one point")
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    nonmag = [p for p in points if p["size_ratio"] == r4 and p["mu"] == 0 and p["chi"] > 0]
+    xs, ys, es = series(nonmag, "chi", "q_tilde_per_s", "q_tilde_per_s_ci95")
+    ax.errorbar(xs, ys, yerr=es, marker="s", capsize=3, color=COLORS[0], label=r"non-magnetic, versus $\chi$")
+    mag = [p for p in mixed if p["size_ratio"] == r4 and p["mu"] > 0]
+    xs, ys, es = series(mag, "chi_eff", "q_tilde_per_s", "q_tilde_per_s_ci95")
+    ax.errorbar(xs, ys, yerr=es, marker="o", ls="none", capsize=3, color=COLORS[1], label=r"magnetic, versus $\chi_{eff}$")
+    ax.set_xlabel(r"$\chi$ or $\chi_{eff}$")
+    ax.set_ylabel(r"$\tilde Q$ [1/s]")
+    ax.set_title(f"r = {r4:g}")
+    ax.legend()
+    save(fig, out, "qtilde_vs_chi_eff")
+
+
+def avalanche_figure(points, mixed, ratios, sizes, chi0, out):
+    """Mean avalanche size versus r, one curve per dipole strength, the pure system as a band."""
+    if "avalanche_mean" not in points[0]:
+        print("skipped avalanche_size_vs_r: points.csv has no avalanche_mean (analyzed by an older siloscope)")
+        return
+    if len(sizes) < 2:
+        print(f"skipped avalanche_size_vs_r: the grid has one size ratio at chi = {chi0:g}")
+        return
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    for i, fr in enumerate(ratios):
+        xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio",
+                            "avalanche_mean", "avalanche_mean_ci95")
+        label = "non-magnetic" if fr == 0 else f"$F_{{dip}}/W_a$ = {fr:g}"
+        ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=COLORS[i % len(COLORS)], label=label)
+    for p in points:
+        if p["chi"] == 0 and finite(p.get("avalanche_mean")):
+            h = p["avalanche_mean_ci95"] if finite(p.get("avalanche_mean_ci95")) else 0.0
+            ax.axhspan(p["avalanche_mean"] - h, p["avalanche_mean"] + h, color="k", alpha=0.12, lw=0)
+            ax.axhline(p["avalanche_mean"], color="k", lw=0.8, ls="--", label="pure")
+    ax.set_xlabel(r"size ratio $r = r_a / r_o$")
+    ax.set_ylabel(r"mean avalanche size $\langle s \rangle$ [disks]")
+    ax.set_title(rf"$\chi$ = {chi0:g}")
+    ax.legend()
+    save(fig, out, "avalanche_size_vs_r")
+
+
 def draw(campaign, src, out):
     os.makedirs(out, exist_ok=True)
     points = records(campaign.points)
@@ -230,21 +277,7 @@ def draw(campaign, src, out):
         ax.legend()
         save(fig, out, name)
 
-    # Q~ versus chi_eff (magnetic) beside Q~ versus chi (non-magnetic), at r near 0.4.
-    if not any(p["size_ratio"] == r4 and p["mu"] == 0 and 0 < p["chi"] for p in points if abs(p["chi"] - chi0) > 1e-9):
-        print(f"note qtilde_vs_chi_eff: no other non-magnetic chi at r = {r4:g}, the chi curve has one point")
-    fig, ax = plt.subplots(figsize=(5, 3.6))
-    nonmag = [p for p in points if p["size_ratio"] == r4 and p["mu"] == 0 and p["chi"] > 0]
-    xs, ys, es = series(nonmag, "chi", "q_tilde_per_s", "q_tilde_per_s_ci95")
-    ax.errorbar(xs, ys, yerr=es, marker="s", capsize=3, color=COLORS[0], label=r"non-magnetic, versus $\chi$")
-    mag = [p for p in mixed if p["size_ratio"] == r4 and p["mu"] > 0]
-    xs, ys, es = series(mag, "chi_eff", "q_tilde_per_s", "q_tilde_per_s_ci95")
-    ax.errorbar(xs, ys, yerr=es, marker="o", ls="none", capsize=3, color=COLORS[1], label=r"magnetic, versus $\chi_{eff}$")
-    ax.set_xlabel(r"$\chi$ or $\chi_{eff}$")
-    ax.set_ylabel(r"$\tilde Q$ [1/s]")
-    ax.set_title(f"r = {r4:g}")
-    ax.legend()
-    save(fig, out, "qtilde_vs_chi_eff")
+    chi_eff_figure(points, mixed, chi0, r4, out)
 
     # Survival of the gaps between original exits, and of the avalanche sizes: one panel per size ratio.
     for name, x, xlabel, ylabel, logx in (
@@ -255,29 +288,7 @@ def draw(campaign, src, out):
             continue
         distribution_panels(records(tables[name]), chi0, x, xlabel, ylabel, logx, out, name)
 
-    # Mean avalanche size versus r, one curve per dipole strength, the pure system as a band.
-    if "avalanche_mean" not in points[0]:
-        print("skipped avalanche_size_vs_r: points.csv has no avalanche_mean (analyzed by an older siloscope)")
-        return
-    if len(sizes) < 2:
-        print(f"skipped avalanche_size_vs_r: the grid has one size ratio at chi = {chi0:g}")
-        return
-    fig, ax = plt.subplots(figsize=(5, 3.6))
-    for i, fr in enumerate(ratios):
-        xs, ys, es = series([p for p in mixed if abs(p["dipole_force_ratio"] - fr) < 1e-6], "size_ratio",
-                            "avalanche_mean", "avalanche_mean_ci95")
-        label = "non-magnetic" if fr == 0 else f"$F_{{dip}}/W_a$ = {fr:g}"
-        ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, color=COLORS[i % len(COLORS)], label=label)
-    for p in points:
-        if p["chi"] == 0 and finite(p.get("avalanche_mean")):
-            h = p["avalanche_mean_ci95"] if finite(p.get("avalanche_mean_ci95")) else 0.0
-            ax.axhspan(p["avalanche_mean"] - h, p["avalanche_mean"] + h, color="k", alpha=0.12, lw=0)
-            ax.axhline(p["avalanche_mean"], color="k", lw=0.8, ls="--", label="pure")
-    ax.set_xlabel(r"size ratio $r = r_a / r_o$")
-    ax.set_ylabel(r"mean avalanche size $\langle s \rangle$ [disks]")
-    ax.set_title(rf"$\chi$ = {chi0:g}")
-    ax.legend()
-    save(fig, out, "avalanche_size_vs_r")
+    avalanche_figure(points, mixed, ratios, sizes, chi0, out)
 
 
 def scene_figures(campaign, points, keys, out):
@@ -316,7 +327,9 @@ def scene_figures(campaign, points, keys, out):
                                None) for p in ps]
                     if any(v is None for v in sp):
                         continue
-                    ax.errorbar(xs, [v["q_per_s"] for v in sp], yerr=[v["q_per_s_ci95"] for v in sp], marker=".",
+                    # One realization per point has no interval (NaN): drawn without a bar, as above.
+                    err = [v["q_per_s_ci95"] if finite(v.get("q_per_s_ci95")) else 0.0 for v in sp]
+                    ax.errorbar(xs, [v["q_per_s"] for v in sp], yerr=err, marker=".",
                                 ls=":", capsize=2, color=COLORS[(i + j + 1) % len(COLORS)], label=f"{name}")
         ax.set_xlabel(x if x and all(isinstance(p[x], float) for p in points) else "point")
         ax.set_ylabel(ylabel)
@@ -395,4 +408,4 @@ def distribution_panels(rows, chi0, x, xlabel, ylabel, logx, out, name):
 if __name__ == "__main__":
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    guarded("figures", lambda: main(sys.argv[1], sys.argv[2]))

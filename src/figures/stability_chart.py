@@ -15,6 +15,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from guard import guarded  # noqa: E402  one line, never a traceback
 
 STYLE = {"accepted-clean": ("#009E73", "o"), "refused-breaks": ("#D55E00", "X"),
          "refused-runs-clean": ("#E69F00", "s"), "ACCEPTED-BREAKS": ("#000000", "*")}
@@ -53,4 +54,4 @@ def main(src, out):
 if __name__ == "__main__":
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    guarded("stability_chart", lambda: main(sys.argv[1], sys.argv[2]))

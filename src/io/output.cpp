@@ -1,3 +1,7 @@
+// Outputs that appear whole or not at all, and never over what a user made (io/output.h): ownership checks of
+// every kind of output, the single-file records, locks, leftovers of dead writers, output directories.
+// Over 400 lines because every command's outputs pass through these same few rules, kept together so that no
+// writer decides them alone.
 #include "io/output.h"
 #include "core/format.h"
 
@@ -17,6 +21,7 @@
 #include <toml++/toml.h>
 
 #include "core/error.h"
+#include "io/manifest.h"
 
 namespace io {
 
@@ -43,7 +48,7 @@ bool file_contains(const fs::path& p, const std::string& needle, size_t within) 
 // figures) or a sweep's campaign.toml beside its scenes/.
 bool siloscope_directory(const fs::path& d) {
   std::error_code ec;
-  const fs::path meta = d / "metadata.toml";
+  const fs::path meta = d / kMetadataFile;
   if (fs::is_regular_file(meta, ec) && file_contains(meta, "\n[siloscope]\n", 4096)) return true;
   return fs::is_regular_file(d / "campaign.toml", ec) && fs::is_directory(d / "scenes", ec);
 }
@@ -134,7 +139,17 @@ std::string foreign_directory(const fs::path& d, DirKind kind) {
   if (m.kind != dir_kind_name(kind))
     return std::string("siloscope's ") + m.kind + " output, not " + core::with_article(dir_kind_name(kind)) +
            " one (--force replaces only an output of the same kind)";
-  const std::string why = manifest_mismatch(d, m);
+  // Files siloscope made there later (a frame or timeline of the run saved into it) are its own, with their
+  // records: no user's addition, so --force replaces them with the rest.
+  const std::string why = manifest_mismatch(d, m, true, [&](const std::string& name) {
+    const fs::path p = d / name;
+    const std::string file = p.filename().string();
+    if (file.size() > 11 && file[0] == '.' && file.compare(file.size() - 10, 10, ".siloscope") == 0) {
+      const fs::path of = p.parent_path() / file.substr(1, file.size() - 11);
+      return fs::exists(of) && changed_since_written(of).empty();
+    }
+    return changed_since_written(p).empty();
+  });
   if (!why.empty()) return "siloscope's " + m.kind + " output, but " + why;
   return "";
 }
@@ -297,6 +312,29 @@ void remove_dead_leftovers(const fs::path& final_path, const std::vector<std::st
   }
 }
 
+namespace {
+// The movie an output's metadata names ([run] movie = "NAME.mp4", beside the directory).
+std::string movie_of(const fs::path& dir) {
+  try {
+    const toml::table t = toml::parse_file((dir / kMetadataFile).string());
+    return t["run"]["movie"].value_or(std::string());
+  } catch (const toml::parse_error&) {
+    return "";
+  }
+}
+}  // namespace
+
+void remove_orphan_movie(const fs::path& old_dir, const fs::path& new_dir) {
+  const std::string movie = movie_of(old_dir);
+  if (movie.empty() || movie.find('/') != std::string::npos || movie == movie_of(new_dir)) return;
+  const fs::path p = new_dir.parent_path() / movie;
+  std::error_code ec;
+  // Only a movie as siloscope wrote it (its record matches) goes: a user's re-encoding or edit stays.
+  if (!fs::is_regular_file(fs::symlink_status(p, ec)) || !changed_since_written(p).empty()) return;
+  fs::remove(p, ec);
+  fs::remove(output_record_path(p), ec);
+}
+
 OutputDir::OutputDir(const std::string& final_path, bool force, DirKind kind)
     : final_(output_path(final_path)), kind_(kind), force_(force) {
   std::error_code ec;
@@ -359,7 +397,38 @@ void OutputDir::commit() {
                                           : "; the old output is back in place"));
   }
   committed_ = true;
-  if (!old.empty()) fs::remove_all(old, ec);
+  if (!old.empty()) {
+    remove_orphan_movie(old, final_);
+    fs::remove_all(old, ec);
+  }
+}
+
+void place_output(const fs::path& partial, const fs::path& final_path) {
+  // The record first, of the finished contents under the final name: a record that cannot be written (a full
+  // disk) leaves no output that --force could never replace.
+  std::error_code ec;
+  const auto size = fs::file_size(partial, ec);
+  if (ec) throw core::RuntimeFault("cannot read back " + partial.string() + ": " + ec.message());
+  write_file_atomic(output_record_path(final_path),
+                    "# siloscope wrote " + final_path.filename().string() +
+                        "; --force replaces it only while it still has this size and hash\nfile = \"" +
+                        final_path.filename().string() + "\"\nsize = " + std::to_string(size) +
+                        "\nhash = \"" + file_hash(partial) + "\"\n",
+                    false);
+  rename_into_place(partial, final_path);
+}
+
+void write_output(const fs::path& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += ".partial-" + std::to_string(::getpid());
+  write_file_atomic(tmp, text, false);
+  try {
+    place_output(tmp, path);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
 }
 
 void rename_into_place(const fs::path& from, const fs::path& to) {

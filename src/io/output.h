@@ -108,6 +108,15 @@ class OutputDir {
 // failure (a full disk, no permission), leaving no temporary file behind.
 void write_file_atomic(const fs::path& path, const std::string& text, bool sync = true);
 
+// A single-file output finished under a temporary name put in place: its record (record_output) written first
+// from the finished contents, then the rename. Throws core::RuntimeFault (the caller removes `partial`).
+void place_output(const fs::path& partial, const fs::path& final_path);
+// `text` written as a single-file output at `path`, with its record, whole or not at all.
+void write_output(const fs::path& path, const std::string& text);
+// An output directory replaced by --force: the movie the old one named beside it (NAME.mp4, as siloscope
+// wrote it) goes too when the new one does not name it, so no stale movie outlives its run.
+void remove_orphan_movie(const fs::path& old_dir, const fs::path& new_dir);
+
 // Rename `from` onto `to` (same filesystem), replacing `to`; throws core::RuntimeFault naming both.
 void rename_into_place(const fs::path& from, const fs::path& to);
 

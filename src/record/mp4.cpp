@@ -181,8 +181,7 @@ void Mp4Writer::finish() {
   check(avio_closep(&m.oc->pb), "closing the movie file");
   m.encode_s += std::chrono::duration<double>(Clock::now() - t0).count();
   m.release();
-  io::rename_into_place(m.partial_path, m.final_path);
-  io::record_output(m.final_path);  // what --force may replace later (io/output.h)
+  io::place_output(m.partial_path, m.final_path);
   m.finished = true;
 }
 

@@ -61,7 +61,7 @@ int figures(const FiguresOptions& o) {
                      std::string("version = ") + core::toml_string(io::version_string()) + "\n" +
                      "command = " + core::toml_string(command_line()) +
                      "\n\n[run]\nsource = " + core::toml_string(fs::absolute(src).string()) + "\n";
-  io::write_file_atomic(dir.file("metadata.toml"), meta);
+  io::write_file_atomic(dir.file(io::kMetadataFile), meta);
   dir.commit();
   std::printf("figures in %s\n", out.c_str());
   return 0;
@@ -123,10 +123,8 @@ int claims(const ClaimsOptions& o) {
                         "# The paper's seven claims against siloscope's results");
   io::check_destination(table, o.force, "claims table (CSV)", io::OutputKind::Csv,
                         analysis::claims::kCsvHeader);
-  io::write_file_atomic(table, analysis::claims::csv(presets));
-  io::record_output(table);
-  io::write_file_atomic(out, analysis::claims::markdown(presets, io::version_string()));
-  io::record_output(out);
+  io::write_output(table, analysis::claims::csv(presets));
+  io::write_output(out, analysis::claims::markdown(presets, io::version_string()));
   for (const auto& p : presets) std::printf("%s\n", analysis::claims::summary_line(p).c_str());
   std::printf("claims per comparison in %s\n", table.c_str());
   std::printf("claims table in %s\n", out.c_str());
@@ -134,11 +132,9 @@ int claims(const ClaimsOptions& o) {
 }
 }  // namespace
 
-void add_claims_command(CLI::App& app, Action& action) {
+void define_claims_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<ClaimsOptions>();
-  auto* cmd =
-      app.add_subcommand("claims", "the paper's seven claims against campaign results: a verdict table");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("results", o->results,
                   "LABEL=RESULTS (a campaign's results or analysis directory), one per preset")
       ->required();
@@ -151,10 +147,9 @@ void add_claims_command(CLI::App& app, Action& action) {
   cmd->callback([o, &action] { action = [o] { return claims(*o); }; });
 }
 
-void add_figures_command(CLI::App& app, Action& action) {
+void define_figures_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<FiguresOptions>();
-  auto* cmd = app.add_subcommand("figures", "the paper's figures (PNG, SVG, PDF) from a campaign's tidy CSV");
-  cmd->set_version_flag("--version", io::version_string());
+  CLI::App* cmd = &command;
   cmd->add_option("dir", o->dir, "a sweep's results directory, or an analysis directory (points.csv)")
       ->required();
   cmd->add_option("--out", o->out, "output directory (default: next to the analysis, figures/)");
