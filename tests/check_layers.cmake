@@ -19,8 +19,8 @@ forbid(analysis "box2d|GL/|glad|imgui|libav|sim/|render/|record/" "a library or 
 forbid(app "box2d" "Box2D (it stays inside sim)")
 # Inside app: commands use services, never the other way round.
 forbid(app/services "app/commands" "a command (services serve the commands, not the other way)")
-# lab reads positions: the clog rules of sim/clog.h and nothing of Box2D, GL or the pictures.
-forbid(lab "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/silo|render/|record/|ui/" "Box2D, GL or the pictures")
+# lab reads positions: the clog rules of core/clog.h and nothing of Box2D, GL or the pictures.
+forbid(lab "box2d|GL/|glad|imgui|libav|libsw|stb_|sim/|render/|record/|ui/" "the simulation, Box2D, GL or the pictures")
 # vision sees pictures only: OpenCV and core, nothing of the simulation, the renderer or the files.
 forbid(vision "box2d|GL/|glad|imgui|libsw|stb_|sim/|render/|record/|ui/|io/|lab/" "an upper layer or Box2D")
 forbid(io "box2d|sim/|render/|record/" "Box2D or an upper layer")

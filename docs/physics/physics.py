@@ -24,6 +24,8 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "python"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import siloscope  # noqa: E402
+from siloscope.stats import bootstrap, bootstrap_ratio, kaplan_meier, tail_fit, wilson  # noqa: E402
+from siloscope.stats import mean_ci95 as ci95  # noqa: E402  the package's estimators (one place per language)
 
 plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 150, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
 RNG = np.random.default_rng(2025)
@@ -34,28 +36,6 @@ def runs_of(results):
     """Every finished realization under RESULTS/runs, read (events and metadata)."""
     dirs = sorted(os.path.dirname(p) for p in glob.glob(os.path.join(results, "runs", "p*", "r*", "metadata.toml")))
     return [siloscope.read_run(d) for d in dirs]
-
-
-def ci95(samples):
-    a = np.asarray([x for x in samples if math.isfinite(x)], dtype=float)
-    if len(a) < 2:
-        return float(a.mean()) if len(a) else math.nan, math.nan, len(a)
-    from statistics import NormalDist  # noqa: F401  (t quantile below)
-    t = {2: 12.71, 3: 4.30, 4: 3.18, 5: 2.78, 6: 2.57, 7: 2.45, 8: 2.36, 9: 2.31, 10: 2.26, 11: 2.23, 12: 2.20,
-         13: 2.18, 14: 2.16, 15: 2.14, 16: 2.13, 20: 2.09, 30: 2.05}
-    n = len(a)
-    tq = t.get(n, 1.96 + 2.4 / n)
-    return float(a.mean()), float(tq * a.std(ddof=1) / math.sqrt(n)), n
-
-
-def wilson(k, n, z=1.96):
-    """95% Wilson score interval of a proportion k/n."""
-    if n == 0:
-        return math.nan, math.nan
-    p = k / n
-    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def mean_square_radius(scene):
@@ -162,19 +142,12 @@ def pooled_mean(runs):
 
 
 def boot_ratio(a, b, stat, k=2000):
-    """95% percentile interval of stat(a) / stat(b), resampling the realizations of a and b independently."""
-    out = []
-    for _ in range(k):
-        ra = a.iloc[RNG.integers(0, len(a), len(a))]
-        rb = b.iloc[RNG.integers(0, len(b), len(b))]
-        out.append(stat(ra) / stat(rb))
-    # A resample without a single avalanche has no mean: left out (none in the committed obstacle campaign).
-    return tuple(np.nanquantile(out, [0.025, 0.975]))
+    """95% percentile interval of stat(a) / stat(b) over resampled realizations (the package's bootstrap)."""
+    return bootstrap_ratio(stat, a, b, RNG, k)
 
 
 def boot_stat(a, stat, k=2000):
-    out = [stat(a.iloc[RNG.integers(0, len(a), len(a))]) for _ in range(k)]
-    return tuple(np.nanquantile(out, [0.025, 0.975]))
+    return bootstrap(stat, a, RNG, k)
 
 
 def avalanche_table(campaign):
@@ -420,46 +393,6 @@ def harmonic(results, out, lines):
               "to the end of the run; from Gamma = 1 on almost every clog breaks within seconds, faster the "
               "stronger the drive (the survival curves move left as Gamma grows)."]
     lines += ["", "![Harmonic drive](figures/harmonic.png)", ""]
-
-
-def kaplan_meier(t, observed):
-    """Kaplan-Meier survival of durations t (observed: 1 ended, 0 censored): (times, S just after each)."""
-    order = np.argsort(t, kind="stable")
-    t, observed = np.asarray(t, float)[order], np.asarray(observed, int)[order]
-    times, surv, s, at_risk = [], [], 1.0, len(t)
-    for u in np.unique(t):
-        here = t == u
-        d = int(observed[here].sum())
-        if d:
-            s *= 1 - d / at_risk
-            times.append(u)
-            surv.append(s)
-        at_risk -= int(here.sum())
-    return np.asarray(times), np.asarray(surv)
-
-
-def tail_fit(t, observed, tmin):
-    """Right-censored maximum likelihood of the tail t >= tmin: a power law P(T > t) = (t / tmin)^(1 - alpha)
-    against a shifted exponential exp(-lambda (t - tmin)). Returns alpha, lambda, the log-likelihood ratio R
-    (power law minus exponential, > 0 favours the power law), Vuong's p-value for its sign, the tail's size and
-    its ended (uncensored) count."""
-    t, observed = np.asarray(t, float), np.asarray(observed, int)
-    keep = t >= tmin
-    t, observed = t[keep], observed[keep]
-    d = int(observed.sum())
-    if d < 2:
-        return math.nan, math.nan, math.nan, math.nan, len(t), d
-    logs = np.log(t / tmin)
-    a = d / logs.sum()
-    lam = d / (t - tmin).sum()
-    ll_pl = np.where(observed == 1, math.log(a) - math.log(tmin) - (a + 1) * logs, -a * logs)
-    ll_ex = np.where(observed == 1, math.log(lam) - lam * (t - tmin), -lam * (t - tmin))
-    diff = ll_pl - ll_ex
-    r = float(diff.sum())
-    sd = float(diff.std(ddof=1)) if len(diff) > 1 else math.nan
-    from statistics import NormalDist
-    p = 2 * (1 - NormalDist().cdf(abs(r) / (math.sqrt(len(diff)) * sd))) if sd > 0 else math.nan
-    return 1 + a, lam, r, p, len(t), d
 
 
 def choose_tmin(t, observed):

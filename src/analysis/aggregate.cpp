@@ -1,3 +1,6 @@
+// Runs aggregated into points (analysis/aggregate.h): grouping by scene, each measurement's mean and 95%
+// interval, pooled survival and avalanche tables, and the CSV they are written as. Over 400 lines because
+// each table is a few lines of grouping and a few of writing, and they share the grouping.
 #include "analysis/aggregate.h"
 #include "core/format.h"
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/stats.h"
+#include "core/median.h"
 
 namespace analysis {
 

@@ -1,11 +1,11 @@
-#include "sim/clog.h"
+#include "core/clog.h"
 
 #include "core/arch.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace sim {
+namespace core {
 
 void ClogTracker::open(core::StepEvents& out) {
   state_.open = true;
@@ -93,4 +93,4 @@ void ClogTracker::finish(double t, core::StepEvents& out) {
   state_.open = false;
 }
 
-}  // namespace sim
+}  // namespace core

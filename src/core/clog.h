@@ -9,7 +9,7 @@
 #include "core/events.h"
 #include "core/frame.h"
 
-namespace sim {
+namespace core {
 
 class ClogTracker {
  public:
@@ -66,4 +66,4 @@ class ClogTracker {
   std::vector<core::ClogEvent> clogs_;
 };
 
-}  // namespace sim
+}  // namespace core

@@ -1,6 +1,6 @@
 // What happened, as the simulation's step reports it: the one source every picture, file and window reads
 // (the movie's slow motion, freezes and captions, the look-aheads, the trajectory, the inspector). Nothing
-// outside sim::ClogTracker decides when a clog opens, which arch blocks it, or when the rule is due.
+// outside core::ClogTracker decides when a clog opens, which arch blocks it, or when the rule is due.
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// Small sample statistics shared by every layer (analysis, benchmarks and the windows' redraw timing).
+// The median of a sample, shared by every layer (analysis, benchmarks, the importer and the windows' redraw
+// timing); the statistics of results (means, intervals, survival) are analysis/stats.h.
 #pragma once
 
 #include <algorithm>

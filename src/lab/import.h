@@ -12,7 +12,8 @@
 //  - Contacts: two grains touch when the gap between them is at most `contact_tolerance` times the smaller
 //    diameter (the literature's rule for images: no forces are measured), and a grain touches a wall or the
 //    obstacle within the same gap.
-//  - Clogs and arches: the simulation's own rules (sim::ClogTracker): a clog opens when no grain has left for
+//  - Clogs and arches: the simulation's own rules (core::ClogTracker): a clog opens when no grain has left
+//  for
 //    clog_min_gap; its arch is the blocking fewest-grains path across the outlet (core::find_arch) found at
 //    each frame; it is arrested when the grains around the outlet moved less than arrest_shift radii over
 //    arrest_hold (at least one frame); there is no rule (nothing removes an arch in a lab), so a clog ends at

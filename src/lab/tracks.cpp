@@ -102,124 +102,162 @@ void parse_origin(const std::string& text, double& x, double& y) {
     throw core::InputError("--origin '" + text + "': expected X,Y (the outlet centre's pixel, e.g. 640,700)");
 }
 
+namespace {
+
+// The columns of a track file, checked and named once; then each row read into a Detection.
+class RowReader {
+ public:
+  RowReader(const io::CsvTable& t, const std::string& path, const ColumnMap& map, const Units& units,
+            const core::Setup& setup, const core::Geometry& geo, Tracks& out)
+      : t_(t), path_(path), units_(units), setup_(setup), geo_(geo), names_(setup.species_names()) {
+    for (const Role& r : roles()) {
+      col_[r.key] = find_column(t, map, r);
+      if (!col_[r.key].empty()) out.columns_used.push_back(std::string(r.key) + "=" + col_[r.key]);
+    }
+    need("id");
+    need("x");
+    need("y");
+    if (col_["time"].empty() && col_["frame"].empty())
+      throw core::InputError(path +
+                             ": no column for the time (looked for t, time, t_s, or frame numbers in frame; "
+                             "name one with --columns time=COLUMN or frame=COLUMN)");
+    by_frame_ = col_["time"].empty();
+    if (by_frame_ && !(units.fps > 0))
+      throw core::InputError(path + ": the file numbers frames (column " + col_["frame"] +
+                             ") and has no times: give the frame rate with --fps (frames per second, > 0)");
+    out.has_radius = has_radius_ = !col_["radius"].empty() || !col_["diameter"].empty();
+    out.has_angle = has_angle_ = !col_["angle"].empty();
+    out.has_species = has_species_ = !col_["species"].empty();
+    scale_ = units.scale > 0 ? units.scale : 1.0;
+    ysign_ = units.scale > 0 && !units.y_up ? -1.0 : 1.0;
+  }
+
+  // Row `row`: the detection, its time and its frame number (-1 without one).
+  Detection read(size_t row, double& time, long& number) {
+    Detection d{};
+    d.line = static_cast<long>(row + 2);
+    const double idv = finite(row, col_["id"]);
+    if (idv != std::floor(idv) || std::fabs(idv) > 9e15)
+      throw core::InputError(line_of(row) + ": column " + col_["id"] + " is '" + t_.text(row, col_["id"]) +
+                             "', not a whole number (particle ids are integers)");
+    d.id = static_cast<long>(idv);
+    number = -1;
+    if (!col_["frame"].empty()) {
+      const double f = finite(row, col_["frame"]);
+      if (f != std::floor(f) || f < 0)
+        throw core::InputError(line_of(row) + ": column " + col_["frame"] + " is '" +
+                               t_.text(row, col_["frame"]) + "', not a frame number (a whole number >= 0)");
+      number = static_cast<long>(f);
+    }
+    time = by_frame_ ? static_cast<double>(number) / units_.fps : finite(row, col_["time"]);
+    d.x = (finite(row, col_["x"]) - units_.origin_x) * scale_;
+    d.y = ysign_ * (finite(row, col_["y"]) - units_.origin_y) * scale_;
+    d.species = has_species_ ? species(row) : 0;
+    size(row, d);
+    d.angle = has_angle_ ? finite(row, col_["angle"]) : 0.0;
+    check_inside(row, d);
+    return d;
+  }
+
+ private:
+  const io::CsvTable& t_;
+  const std::string& path_;
+  const Units& units_;
+  const core::Setup& setup_;
+  const core::Geometry& geo_;
+  const std::vector<std::string> names_;
+  std::map<std::string, std::string> col_;
+  bool by_frame_ = false, has_radius_ = false, has_angle_ = false, has_species_ = false;
+  double scale_ = 1, ysign_ = 1;
+
+  void need(const char* key) {
+    if (!col_[key].empty()) return;
+    for (const Role& r : roles())
+      if (r.key == std::string(key))
+        throw core::InputError(path_ + ": no column for " + key + " (looked for " + looked_for(r) +
+                               "; name it with --columns " + key + "=COLUMN)");
+  }
+  std::string line_of(size_t row) const { return path_ + ":" + std::to_string(row + 2); }
+  double finite(size_t row, const std::string& c) const {
+    const double v = t_.num(row, c);
+    if (!std::isfinite(v))
+      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_.text(row, c) +
+                             "', not a finite number");
+    return v;
+  }
+
+  // Species: a name of the scene's or its index.
+  int species(size_t row) {
+    const int n_species = static_cast<int>(setup_.species.size());
+    const std::string& s = t_.text(row, col_["species"]);
+    auto it = std::find(names_.begin(), names_.end(), s);
+    if (it != names_.end()) return static_cast<int>(it - names_.begin());
+    char* end = nullptr;
+    const long k = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || *end != '\0' || k < 0 || k >= n_species) {
+      std::string list;
+      for (const auto& n : names_) list += (list.empty() ? "" : ", ") + n;
+      throw core::InputError(line_of(row) + ": column " + col_["species"] + " is '" + s +
+                             "': not a species of the geometry scene (" + list + ", or 0 to " +
+                             std::to_string(n_species - 1) + ")");
+    }
+    return static_cast<int>(k);
+  }
+
+  // The grain's radius from a radius or diameter column (without a species column, the species whose mean
+  // radius is nearest); the species' radius without one.
+  void size(size_t row, Detection& d) {
+    const int n_species = static_cast<int>(setup_.species.size());
+    if (!has_radius_) {
+      d.r = setup_.species[static_cast<size_t>(d.species)].radius;
+      return;
+    }
+    const bool diameter = col_["radius"].empty();
+    const std::string& c = diameter ? col_["diameter"] : col_["radius"];
+    const double v = finite(row, c) * scale_ * (diameter ? 0.5 : 1.0);
+    if (!(v > 0))
+      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_.text(row, c) +
+                             "': a grain's size must be > 0");
+    d.r = v;
+    if (has_species_ || n_species <= 1) return;
+    double best = INFINITY;
+    for (int k = 0; k < n_species; ++k) {
+      const double e = std::fabs(std::log(v / setup_.species[static_cast<size_t>(k)].radius));
+      if (e < best) best = e, d.species = k;
+    }
+  }
+
+  // Inside the container, or below the outlet where grains fall: a centre beyond a wall or above the top by
+  // more than a diameter is a calibration error, not a grain.
+  void check_inside(size_t row, const Detection& d) const {
+    const core::Vec2 p{d.x, d.y};
+    const double slack = 2 * d.r;
+    const bool outside = d.y > geo_.total_height + slack || d.x < geo_.x_left - slack ||
+                         d.x > geo_.x_right + slack || (d.y >= slack && geo_.side_clearance(p, 0) < -slack);
+    if (outside)
+      throw core::InputError(line_of(row) + ": particle " + std::to_string(d.id) + " at (" +
+                             core::format_g(d.x, 4) + ", " + core::format_g(d.y, 4) +
+                             ") m lies outside the container (x from " + core::format_g(geo_.x_left, 4) +
+                             " to " + core::format_g(geo_.x_right, 4) + " m, y up to " +
+                             core::format_g(geo_.total_height, 4) +
+                             " m, the outlet's centre at 0, 0): check --scale, --origin and --y-up");
+  }
+};
+
+}  // namespace
+
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo) {
   const io::CsvTable t = io::CsvTable::read(path, "tracked particles");
   Tracks out;
   out.source = path;
   out.rows = static_cast<long>(t.rows());
-  std::map<std::string, std::string> col;
-  for (const Role& r : roles()) {
-    col[r.key] = find_column(t, map, r);
-    if (!col[r.key].empty()) out.columns_used.push_back(std::string(r.key) + "=" + col[r.key]);
-  }
-  auto need = [&](const char* key, const std::string& extra) {
-    if (!col[key].empty()) return;
-    for (const Role& r : roles())
-      if (r.key == std::string(key))
-        throw core::InputError(path + ": no column for " + key + " (looked for " + looked_for(r) +
-                               "; name it with --columns " + key + "=COLUMN" + extra + ")");
-  };
-  need("id", "");
-  need("x", "");
-  need("y", "");
-  if (col["time"].empty() && col["frame"].empty())
-    throw core::InputError(path +
-                           ": no column for the time (looked for t, time, t_s, or frame numbers in frame; "
-                           "name one with --columns time=COLUMN or frame=COLUMN)");
-  const bool by_frame = col["time"].empty();
-  if (by_frame && !(units.fps > 0))
-    throw core::InputError(path + ": the file numbers frames (column " + col["frame"] +
-                           ") and has no times: give the frame rate with --fps (frames per second, > 0)");
-  out.has_radius = !col["radius"].empty() || !col["diameter"].empty();
-  out.has_angle = !col["angle"].empty();
-  out.has_species = !col["species"].empty();
-
-  const double scale = units.scale > 0 ? units.scale : 1.0;
-  const double ysign = units.scale > 0 && !units.y_up ? -1.0 : 1.0;
-  const int n_species = static_cast<int>(setup.species.size());
-  const std::vector<std::string> names = setup.species_names();
-  auto line_of = [&](size_t row) { return path + ":" + std::to_string(row + 2); };
-  auto finite = [&](size_t row, const std::string& c) {
-    const double v = t.num(row, c);
-    if (!std::isfinite(v))
-      throw core::InputError(line_of(row) + ": column " + c + " is '" + t.text(row, c) +
-                             "', not a finite number");
-    return v;
-  };
-
+  RowReader reader(t, path, map, units, setup, geo, out);
   std::map<double, TrackFrame> frames;  // by time
   for (size_t row = 0; row < t.rows(); ++row) {
-    Detection d{};
-    d.line = static_cast<long>(row + 2);
-    const double idv = finite(row, col["id"]);
-    if (idv != std::floor(idv) || std::fabs(idv) > 9e15)
-      throw core::InputError(line_of(row) + ": column " + col["id"] + " is '" + t.text(row, col["id"]) +
-                             "', not a whole number (particle ids are integers)");
-    d.id = static_cast<long>(idv);
     double time = 0;
     long number = -1;
-    if (!col["frame"].empty()) {
-      const double f = finite(row, col["frame"]);
-      if (f != std::floor(f) || f < 0)
-        throw core::InputError(line_of(row) + ": column " + col["frame"] + " is '" +
-                               t.text(row, col["frame"]) + "', not a frame number (a whole number >= 0)");
-      number = static_cast<long>(f);
-    }
-    time = by_frame ? static_cast<double>(number) / units.fps : finite(row, col["time"]);
-    d.x = (finite(row, col["x"]) - units.origin_x) * scale;
-    d.y = ysign * (finite(row, col["y"]) - units.origin_y) * scale;
-    // Species: a name of the scene's or its index; without a column, by the radius nearest a species' mean.
-    d.species = 0;
-    if (out.has_species) {
-      const std::string& s = t.text(row, col["species"]);
-      auto it = std::find(names.begin(), names.end(), s);
-      if (it != names.end()) {
-        d.species = static_cast<int>(it - names.begin());
-      } else {
-        char* end = nullptr;
-        const long k = std::strtol(s.c_str(), &end, 10);
-        if (s.empty() || *end != '\0' || k < 0 || k >= n_species) {
-          std::string list;
-          for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-          throw core::InputError(line_of(row) + ": column " + col["species"] + " is '" + s +
-                                 "': not a species of the geometry scene (" + list + ", or 0 to " +
-                                 std::to_string(n_species - 1) + ")");
-        }
-        d.species = static_cast<int>(k);
-      }
-    }
-    if (out.has_radius) {
-      const bool diameter = col["radius"].empty();
-      const std::string& c = diameter ? col["diameter"] : col["radius"];
-      const double v = finite(row, c) * scale * (diameter ? 0.5 : 1.0);
-      if (!(v > 0))
-        throw core::InputError(line_of(row) + ": column " + c + " is '" + t.text(row, c) +
-                               "': a grain's size must be > 0");
-      d.r = v;
-      if (!out.has_species && n_species > 1) {
-        double best = INFINITY;
-        for (int k = 0; k < n_species; ++k) {
-          const double e = std::fabs(std::log(v / setup.species[static_cast<size_t>(k)].radius));
-          if (e < best) best = e, d.species = k;
-        }
-      }
-    } else {
-      d.r = setup.species[static_cast<size_t>(d.species)].radius;
-    }
-    d.angle = out.has_angle ? finite(row, col["angle"]) : 0.0;
-    // Inside the container, or below the outlet where grains fall: a centre beyond a wall or above the top by
-    // more than a diameter is a calibration error, not a grain.
-    const core::Vec2 p{d.x, d.y};
-    const double slack = 2 * d.r;
-    const bool outside = d.y > geo.total_height + slack || d.x < geo.x_left - slack ||
-                         d.x > geo.x_right + slack || (d.y >= slack && geo.side_clearance(p, 0) < -slack);
-    if (outside)
-      throw core::InputError(
-          line_of(row) + ": particle " + std::to_string(d.id) + " at (" + core::format_g(d.x, 4) + ", " +
-          core::format_g(d.y, 4) + ") m lies outside the container (x from " + core::format_g(geo.x_left, 4) +
-          " to " + core::format_g(geo.x_right, 4) + " m, y up to " + core::format_g(geo.total_height, 4) +
-          " m, the outlet's centre at 0, 0): check --scale, --origin and --y-up");
+    const Detection d = reader.read(row, time, number);
     TrackFrame& f = frames[time];
     f.t = time;
     f.number = number;

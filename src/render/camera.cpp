@@ -1,3 +1,7 @@
+// Cameras (render/camera.h): the presets and windows, their views laid out in a picture, camera paths with
+// their glides, subjects followed, and freezes. Over 400 lines because every picture maker (record, the
+// inspector, frame) asks the same one question of them, where each view looks now, and the glide's rule that
+// keeps the next subject in the picture needs the views, the paths and the subjects together.
 #include "render/camera.h"
 
 #include <algorithm>

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/arch.h"
+#include "core/clog.h"
 #include "core/events.h"
 #include "core/frame.h"
 #include "core/geometry.h"
@@ -25,7 +26,6 @@
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/setup.h"
-#include "sim/clog.h"
 #include "sim/dipole.h"
 
 class b2World;
@@ -244,7 +244,7 @@ class Silo {
   std::uint64_t open_step_ = 0;  // step index of t = 0
   std::uint64_t kick_every_ = 1;
   bool open_ = false;
-  ClogTracker clogs_;
+  core::ClogTracker clogs_;
   core::Events events_;
   core::StepEvents last_;     // what the current (or last) step did
   core::StepEvents pending_;  // what the steps did since take_events()

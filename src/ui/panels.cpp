@@ -1,3 +1,6 @@
+// The inspector window's ImGui panels (ui/panels.h): the frame controls, the timeline with the clog bars, the
+// camera, the look, the arch table, the grain details and the exports. Over 400 lines because they are one
+// side panel, drawn top to bottom in one pass over one PanelState; each section is a function of its own.
 #include "ui/panels.h"
 
 #include <cmath>

@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "analysis/measure.h"
+#include "core/clog.h"
 #include "core/geometry.h"
 #include "fixtures.h"
-#include "sim/clog.h"
 #include "sim/silo.h"
 
 namespace {
@@ -31,7 +31,7 @@ struct KickedArch : test::StagedArch {
 TEST_CASE(
     "the clock: a gap that an arrested outlet ends is vibration, one that never arrested is spontaneous",
     "[clog]") {
-  sim::ClogTracker t(0.5, 5.0);
+  core::ClogTracker t(0.5, 5.0);
   core::StepEvents e;
   t.on_rest_check(0.6, false, {});
   t.on_exit(1.0, e);  // flowing jam: never arrested
@@ -57,7 +57,7 @@ TEST_CASE(
     "the open clog: opens at clog_min_gap with the gap's arch, holds it through flicker, closes at "
     "the exit",
     "[clog]") {
-  sim::ClogTracker t(0.5, 5.0);
+  core::ClogTracker t(0.5, 5.0);
   core::StepEvents e;
   const std::vector<int> a{3, 4, 5}, b{3, 7, 5};
   auto none = [] { return std::vector<int>{}; };
@@ -93,7 +93,7 @@ TEST_CASE(
   CHECK(e.clogs_closed[0].start == 1.0);
   CHECK(e.clogs_closed[0].end == 2.5);
   // With the rule off it is never due.
-  sim::ClogTracker off(0.5, 0.0);
+  core::ClogTracker off(0.5, 0.0);
   CHECK(std::isinf(off.rule_due_in(100.0)));
   CHECK_FALSE(off.rule_due(100.0));
 }

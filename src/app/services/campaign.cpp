@@ -87,6 +87,57 @@ Campaign load_campaign(const std::string& path) {
   return parse_campaign(ss.str(), path);
 }
 
+// The campaign's points as sets of key = value: the [grid]'s Cartesian product (keys in file order), then
+// each of [[points]].
+static std::vector<std::vector<Assignment>> point_sets(const toml::table& t, const std::string& path) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+  if (auto* grid = t["grid"].as_table()) {
+    for (auto&& [k, v] : *grid) {
+      std::string key(k.str()), where = path + ": grid." + key;
+      // Species keys (species.NAME.KEY, quoted in TOML) are checked when the points are applied.
+      if (key != kForceRatio && !core::find_field(key) && key.rfind("species.", 0) != 0) {
+        core::Scene probe;
+        core::set_field(probe, key, "", where);  // throws "unknown key" with the list of keys
+      }
+      if (key == "seed" || key == "duration")
+        throw core::InputError(where + ": set it at the top of the campaign");
+      auto* arr = v.as_array();
+      if (!arr || arr->empty()) throw core::InputError(where + " must be a non-empty list, e.g. [0.4, 0.6]");
+      std::vector<std::string> values;
+      for (auto&& e : *arr) values.push_back(value_text(e, where));
+      axes.emplace_back(key, values);
+    }
+  }
+  std::vector<std::vector<Assignment>> sets;
+  if (!axes.empty()) {
+    sets.push_back({});
+    for (const auto& [key, values] : axes) {
+      if (sets.size() * values.size() > 10000)
+        throw core::InputError(path + ": the grid has more than 10000 points; at most 10000");
+      std::vector<std::vector<Assignment>> next;
+      for (const auto& s : sets)
+        for (const auto& v : values) {
+          auto n = s;
+          n.emplace_back(key, v);
+          next.push_back(n);
+        }
+      sets.swap(next);
+    }
+  }
+  if (auto* pts = t["points"].as_array()) {
+    int i = 0;
+    for (auto&& e : *pts) {
+      auto* tbl = e.as_table();
+      std::string where = path + ": points[" + std::to_string(i++) + "]";
+      if (!tbl || tbl->empty()) throw core::InputError(where + " must be a table of scene keys");
+      std::vector<Assignment> s;
+      for (auto&& [k, v] : *tbl) s.emplace_back(std::string(k.str()), value_text(v, where));
+      sets.push_back(s);
+    }
+  }
+  return sets;
+}
+
 Campaign parse_campaign(const std::string& text, const std::string& path) {
   Campaign c;
   c.path = path;
@@ -147,52 +198,7 @@ Campaign parse_campaign(const std::string& text, const std::string& path) {
     c.trajectory_fps = *f;
   }
 
-  // The grid: a Cartesian product, keys in file order.
-  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
-  if (auto* grid = t["grid"].as_table()) {
-    for (auto&& [k, v] : *grid) {
-      std::string key(k.str()), where = path + ": grid." + key;
-      // Species keys (species.NAME.KEY, quoted in TOML) are checked when the points are applied.
-      if (key != kForceRatio && !core::find_field(key) && key.rfind("species.", 0) != 0) {
-        core::Scene probe;
-        core::set_field(probe, key, "", where);  // throws "unknown key" with the list of keys
-      }
-      if (key == "seed" || key == "duration")
-        throw core::InputError(where + ": set it at the top of the campaign");
-      auto* arr = v.as_array();
-      if (!arr || arr->empty()) throw core::InputError(where + " must be a non-empty list, e.g. [0.4, 0.6]");
-      std::vector<std::string> values;
-      for (auto&& e : *arr) values.push_back(value_text(e, where));
-      axes.emplace_back(key, values);
-    }
-  }
-  std::vector<std::vector<Assignment>> sets;
-  if (!axes.empty()) {
-    sets.push_back({});
-    for (const auto& [key, values] : axes) {
-      if (sets.size() * values.size() > 10000)
-        throw core::InputError(path + ": the grid has more than 10000 points; at most 10000");
-      std::vector<std::vector<Assignment>> next;
-      for (const auto& s : sets)
-        for (const auto& v : values) {
-          auto n = s;
-          n.emplace_back(key, v);
-          next.push_back(n);
-        }
-      sets.swap(next);
-    }
-  }
-  if (auto* pts = t["points"].as_array()) {
-    int i = 0;
-    for (auto&& e : *pts) {
-      auto* tbl = e.as_table();
-      std::string where = path + ": points[" + std::to_string(i++) + "]";
-      if (!tbl || tbl->empty()) throw core::InputError(where + " must be a table of scene keys");
-      std::vector<Assignment> s;
-      for (auto&& [k, v] : *tbl) s.emplace_back(std::string(k.str()), value_text(v, where));
-      sets.push_back(s);
-    }
-  }
+  std::vector<std::vector<Assignment>> sets = point_sets(t, path);
   if (sets.empty()) throw core::InputError(path + ": the grid is empty: give [grid] lists or [[points]]");
   if (sets.size() > 10000)
     throw core::InputError(path + ": the grid has " + std::to_string(sets.size()) + " points; at most 10000");
