@@ -81,18 +81,29 @@ void FreeSpace::block_grains(const core::Frame& f, const std::vector<View>& view
             static_cast<float>(std::max<double>(c.y - r, v.rect.y)),
             static_cast<float>(std::min<double>(c.x + r, v.rect.x + v.rect.w)),
             static_cast<float>(std::min<double>(c.y + r, v.rect.y + v.rect.h))};
-      block(b);
+      mark_box(b, 0);
     }
   }
 }
 
+FreeSpace::Cells FreeSpace::cells_of(const Box& b, float pad) const {
+  return {static_cast<int>(std::floor((b.x0 - pad - region_.x0) / cell_)),
+          static_cast<int>(std::ceil((b.x1 + pad - region_.x0) / cell_)),
+          static_cast<int>(std::floor((b.y0 - pad - region_.y0) / cell_)),
+          static_cast<int>(std::ceil((b.y1 + pad - region_.y0) / cell_))};
+}
+
+void FreeSpace::mark_box(const Box& b, float pad) {
+  const Cells c = cells_of(b, pad);
+  for (int j = std::max(0, c.j0); j < std::min(ny_, c.j1); ++j)
+    for (int i = std::max(0, c.i0); i < std::min(nx_, c.i1); ++i) mark_cell(i, j);
+}
+
 void FreeSpace::block(const Box& b, float pad) {
-  const int i0 = static_cast<int>(std::floor((b.x0 - pad - region_.x0) / cell_));
-  const int i1 = static_cast<int>(std::ceil((b.x1 + pad - region_.x0) / cell_));
-  const int j0 = static_cast<int>(std::floor((b.y0 - pad - region_.y0) / cell_));
-  const int j1 = static_cast<int>(std::ceil((b.y1 + pad - region_.y0) / cell_));
-  for (int j = std::max(0, j0); j < std::min(ny_, j1); ++j)
-    for (int i = std::max(0, i0); i < std::min(nx_, i1); ++i) mark_cell(i, j);
+  // Kept as a rectangle: the few boxes a picture places are tested against directly, so placing one does
+  // not rebuild the summed-area table of the container and the grains (issue 59: a rebuild for every box of
+  // every picture cost more than drawing it).
+  placed_.push_back(cells_of(b, pad));
 }
 
 void FreeSpace::update() const {
@@ -120,7 +131,13 @@ long FreeSpace::covered(const Box& b) const {
   const long in = static_cast<long>(ci1 - ci0) * (cj1 - cj0);
   outside = all - in;
   auto S = [&](int i, int j) { return sum_[static_cast<size_t>(j) * (nx_ + 1) + i]; };
-  const long blocked = in > 0 ? S(ci1, cj1) - S(ci0, cj1) - S(ci1, cj0) + S(ci0, cj0) : 0;
+  long blocked = in > 0 ? S(ci1, cj1) - S(ci0, cj1) - S(ci1, cj0) + S(ci0, cj0) : 0;
+  // The boxes placed: the cells the box shares with each, inside the region.
+  for (const Cells& p : placed_) {
+    const int a0 = std::max({ci0, p.i0, 0}), a1 = std::min({ci1, p.i1, nx_});
+    const int b0 = std::max({cj0, p.j0, 0}), b1 = std::min({cj1, p.j1, ny_});
+    if (a1 > a0 && b1 > b0) blocked += static_cast<long>(a1 - a0) * (b1 - b0);
+  }
   return blocked + outside;
 }
 

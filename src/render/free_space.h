@@ -49,10 +49,18 @@ class FreeSpace {
   // pixels in from its edges.
   std::optional<Box> place_at_corner(float w, float h, const Box& within, int k, float pad) const;
   const Box& region() const { return region_; }
+  // Make the summed-area table now (copies then share it made).
+  void freeze() const { update(); }
 
  private:
+  struct Cells {
+    int i0, i1, j0, j1;  // [i0, i1) x [j0, j1), unclamped
+  };
+  Cells cells_of(const Box& b, float pad) const;
   void mark_cell(int i, int j);
-  void update() const;  // the summed-area table after marks
+  void mark_box(const Box& b, float pad);
+  std::vector<Cells> placed_;  // the boxes placed (block), tested as rectangles
+  void update() const;         // the summed-area table after marks
   Box region_;
   float cell_;
   int nx_, ny_;

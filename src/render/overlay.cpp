@@ -211,6 +211,7 @@ void Overlay::reset() {
   bar_rect_ = {};
   info_corner_ = 0;
   info_left_ = false;
+  spots_.clear();
 }
 
 void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
@@ -239,6 +240,21 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   // its colour bar).
   // A window ImGui has not drawn before learns its size only at the end of its first frame: a fresh overlay
   // lays the picture out twice (the boxes are placed by their true sizes, not ImGui's 32-pixel start).
+  // The free space of this picture, once: the container (kept between pictures while it stands still in
+  // the views) and the grains.
+  {
+    const float em = static_cast<float>(font_px_);
+    float y1 = 0;  // of the lowest view: a window's timeline may lie below
+    for (const auto& v : views) y1 = std::max(y1, static_cast<float>(v.rect.y + v.rect.h));
+    if (y1 <= 0) y1 = static_cast<float>(h);
+    const Box region{static_cast<float>(d.panel_x), 0,
+                     d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w), y1};
+    const float cell = std::max(2.0f, 0.25f * em);
+    picture_space_ = std::make_unique<FreeSpace>(
+        container_space(views, geo, geo ? f.container_x : 0, geo ? f.container_y : 0, region, cell));
+    picture_space_->block_grains(f, views);
+    picture_space_->freeze();  // its summed-area table made once: each pass takes a copy
+  }
   for (int pass = 0; pass < (laid_out_ ? 1 : 2); ++pass) {
     ImGui::NewFrame();
     build(f, d, o, views, style, w, h, geo, marks);
@@ -252,6 +268,66 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   check_gl("Overlay::draw");
   ImGui::SetCurrentContext(previous ? previous : static_cast<ImGuiContext*>(ctx_));
+}
+
+namespace {
+bool same_views(const std::vector<View>& a, const std::vector<View>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k) {
+    const Camera &p = a[k].cam, &q = b[k].cam;
+    const Rect &r = a[k].rect, &s = b[k].rect;
+    if (p.cx != q.cx || p.cy != q.cy || p.height != q.height || p.angle != q.angle || r.x != s.x ||
+        r.y != s.y || r.w != s.w || r.h != s.h)
+      return false;
+  }
+  return true;
+}
+}  // namespace
+
+const FreeSpace& Overlay::container_space(const std::vector<View>& views, const core::Geometry* geo,
+                                          double dx, double dy, const Box& region, float cell) {
+  const Box& r = container_region_;
+  const bool same = container_space_ && geo == container_geo_ && dx == container_dx_ && dy == container_dy_ &&
+                    cell == container_cell_ && region.x0 == r.x0 && region.y0 == r.y0 && region.x1 == r.x1 &&
+                    region.y1 == r.y1 && same_views(views, container_views_);
+  if (!same) {
+    container_space_ = std::make_unique<FreeSpace>(region, cell);
+    if (geo) container_space_->block_container(views, *geo, dx, dy);
+    container_views_ = views;
+    container_geo_ = geo;
+    container_dx_ = dx, container_dy_ = dy;
+    container_cell_ = cell;
+    container_region_ = region;
+  }
+  return *container_space_;
+}
+
+std::optional<Box> Overlay::spot(const std::string& key, float w, float h, const Box& within, int corner,
+                                 float pad) {
+  const auto it = spots_.find(key);
+  if (it != spots_.end()) {
+    Spot& s = it->second;
+    const Box& o = s.box;
+    const Box& in = s.within;
+    if (s.age < kRecheck && s.corner == corner && in.x0 == within.x0 && in.y0 == within.y0 &&
+        in.x1 == within.x1 && in.y1 == within.y1) {
+      // The same corner of the box where it was, at its new size.
+      const float ax = corner % 2 == 0 ? o.x1 - w : o.x0, ay = corner < 2 ? o.y0 : o.y1 - h;
+      const Box b{ax, ay, ax + w, ay + h};
+      const Box lim{within.x0 + pad, within.y0 + pad, within.x1 - pad, within.y1 - pad};
+      if (b.inside(lim) && space_->covered(b) == 0) {
+        ++s.age;
+        s.box = b;
+        return b;
+      }
+    }
+  }
+  const std::optional<Box> b = space_->place_at_corner(w, h, within, corner, pad);
+  if (b)
+    spots_[key] = {*b, within, corner, 0};
+  else
+    spots_.erase(key);
+  return b;
 }
 
 void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
@@ -273,9 +349,7 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   panel_y1_ = 0;  // of the lowest view: a window's timeline may lie below
   for (const auto& v : views) panel_y1_ = std::max(panel_y1_, static_cast<float>(v.rect.y + v.rect.h));
   if (panel_y1_ <= 0) panel_y1_ = static_cast<float>(h);
-  space_ = std::make_unique<FreeSpace>(Box{panel_x0_, 0, panel_x1_, panel_y1_}, std::max(2.0f, 0.25f * em));
-  if (geo) space_->block_container(views, *geo, f.container_x, f.container_y);
-  space_->block_grains(f, views);
+  space_ = std::make_unique<FreeSpace>(*picture_space_);
   info_shown_ = false;
   plot_rect_ = scale_rect_ = {};
   boxes_clear_ = true;

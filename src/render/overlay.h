@@ -4,7 +4,9 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -180,8 +182,32 @@ class Overlay {
   std::array<float, 4> bar_rect_{};
   std::array<float, 4> plot_rect_{}, scale_rect_{};
   bool boxes_clear_ = true;
-  // What this picture's boxes must keep off (the container, grains, boxes already placed); made in build().
+  // What this picture's boxes must keep off (the container, grains, boxes already placed); a copy of
+  // picture_space_ for each pass of build().
   std::unique_ptr<FreeSpace> space_;
+  // The container and this picture's grains, made once a picture (both passes of the layout take a copy).
+  std::unique_ptr<FreeSpace> picture_space_;
+  // The container alone as the views show it: the costliest part of the free space (every cell tested against
+  // the walls), kept while the views, the container's place and the cell size stay (a standing camera, a
+  // container that does not vibrate: every picture of most movies).
+  std::unique_ptr<FreeSpace> container_space_;
+  std::vector<View> container_views_;
+  const core::Geometry* container_geo_ = nullptr;
+  double container_dx_ = 0, container_dy_ = 0;
+  float container_cell_ = 0;
+  Box container_region_;
+  const FreeSpace& container_space(const std::vector<View>& views, const core::Geometry* geo, double dx,
+                                   double dy, const Box& region, float cell);
+  // Where each box went in the pictures before (by the box's name): kept while it stays clear, anchored at
+  // its corner as its size changes, and searched again at least every kRecheck layouts (about half a second
+  // of a movie), so a box does not jump between pictures and its search is not paid in every picture.
+  struct Spot {
+    Box box, within;
+    int corner = 0, age = 0;
+  };
+  static constexpr int kRecheck = 30;
+  std::map<std::string, Spot> spots_;
+  std::optional<Box> spot(const std::string& key, float w, float h, const Box& within, int corner, float pad);
   float panel_x0_ = 0, panel_x1_ = 0, panel_y1_ = 0;  // the panel's region, pixels
   int info_corner_ = 0;     // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
   bool info_left_ = false;  // see info_left()

@@ -174,15 +174,14 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
     // The clear spot nearest to the corner the box is in (a window's box does not jump between corners;
     // a movie's starts top-right): off the container, its grains and its arch, measured on this picture.
     const int preferred = o.place_clear ? info_corner_ : 0;
-    if (const auto b = space_->place_at_corner(info_w_, info_h_, region, preferred, pad)) {
+    if (const auto b = spot("info", info_w_, info_h_, region, preferred, pad)) {
       pos = ImVec2(b->x0, b->y0), piv = ImVec2(0, 0);
       const float cx = 0.5f * (b->x0 + b->x1), cy = 0.5f * (b->y0 + b->y1);
       info_corner_ = (cx < 0.5f * (region.x0 + region.x1) ? 1 : 0) + (cy > 0.5f * region.y1 ? 2 : 0);
     } else {
       // No clear spot: the corner covering the least (the container counts above any number of grains),
       // or, in a window, beside the picture.
-      FreeSpace walls(region, std::max(2.0f, 0.25f * em));
-      if (geo) walls.block_container(views, *geo, f.container_x, f.container_y);
+      const FreeSpace& walls = *container_space_;  // the container alone, as this picture's views show it
       constexpr long kContainer = 1000000;
       auto cost = [&](int k) { return kContainer * walls.covered(box_at(k)) + space_->covered(box_at(k)); };
       long best = cost(info_corner_);

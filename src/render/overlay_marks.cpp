@@ -85,7 +85,7 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
   if (!spot)
     for (const auto& [bw, bh] : plot_box_sizes(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em,
                                                static_cast<float>(d.margin_w)))
-      if ((spot = space_->place_at_corner(bw, bh, region, 2, pad))) break;
+      if ((spot = this->spot("plot", bw, bh, region, 2, pad))) break;
   if (!spot) {  // nowhere clear: bottom-right of the outlet view, as ever
     boxes_clear_ = false;
     const auto [bw, bh] = plot_box_size(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em);
@@ -286,7 +286,7 @@ void Overlay::draw_scale(const OverlayData& d, const OverlayOptions& o, const st
     const float y0 = bottom ? view.y1 - em - 1.7f * em : view.y0 + em;
     spot = Box{x0, y0, x0 + tw, y0 + 1.7f * em};
   } else {
-    spot = space_->place_at_corner(tw, 1.7f * em, view, 3, em);
+    spot = this->spot("scale:" + v.name, tw, 1.7f * em, view, 3, em);
   }
   if (!spot && views.size() > 1) {
     std::snprintf(text, sizeof text, "1 d = %.0f cm (%s view)", 100 * d.diameter, v.name.c_str());

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/services/cli.h"
 #include "helpers.h"
 
 namespace fs = std::filesystem;
@@ -355,4 +356,30 @@ TEST_CASE("record: --background, --font-scale, --force-chains and --track are ch
     CHECK(r.code == 2);
     CHECK_FALSE(fs::exists(d / "r"));
   }
+}
+
+TEST_CASE("bench record flags a stage slowed 1.5x against its committed figures, and exits 1", "[cli][app]") {
+  // The rule itself.
+  CHECK(app::slowed_stage("record_720p30", "draw", 1.4, 1.0).empty());
+  CHECK(app::slowed_stage("record_720p30", "draw", 1.5, 1.0).empty());
+  CHECK_THAT(app::slowed_stage("record_720p30", "draw", 1.6, 1.0),
+             Catch::Matchers::Contains("SLOWED: record_720p30 draw 1.60") &&
+                 Catch::Matchers::Contains("(1.6x, limit 1.5x)"));
+  CHECK(app::slowed_stage("record_720p30", "draw", 5.0, 0.0).empty());  // no reference: nothing to say
+  // A reference whose draw stage is a hundredth of any real one: the bench says so and fails; one that
+  // nothing could exceed passes.
+  const fs::path d = temp_dir("bench_reference");
+  std::ofstream(d / "slow.csv") << "case,stage,ms_per_frame,machine,commit\n"
+                                << "record_720p30,draw,0.001,test,none\n";
+  std::ofstream(d / "fast.csv") << "case,stage,ms_per_frame,machine,commit\n"
+                                << "record_720p30,draw,100000,test,none\n";
+  const std::string common = "bench record " + kScene + " --duration 0.5 --repeats 1 --reference ";
+  const auto slowed = cli(common + (d / "slow.csv").string());
+  INFO(slowed.output);
+  CHECK(slowed.code == 1);
+  CHECK_THAT(slowed.output, Catch::Matchers::Contains("SLOWED: record_720p30 draw"));
+  const auto fine = cli(common + (d / "fast.csv").string());
+  INFO(fine.output);
+  CHECK(fine.code == 0);
+  CHECK_THAT(fine.output, Catch::Matchers::Contains("record_720p30    draw"));
 }

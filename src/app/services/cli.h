@@ -51,6 +51,8 @@ using Action = std::function<int()>;
 int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_dir, bool force, bool quiet,
                  bool include_interrupted = false, bool include_unhealthy = false,
                  const std::vector<std::string>& by = {}, const std::string& avalanche_end = "auto");
+// bench record's rule for a stage against its committed figure: "" within 1.5x, else the flag's text.
+std::string slowed_stage(const std::string& name, const std::string& stage, double measured, double reference);
 // bench's own subcommands (bench is a row of the command table, app/services/commands.h).
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);
