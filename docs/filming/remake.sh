@@ -12,12 +12,15 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 old=${1:?usage: bash docs/filming/remake.sh OLD_BINARY}
 bin=build/siloscope
+old_name=${OLD_NAME:-the build before the layout, 7fc777e^}
 out=docs/filming
-machine="$(nproc)-core $(uname -m), $(date -u +%Y-%m-%d)"
+machine="$(nproc)-core $(uname -m) $(date -u +%Y-%m-%d)"
 commit=$(git rev-parse --short HEAD)
 # No reference while it is being made: the comparison below is against the old build.
 $bin bench record --repeats 3 --binary "$old" --reference none --csv "$out/ab.csv" > "$out/ab.txt" || true
 $bin bench record --elements --repeats 3 --csv "$out/elements.csv" > "$out/elements.txt"
+# The tables name files as the repository holds them, never by this machine's paths.
+sed -i -e "s|$PWD/||g" -e "s|$old|OLD ($old_name)|g" "$out/ab.txt" "$out/elements.txt"
 # The reference: this build's medians per stage (and the wall ratios) from the A/B run.
 python3 - "$out/ab.csv" "$out/reference.csv" "$machine" "$commit" <<'PY'
 import csv, statistics, sys

@@ -111,25 +111,34 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
   auto Y = [&](double n) { return y1 - static_cast<float>(n / static_cast<double>(nmax)) * ph; };
   // Clogs: shaded from the clog's start (its last exit, as clogs.csv's start_s), not from the moment the
   // timer passed clog_min_gap.
-  for (size_t k = 1; k < history_.size(); ++k)
-    if (history_[k].clogged)
-      dl->AddRectFilled(ImVec2(X(std::max(0.0, history_[k].clog_start)), y0),
-                        ImVec2(X(history_[k].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
+  // Each clog one band (its samples merged): a long movie draws as many bands as clogs, not as samples.
+  for (size_t k = 1; k < history_.size(); ++k) {
+    if (!history_[k].clogged) continue;
+    size_t last = k;
+    while (last + 1 < history_.size() && history_[last + 1].clogged &&
+           history_[last + 1].clog_start == history_[k].clog_start)
+      ++last;
+    dl->AddRectFilled(ImVec2(X(std::max(0.0, history_[k].clog_start)), y0),
+                      ImVec2(X(history_[last].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
+    k = last;
+  }
   auto exits_at = [&](size_t k, size_t sp) {
     const auto& e = history_[k].exits;
     return sp < e.size() ? static_cast<long>(e[sp]) : 0L;
   };
+  // Each staircase one polyline through its steps only (samples without an exit add no point).
+  std::vector<ImVec2> stairs;
   for (size_t sp = 0; sp < n_species; ++sp) {
     const ImU32 ink = to_u32(species_color(style, static_cast<core::Species>(sp)));
+    stairs.assign(1, ImVec2(X(history_.front().t), Y(static_cast<double>(exits_at(0, sp)))));
     for (size_t k = 1; k < history_.size(); ++k) {
-      const long a = exits_at(k - 1, sp);
-      const long b = exits_at(k, sp);
-      dl->AddLine(ImVec2(X(history_[k - 1].t), Y(static_cast<double>(a))),
-                  ImVec2(X(history_[k].t), Y(static_cast<double>(a))), ink, 2.0f);
-      if (b != a)
-        dl->AddLine(ImVec2(X(history_[k].t), Y(static_cast<double>(a))),
-                    ImVec2(X(history_[k].t), Y(static_cast<double>(b))), ink, 2.0f);
+      const long a = exits_at(k - 1, sp), b = exits_at(k, sp);
+      if (b == a) continue;
+      stairs.push_back(ImVec2(X(history_[k].t), Y(static_cast<double>(a))));
+      stairs.push_back(ImVec2(X(history_[k].t), Y(static_cast<double>(b))));
     }
+    stairs.push_back(ImVec2(X(history_.back().t), Y(static_cast<double>(exits_at(history_.size() - 1, sp)))));
+    dl->AddPolyline(stairs.data(), static_cast<int>(stairs.size()), ink, ImDrawFlags_None, 2.0f);
   }
   const ImU32 axis = style.dark ? IM_COL32(220, 220, 220, 255) : IM_COL32(40, 40, 40, 255);
   dl->AddLine(ImVec2(x0, y1), ImVec2(x1, y1), axis);
