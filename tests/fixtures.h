@@ -54,7 +54,7 @@ inline std::filesystem::path synthetic_trajectory(const std::filesystem::path& d
   info.frame_interval = 1.0 / 30;
   info.radius = {0.065f, 0.026f};
   info.species = {core::Species::Original, core::Species::Added};
-  info.metadata = io::metadata_toml(core::compile(s), {"test", {}, {}});
+  info.metadata = io::metadata_toml(core::compile(s), {"test", {}, {}, {}});
   const std::filesystem::path p = dir / "trajectory.sstraj";
   io::TrajectoryWriter w(p, info);
   for (int k = 0; k < 5; ++k) {
@@ -77,7 +77,7 @@ inline std::filesystem::path synthetic_trajectory(const std::filesystem::path& d
       a.x = {0.0f, 0.2f};
       a.y = {0.5f, 0.8f};
       e.rule_removed.push_back(a);
-      e.clogs_closed.push_back({0.0, f.t, core::ClogEnd::Rule, true});
+      e.clogs_closed.push_back({0.0, f.t, core::ClogEnd::Rule, true, NAN, {}});
     }
     w.add(f, k == 4 ? 1 : 0, e);
   }

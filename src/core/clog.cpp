@@ -7,23 +7,70 @@
 
 namespace core {
 
-void ClogTracker::open(core::StepEvents& out) {
+void ClogTracker::open(double t, core::StepEvents& out) {
   state_.open = true;
   state_.number = static_cast<int>(clogs_.size()) + 1;
   state_.start = last_;
   state_.arrested = arrested_;
   state_.arch = gap_arch_;
   state_.arch_changes = 0;
+  formed_now(t);
   candidate_.clear();
   out.clogs_opened.push_back(state_.number);
+}
+
+void ClogTracker::see_arch(double t, const std::vector<int>& arch) {
+  if (arch.empty()) return;  // no arch found now: what was seen stands (contacts flicker)
+  if (seen_arch_.empty() || !core::same_grains(arch, seen_arch_)) seen_since_ = t;
+  seen_arch_ = arch;
+  // Each member's unbroken run: kept for those still in it, started now for those new to it.
+  std::vector<std::pair<int, double>> next;
+  for (int id : arch) {
+    double since = t;
+    for (const auto& [m, s] : member_since_)
+      if (m == id) since = s;
+    next.push_back({id, since});
+  }
+  member_since_ = std::move(next);
+}
+
+void ClogTracker::formed_now(double t) {
+  if (state_.arch.empty()) {
+    state_.formed = NAN;
+    state_.arrival.clear();
+    return;
+  }
+  const bool seen = !seen_arch_.empty() && core::same_grains(state_.arch, seen_arch_);
+  // Not before the clog's start (an arch seen while the last grain left below it formed with the clog).
+  state_.formed = std::max(last_, seen ? std::min(seen_since_, t) : t);
+  // Members by the check they arrived at; ties (arrived together) left to right, as the arch lists them.
+  std::vector<std::pair<double, int>> order;
+  for (size_t k = 0; k < state_.arch.size(); ++k) {
+    double since = state_.formed;
+    for (const auto& [m, s] : member_since_)
+      if (m == state_.arch[k] && seen) since = s;
+    order.push_back({since, static_cast<int>(k)});
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  state_.arrival.clear();
+  for (const auto& [since, k] : order) state_.arrival.push_back(state_.arch[static_cast<size_t>(k)]);
+}
+
+void ClogTracker::drop_arch() {
+  if (!state_.open || state_.arch.empty()) return;
+  state_.arch.clear();  // when it formed stays: the clog's arch did form, then part
+  seen_arch_.clear();
+  member_since_.clear();
+  candidate_.clear();
 }
 
 void ClogTracker::close(double t, core::ClogEnd how, core::StepEvents& out) {
   if (how == core::ClogEnd::Rule || t - last_ >= min_gap_) {
     // A gap that qualifies as a clog always opened one first (in this very step if need be), so that every
     // row of clogs.csv has its opening in the events.
-    if (!state_.open) open(out);
-    clogs_.push_back({last_, t, how, arrested_});
+    if (!state_.open) open(t, out);
+    clogs_.push_back({last_, t, how, arrested_, state_.formed, state_.arrival});
     out.clogs_closed.push_back(clogs_.back());
   }
   last_ = t;
@@ -31,8 +78,12 @@ void ClogTracker::close(double t, core::ClogEnd how, core::StepEvents& out) {
   state_.open = false;
   state_.arrested = false;
   state_.arch.clear();
+  state_.formed = NAN;
+  state_.arrival.clear();
   gap_arch_.clear();
   candidate_.clear();
+  seen_arch_.clear();
+  member_since_.clear();
 }
 
 void ClogTracker::on_exit(double t, core::StepEvents& out) {
@@ -41,10 +92,13 @@ void ClogTracker::on_exit(double t, core::StepEvents& out) {
   close(t, arrested_ && driven_ ? core::ClogEnd::Vibration : core::ClogEnd::Spontaneous, out);
 }
 
-void ClogTracker::hold_arch(const std::vector<int>& arch) {
+void ClogTracker::hold_arch(double t, const std::vector<int>& arch) {
   if (arch.empty()) return;  // no arch found now: the one held stays (contacts flicker)
   if (state_.arch.empty()) {
     state_.arch = arch;
+    // The clog's arch formed once: at its confirmation, or at the first arch found after it (none stood
+    // then). A replacement or an arch found again after a drop does not move it.
+    if (std::isnan(state_.formed)) formed_now(t);
     return;
   }
   if (core::same_grains(arch, state_.arch)) {
@@ -66,12 +120,13 @@ void ClogTracker::on_rest_check(double t, bool outlet_at_rest, const std::vector
   // Only a gap that has lasted long enough to be a clog can be arrested; during flow the outlet is never at
   // rest.
   if (outlet_at_rest && t - last_ > 0) arrested_ = true;
+  see_arch(t, arch);
   if (!state_.open) {
     if (!arch.empty()) gap_arch_ = arch;
     return;
   }
   state_.arrested = arrested_;
-  hold_arch(arch);
+  hold_arch(t, arch);
 }
 
 double ClogTracker::rule_due_in(double t) const {
@@ -86,8 +141,8 @@ void ClogTracker::on_rule(double t, const core::ArchEvent& removed, core::StepEv
 
 void ClogTracker::finish(double t, core::StepEvents& out) {
   if (t - last_ >= min_gap_) {
-    if (!state_.open) open(out);
-    clogs_.push_back({last_, t, core::ClogEnd::RunEnd, arrested_});
+    if (!state_.open) open(t, out);
+    clogs_.push_back({last_, t, core::ClogEnd::RunEnd, arrested_, state_.formed, state_.arrival});
     out.clogs_closed.push_back(clogs_.back());
   }
   state_.open = false;

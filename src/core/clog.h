@@ -4,6 +4,8 @@
 // reads the report.
 #pragma once
 
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/events.h"
@@ -27,14 +29,20 @@ class ClogTracker {
   // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
   // kick strength. `arch`: the blocking arch found at this check (core::blocks_outlet), or empty.
   void on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch);
+  // The held arch no longer stands as a chain of touching grains (a member's contact lost): it is dropped,
+  // and the clog shows no arch until a check finds one again. Does not change when the clog opens or ends.
+  void drop_arch();
   // After the step's exits and rule at time t: opens a clog when the gap has reached clog_min_gap, with the
   // arch `find_arch()` finds then (a blocking arch or empty: the last check's arch of this gap is kept).
   template <class FindArch>
   void on_step_end(double t, FindArch find_arch, core::StepEvents& out) {
     if (state_.open || t - last_ < min_gap_) return;
     std::vector<int> now = find_arch();
-    if (!now.empty()) gap_arch_ = std::move(now);
-    open(out);
+    if (!now.empty()) {
+      see_arch(t, now);
+      gap_arch_ = std::move(now);
+    }
+    open(t, out);
   }
   // The rule is due when nothing has exited (and the rule has not fired) for `timeout`; never when the rule
   // is off (timeout 0: clogs end only by the drive or the end of the run).
@@ -54,8 +62,15 @@ class ClogTracker {
 
  private:
   void close(double t, core::ClogEnd how, core::StepEvents& out);
-  void open(core::StepEvents& out);
-  void hold_arch(const std::vector<int>& arch);
+  void open(double t, core::StepEvents& out);
+  void hold_arch(double t, const std::vector<int>& arch);
+  // Formation: which grains the checks have seen standing as the arch without a break, since when, and since
+  // when each grain has been in it. Passive: nothing here changes when a clog opens or ends.
+  void see_arch(double t, const std::vector<int>& arch);
+  void formed_now(double t);  // the held arch's formation and arrival order from what was seen
+  std::vector<int> seen_arch_;
+  double seen_since_ = NAN;
+  std::vector<std::pair<int, double>> member_since_;  // grain, first check of its unbroken run in the arch
   double min_gap_, timeout_;
   bool driven_;
   double last_ = 0;        // last exit, rule firing, or the opening

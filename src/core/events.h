@@ -24,6 +24,9 @@ struct ClogState {
   // on it. Empty until a check finds one (an outlet blocked by grains resting on the floor has none).
   std::vector<int> arch;
   int arch_changes = 0;  // how often the arch was replaced during this clog
+  // When the clog's arch formed (s; NaN while none) and its members in the order they arrived (ClogEvent).
+  double formed = NAN;
+  std::vector<int> arrival;
 };
 
 // What one step did, or, merged (append), what a run of steps did. Times in s since the opening.

@@ -2,6 +2,7 @@
 // inspector see of it. Events: what happened (exits, clogs, long-lasting arches). Plain data, SI units.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -46,6 +47,10 @@ struct Frame {
   // and arrest, and the seconds until the rule falls due (infinity with the rule off).
   std::vector<int> arch;
   bool clog_open = false;
+  // The arch shown is forming: it stands, and the clog it will be is not yet confirmed (no exit for
+  // clog_min_gap). Seen in hindsight: frames are handed on with that latency, the arch set from its formation
+  // (app/services/hindsight.h); clog_number is then the clog it becomes.
+  bool arch_forming = false;
   int clog_number = 0;
   double clog_start = 0;  // s
   bool clog_arrested = false;
@@ -87,6 +92,14 @@ struct ClogEvent {
   double end;    // s, the next exit, the rule, or the end of the run
   ClogEnd ended_by;
   bool arrested;  // at some kick during the clog an arch stood and the outlet disks had held still
+  // When its arch formed: the first arch check from which the grains that blocked the outlet when the clog
+  // was confirmed (clog_min_gap after start) stood as the arch without a break; with no arch then, the first
+  // check after that found one. NaN: no arch blocked it. A later replacement of the arch does not move it.
+  // Pictures show the arch from here on (hindsight), while the statistics keep start and end.
+  double formed = NAN;
+  // That arch's members in the order they arrived (the check from which each has stood in the arch without
+  // a break; ties left to right).
+  std::vector<int> arrival;
 };
 
 struct ArchGeometry {

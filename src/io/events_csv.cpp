@@ -153,8 +153,8 @@ core::Events read_events(const std::filesystem::path& dir, const SpeciesNames& n
   {
     CsvReader r(dir / run_file::kClogs, kClogsHeader, names);
     while (r.next(c)) {
-      core::ClogEvent e{r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous,
-                        c[4] == "1"};
+      core::ClogEvent e{
+          r.real(c[0], "start_s"), r.real(c[1], "end_s"), core::ClogEnd::Spontaneous, c[4] == "1", NAN, {}};
       bool known = false;
       for (auto k :
            {core::ClogEnd::Spontaneous, core::ClogEnd::Vibration, core::ClogEnd::Rule, core::ClogEnd::RunEnd})

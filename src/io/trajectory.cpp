@@ -20,7 +20,7 @@ namespace {
 constexpr char kMagic[8] = {'S', 'I', 'L', 'O', 'T', 'R', 'A', 'J'};
 constexpr char kEventsMagic[8] = {'S', 'I', 'L', 'O', 'E', 'V', 'T', 'S'};
 constexpr char kEndMagic[8] = {'S', 'I', 'L', 'O', 'E', 'N', 'D', 0};
-constexpr std::uint32_t kOpen = 1, kArrested = 2;  // frame flags
+constexpr std::uint32_t kOpen = 1, kArrested = 2, kForming = 4;  // frame flags (kForming: version 3)
 constexpr size_t kFixedHeader = 64;
 
 size_t pad8(size_t n) {
@@ -42,7 +42,7 @@ T get(const unsigned char* b, size_t at) {
 FrameLayout frame_layout(std::uint32_t version, std::uint32_t n_species) {
   FrameLayout l;  // version 1's
   l.n_species = version >= 2 ? n_species : 2;
-  if (version >= 2) {
+  if (version >= 2) {  // version 3's frames are version 2's (one more flag)
     l.clog_start = 16, l.rule_due_in = 24, l.long_arches = 32, l.clog_number = 36, l.clog_flags = 40;
     l.arch_count = 44, l.arch = 48, l.exits = l.arch + 4 * kTrajectoryMaxArch;
     l.particles = l.exits + 8 * size_t(l.n_species);
@@ -105,7 +105,9 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches, const core::St
   put<double>(buf_, l.rule_due_in, f.rule_due_in);
   put<std::int32_t>(buf_, l.long_arches, long_arches);
   put<std::int32_t>(buf_, l.clog_number, f.clog_number);
-  put<std::uint32_t>(buf_, l.clog_flags, (f.clog_open ? kOpen : 0) | (f.clog_arrested ? kArrested : 0));
+  put<std::uint32_t>(
+      buf_, l.clog_flags,
+      (f.clog_open ? kOpen : 0) | (f.clog_arrested ? kArrested : 0) | (f.arch_forming ? kForming : 0));
   const int count = static_cast<int>(std::min<size_t>(f.arch.size(), kTrajectoryMaxArch));
   put<std::int32_t>(buf_, l.arch_count, count);
   for (int k = 0; k < kTrajectoryMaxArch; ++k)
@@ -130,8 +132,14 @@ void TrajectoryWriter::add(const core::Frame& f, int long_arches, const core::St
 }
 
 namespace {
+// A clog's record in the events block: 24 bytes up to version 2, 32 from version 3 (its arch's formation).
+size_t clog_bytes(std::uint32_t version) {
+  return version >= 3 ? 32 : 24;
+}
+
 std::vector<unsigned char> events_block(const core::Events& ev, std::uint64_t offset) {
-  std::vector<unsigned char> b(24 + 16 * ev.exits.size() + 24 * ev.clogs.size());
+  const size_t cb = clog_bytes(kTrajectoryVersion);
+  std::vector<unsigned char> b(24 + 16 * ev.exits.size() + cb * ev.clogs.size());
   std::memcpy(b.data(), kEventsMagic, 8);
   put<std::uint32_t>(b, 8, static_cast<std::uint32_t>(ev.exits.size()));
   put<std::uint32_t>(b, 12, static_cast<std::uint32_t>(ev.clogs.size()));
@@ -148,7 +156,8 @@ std::vector<unsigned char> events_block(const core::Events& ev, std::uint64_t of
     put<double>(b, at + 8, c.end);
     put<std::uint32_t>(b, at + 16, static_cast<std::uint32_t>(c.ended_by));
     put<std::uint32_t>(b, at + 20, c.arrested ? 1 : 0);
-    at += 24;
+    put<double>(b, at + 24, c.formed);  // NaN: no arch blocked it
+    at += cb;
   }
   for (const auto& a : ev.arches) {
     b.resize(at + 48 + 16 * a.ids.size());
@@ -304,7 +313,8 @@ size_t Trajectory::read_events(const std::string& p) {
                       n_arches = get<std::uint32_t>(b, offset + 16);
   size_t at = offset + 24;
   // Sizes are checked before anything is read or allocated.
-  if (n_exits * 16 + n_clogs * 24 + n_arches * 48 > end - at)
+  const size_t cb = clog_bytes(version_);
+  if (n_exits * 16 + n_clogs * cb + n_arches * 48 > end - at)
     throw core::InputError(bad + std::to_string(n_exits) + " exits, " + std::to_string(n_clogs) +
                            " clogs and " + std::to_string(n_arches) + " arches do not fit in its " +
                            std::to_string(end - at) + " bytes)");
@@ -320,11 +330,13 @@ size_t Trajectory::read_events(const std::string& p) {
                              " has a time, id or species out of range)");
     events_.exits.push_back(e);
   }
-  for (std::uint64_t k = 0; k < n_clogs; ++k, at += 24) {
+  for (std::uint64_t k = 0; k < n_clogs; ++k, at += cb) {
     const auto how = get<std::uint32_t>(b, at + 16), arrested = get<std::uint32_t>(b, at + 20);
-    core::ClogEvent c{get<double>(b, at), get<double>(b, at + 8), static_cast<core::ClogEnd>(how),
-                      arrested == 1};
-    if (!time_ok(c.start) || !time_ok(c.end) || c.end < c.start || how > 3 || arrested > 1)
+    core::ClogEvent c{
+        get<double>(b, at), get<double>(b, at + 8), static_cast<core::ClogEnd>(how), arrested == 1, NAN, {}};
+    if (version_ >= 3) c.formed = get<double>(b, at + 24);
+    const bool formed_ok = std::isnan(c.formed) || (c.formed >= c.start - 1e-9 && c.formed <= c.end + 1e-9);
+    if (!time_ok(c.start) || !time_ok(c.end) || c.end < c.start || how > 3 || arrested > 1 || !formed_ok)
       throw core::InputError(bad + "clog " + std::to_string(k + 1) + " has times or an ending out of range)");
     events_.clogs.push_back(c);
   }
@@ -398,7 +410,7 @@ void Trajectory::check_frames(const std::string& p) const {
     if (version_ >= 2) {
       const double start = get<double>(b, l.clog_start), due = get<double>(b, l.rule_due_in);
       if (!std::isfinite(start) || std::isnan(due) || get<std::int32_t>(b, l.clog_number) < 0 ||
-          get<std::uint32_t>(b, l.clog_flags) > 3)
+          get<std::uint32_t>(b, l.clog_flags) > (version_ >= 3 ? 7u : 3u))
         throw core::InputError(frame + "its clog state (start, rule time, number or flags) is out of range");
     }
     for (size_t a = 0; a < 2; ++a)
@@ -445,7 +457,7 @@ void Trajectory::rebuild_clogs() {
     if (f.clog_open && !open) {
       open = true;
       number = f.clog_number;
-      c = {f.clog_start, f.t, core::ClogEnd::RunEnd, f.clog_arrested};
+      c = {f.clog_start, f.t, core::ClogEnd::RunEnd, f.clog_arrested, NAN, {}};
     }
     if (open) c.arrested = c.arrested || f.clog_arrested;
   }
@@ -481,6 +493,7 @@ core::Frame Trajectory::frame(long k) const {
     const auto flags = get<std::uint32_t>(b, l.clog_flags);
     f.clog_open = (flags & kOpen) != 0;
     f.clog_arrested = (flags & kArrested) != 0;
+    f.arch_forming = (flags & kForming) != 0;
   } else {
     // Version 1 kept only the timer: a clog is open once it reaches clog_min_gap.
     f.clog_open = f.since_last_exit >= info_.clog_min_gap && f.t > 0;
@@ -495,7 +508,7 @@ core::Frame Trajectory::frame(long k) const {
   }
   // An arch is shown only while a clog is open (version 1 files stored one in flowing frames too), and never
   // a one-grain "arch" (written before arches were checked by core::blocks_outlet).
-  if (f.arch.size() < 2 || !f.clog_open) f.arch.clear();
+  if (f.arch.size() < 2 || !(f.clog_open || f.arch_forming)) f.arch.clear();
   const size_t base = l.particles;
   f.particles.resize(n);
   for (size_t i = 0; i < n; ++i) {

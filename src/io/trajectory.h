@@ -1,27 +1,30 @@
 // Trajectory files (.sstraj): every recorded frame of a run and the run's events, for the inspector and for
-// users' own analysis. Version 2, little-endian, documented in docs/trajectory.md (with a numpy reader):
+// users' own analysis. Version 3, little-endian, documented in docs/trajectory.md (with a numpy reader):
 //
-//   header, 64 bytes:  char magic[8] = "SILOTRAJ"; u32 version = 2; u32 header_bytes; u32 n_particles;
+//   header, 64 bytes:  char magic[8] = "SILOTRAJ"; u32 version = 3; u32 header_bytes; u32 n_particles;
 //                      u32 max_arch; u32 frame_bytes; u32 n_species; f64 frame_interval_s; f64 clog_timeout_s
 //                      (0: the rule is off); f64 clog_min_gap_s; f64 radius_original_m
 //   then:              f32 radius_m[n]; u8 species[n]; zero padding to 8 bytes;
 //                      u32 scene_bytes; the run's metadata (TOML text); zero padding to 8 bytes
 //   frames, from header_bytes on, each frame_bytes long:
 //                      f64 t_s; f64 since_last_exit_s; i64 exits_original; i64 exits_added; i32 long_arches;
-//                      i32 arch_count; i32 arch[max_arch] (the open clog's arch, ids left to right, -1
-//                      padded); f64 clog_start_s; f64 rule_due_in_s (inf: rule off); i32 clog_number; u32
-//                      flags (bit 0: a clog is open, bit 1: it is arrested); f32 x_m[n]; f32 y_m[n]; f32
+//                      i32 arch_count; i32 arch[max_arch] (the open clog's arch, or the forming one, ids left
+//                      to right, -1 padded); f64 clog_start_s; f64 rule_due_in_s (inf: rule off); i32
+//                      clog_number; u32 flags (bit 0: a clog is open, bit 1: it is arrested, bit 2: the arch
+//                      is forming, the clog clog_number not yet confirmed); f32 x_m[n]; f32 y_m[n]; f32
 //                      angle_rad[n]; f32 vx_m_s[n]; f32 vy_m_s[n]; f32 force_n[n]
 //   events, when the run ended normally (written at close):
 //                      char magic[8] = "SILOEVTS"; u32 n_exits; u32 n_clogs; u32 n_arches; u32 reserved;
 //                      n_exits x {f64 t_s; i32 id; u32 species};
-//                      n_clogs x {f64 start_s; f64 end_s; u32 ended_by; u32 arrested};
+//                      n_clogs x {f64 start_s; f64 end_s; u32 ended_by; u32 arrested; f64 formed_s (NaN:
+//                      no arch)};
 //                      n_arches x {f64 t_s; f64 clog_duration_s; f64 span_m; f64 height_m; f64 max_angle_deg;
 //                                  u32 count; u32 method; count x {i32 id; u32 species; f32 x_m; f32 y_m}};
 //                      then u64 events_offset; char magic[8] = "SILOEND" (the file's last 16 bytes)
 //
 // Frames are appended as the run goes; a reader takes every complete frame, so a file cut off by a crash
-// reads up to its last whole frame (its events then come from the frames' clog states). Version 1 files
+// reads up to its last whole frame (its events then come from the frames' clog states). Version 2 files (no
+// formation: clogs of 24 bytes, flags up to 3) and version 1 files
 // (frames of t, timer, exits_original, exits_added, long_arches, the arch: no clog state, no events) still
 // open: their clogs are rebuilt from the frames' timers.
 #pragma once
@@ -39,7 +42,7 @@
 
 namespace io {
 
-constexpr std::uint32_t kTrajectoryVersion = 2;
+constexpr std::uint32_t kTrajectoryVersion = 3;
 constexpr int kTrajectoryMaxArch = 32;
 
 // Where each field sits in a frame record of a version (bytes from the frame's start; version 1 has no clog

@@ -331,6 +331,19 @@ class Importer {
     }
   }
 
+  // The frames before frame k, from the arch's formation on, show the clog confirmed at k as forming: the
+  // arch from the instant it stood, as a simulated run's trajectory has it (app/services/hindsight.h).
+  void show_forming(int k, const core::ClogState& st) {
+    if (st.arch.empty() || std::isnan(st.formed)) return;
+    for (int j = k - 1; j >= 0 && t_[j] >= st.formed - 1e-9; --j) {
+      core::Frame& f = out_.frames[static_cast<size_t>(j)];
+      if (f.clog_open) break;
+      f.arch = st.arch;
+      f.arch_forming = true;
+      f.clog_number = st.number;
+    }
+  }
+
   // Clogs and arches, frame by frame, by the simulation's rules (no clog rule: nothing removes an arch here).
   void clogs_and_arches() {
     const bool driven = model_.setup.drive.kick_impulse_max > 0 || model_.setup.drive.vibrating();
@@ -378,6 +391,7 @@ class Importer {
         rep_.frames_flowing_with_arch += !arch.empty();
       }
       if (st.open && !st.arch.empty()) held_arch = st.arch, held_frame = k;
+      if (!ev.clogs_opened.empty()) show_forming(k, st);
       core::Frame& f = out_.frames[k];
       f.t = t_[k];
       f.step = static_cast<std::uint64_t>(k);

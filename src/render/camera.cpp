@@ -396,6 +396,16 @@ View CameraPath::view_at(double t, const core::Geometry& geo, int w, int h) cons
   return v;
 }
 
+bool freeze_fires(const Freeze& fz, const core::Frame* before, const core::Frame& now, bool rule_next) {
+  if (fz.at == Freeze::At::Clog) {
+    const bool shows = now.arch_forming || now.clog_open;
+    const bool showed =
+        before && (before->arch_forming || before->clog_open) && before->clog_number == now.clog_number;
+    return shows && !showed;
+  }
+  return fz.at == Freeze::At::Rule && now.clog_open && rule_next && !now.arch.empty();
+}
+
 long Freeze::copies(double fps) const {
   return at == At::None ? 0 : std::max(0L, std::lround(seconds * fps) - 1);
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame.h"
 #include "core/geometry.h"
 
 namespace render {
@@ -123,6 +124,11 @@ struct Freeze {
   long copies(double fps) const;
   const char* caption() const { return at == At::Clog ? "clog formed" : "the clog rule fires next"; }
 };
+// Whether a movie or a clip holds its picture at `now` (`before`: the frame before it; null for the first):
+// the one rule for record, the inspector's clips and anything else that freezes. At a clog: the first frame
+// that shows the clog's arch (from its formation, in hindsight) or, without one, the clog's opening. At the
+// rule: the last frame before the rule fires (`rule_next`, which the caller knows from its events).
+bool freeze_fires(const Freeze& fz, const core::Frame* before, const core::Frame& now, bool rule_next);
 // EVENT and SECONDS (clog or rule; 0 < SECONDS <= 60); throws core::InputError naming `what` was given and
 // the `form` expected.
 Freeze parse_freeze(const std::string& event, const std::string& seconds, const std::string& what,

@@ -22,10 +22,12 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
   out.shapes.reserve(frame.particles.size() + 1);
   out.grains = frame.particles.size();
   std::vector<bool> member(frame.particles.size(), false);
-  // A frame carries an arch only while a clog is open (core/frame.h); it is drawn faint while the outlet
-  // flowed less than fade_below ago, unless the clog is already arrested.
+  // A frame carries an arch only while a clog is open or its arch is forming (core/frame.h); an open clog's
+  // is drawn faint while the outlet flowed less than fade_below ago, unless it is already arrested. A forming
+  // arch is known, in hindsight, to be the one that clogs: drawn whole from its first frame.
   const bool show_arch = style.show_arch && !frame.arch.empty();
-  const float arch_alpha = frame.clog_arrested || frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
+  const float arch_alpha =
+      frame.arch_forming || frame.clog_arrested || frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
   if (show_arch)
     for (int id : frame.arch) member[static_cast<size_t>(id)] = true;
   const Rgba halo = arch_color(style.palette);

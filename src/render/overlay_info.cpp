@@ -62,7 +62,9 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
     ImGui::PushStyleColor(ImGuiCol_PlotHistogram,
                           clogged ? ImVec4(0.85f, 0.25f, 0.15f, 1) : ImVec4(0.3f, 0.6f, 0.3f, 1));
     char label[64];
-    if (!clogged)
+    if (!clogged && f.arch_forming)  // the clog its arch will cause is not confirmed yet
+      std::snprintf(label, sizeof label, "no exit for %.1f s", f.since_last_exit);
+    else if (!clogged)
       std::snprintf(label, sizeof label, "flowing");
     else if (d.clog_rule)
       std::snprintf(label, sizeof label, "clogged %.1f s / %.0f s", f.since_last_exit, d.clog_timeout);
@@ -74,10 +76,11 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
   if (o.arch && !f.arch.empty()) {
     int added = 0;
     for (int id : f.arch) added += f.particles[id].species != core::Species::Original;
+    const char* forming = f.arch_forming ? ", forming" : "";
     if (shorthand)
-      ImGui::Text("arch: %zu disks (%d added)", f.arch.size(), added);
+      ImGui::Text("arch: %zu disks (%d added)%s", f.arch.size(), added, forming);
     else
-      ImGui::Text("arch: %zu grains", f.arch.size());
+      ImGui::Text("arch: %zu grains%s", f.arch.size(), forming);
   }
   if (o.legend) {
     ImGui::Separator();

@@ -4,6 +4,7 @@
 #include "sim/silo.h"
 #include "core/format.h"
 
+#include <box2d/b2_distance.h>
 #include <box2d/box2d.h>
 
 #include <algorithm>
@@ -114,7 +115,7 @@ void Silo::build_walls() {
     fd.restitution = static_cast<float>(scene_.restitution);
     fd.restitutionThreshold = static_cast<float>(scene_.restitution_threshold * L_);
     fd.userData.pointer = kWallTag + static_cast<std::uintptr_t>(core::Wall::Obstacle);
-    walls_->CreateFixture(&fd);
+    obstacle_ = walls_->CreateFixture(&fd);
   }
   // While settling, a ceiling closes the deposition column: strong dipoles can throw grains upwards.
   b2EdgeShape edge;
@@ -224,8 +225,40 @@ core::StepEvents Silo::take_events() {
 
 std::vector<int> Silo::blocking_arch() const {
   std::vector<int> arch = current_arch();
-  if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
+  if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture) || !chain_touches(arch))
+    arch.clear();
   return arch;
+}
+
+double Silo::gap_to(int i, const b2Fixture* other) const {
+  const b2Body* a = bodies_[static_cast<size_t>(i)];
+  b2DistanceInput in;
+  in.proxyA.Set(a->GetFixtureList()->GetShape(), 0);
+  in.proxyB.Set(other->GetShape(), 0);
+  in.transformA = a->GetTransform();
+  in.transformB = other->GetBody()->GetTransform();
+  in.useRadii = true;
+  b2SimplexCache cache;
+  cache.count = 0;
+  b2DistanceOutput out;
+  b2Distance(&out, &cache, &in);
+  return out.distance;
+}
+
+bool Silo::chain_touches(const std::vector<int>& arch) const {
+  // Box2D's contact list lags a step behind the positions (and keeps a manifold for a pair the solver has
+  // just pushed apart): the shapes' own distance decides, within kArchContactGap of the smaller radius.
+  auto near = [&](int i, double gap, double r) { return gap / L_ <= kArchContactGap * r; };
+  for (size_t k = 1; k < arch.size(); ++k) {
+    const int i = arch[k - 1], j = arch[k];
+    const double r = std::min(radius_[static_cast<size_t>(i)], radius_[static_cast<size_t>(j)]);
+    if (near(i, gap_to(i, bodies_[static_cast<size_t>(j)]->GetFixtureList()), r)) continue;
+    if (obstacle_ && near(i, gap_to(i, obstacle_), radius_[static_cast<size_t>(i)]) &&
+        near(j, gap_to(j, obstacle_), radius_[static_cast<size_t>(j)]))
+      continue;
+    return false;
+  }
+  return true;
 }
 
 void Silo::integrate_step() {
@@ -248,7 +281,11 @@ void Silo::integrate_step() {
       // One arch detection per check: whether the outlet is arrested, and the open clog's arch.
       std::vector<int> arch = current_arch();
       const bool arrested = outlet_arrested(arch);
-      if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture)) arch.clear();
+      // The arch drawn and counted is a chain of touching grains (the arrest above keeps its own rule): one
+      // whose neighbours have come apart is no arch, and a held arch that no longer touches is dropped.
+      if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture) || !chain_touches(arch))
+        arch.clear();
+      if (clogs_.state().open && !chain_touches(clogs_.state().arch)) clogs_.drop_arch();
       clogs_.on_rest_check(t_, arrested, arch);
       check_overlaps();
       sample_airborne();
@@ -529,7 +566,8 @@ core::Frame Silo::frame(bool with_forces) const {
   // The open clog as the step reported it: a frame shows an arch only while a clog is open.
   const core::ClogState& clog = clogs_.state();
   if (open_ && clog.open) {
-    f.arch = clog.arch;
+    // Drawn only while it stands: between two arch checks a kick can part it before the next check drops it.
+    if (chain_touches(clog.arch)) f.arch = clog.arch;
     f.clog_open = true;
     f.clog_arrested = clog.arrested;
   }

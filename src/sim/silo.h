@@ -187,6 +187,13 @@ class Silo {
   void record_closed_clogs();
   // The arch Box2D's contacts hold now if it blocks the outlet (core::blocks_outlet), else empty.
   std::vector<int> blocking_arch() const;
+  // Whether each member of `arch` touches the next (an arch is a chain of touching grains; two neighbours
+  // that both rest on the obstacle are linked by it, as the arch detection links them).
+  bool chain_touches(const std::vector<int>& arch) const;
+  // The gap between grain i's shape and a fixture's (Box2D units; 0 when they overlap).
+  double gap_to(int i, const b2Fixture* other) const;
+  // Neighbours of an arch touch when their shapes are at most this fraction of the smaller radius apart.
+  static constexpr double kArchContactGap = 0.05;
   void check_health_fast(int id, core::Vec2 p, core::Vec2 v) const;
   void check_overlaps();
   bool outlet_arrested(const std::vector<int>& arch) const;
@@ -223,7 +230,8 @@ class Silo {
   std::unique_ptr<b2World> world_;
   b2Body* walls_ = nullptr;
   b2Fixture* lid_ = nullptr;
-  b2Fixture* ceiling_ = nullptr;  // closes the deposition column while settling
+  b2Fixture* ceiling_ = nullptr;         // closes the deposition column while settling
+  const b2Fixture* obstacle_ = nullptr;  // the obstacle above the outlet, if the scene has one
   std::vector<b2Body*> bodies_;
   std::vector<double> radius_;  // equal-area radius
   std::vector<double> extent_;  // circumradius (= radius_ for disks): the reach of a grain

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "core/arch.h"
@@ -137,9 +138,13 @@ long Inspector::clog_at(long k) const {
 
 long Inspector::final_arch_frame(size_t i) const {
   const ClogSpan& c = clogs_[i];
-  const std::vector<int> final_arch = traj_.frame(c.last).arch;
-  if (final_arch.empty()) return c.last;
+  // The clog's last frame that shows an arch (a kick may have parted it at the end), then back while the same
+  // grains stand: through the frames of its forming, when this is the arch that clogged (trajectories since
+  // version 3 show it from its formation, core::ClogEvent::formed).
   long k = c.last;
+  while (k > c.first && traj_.frame(k).arch.empty()) --k;
+  const std::vector<int> final_arch = traj_.frame(k).arch;
+  if (final_arch.empty()) return c.last;
   while (k > c.first && core::same_grains(traj_.frame(k - 1).arch, final_arch)) --k;
   return k;
 }
@@ -343,6 +348,8 @@ std::string Inspector::print_frame() {
   o << "frame " << frame_ << " t = " << f.t << " s, clog timer " << f.since_last_exit << " s, ";
   if (f.clog_open)
     o << "clog " << f.clog_number << " open" << (f.clog_arrested ? " (arrested)" : "");
+  else if (f.arch_forming)
+    o << "clog " << f.clog_number << " forming (its arch stands, not yet confirmed)";
   else
     o << "flowing";
   o << ", arch [";
@@ -427,6 +434,8 @@ std::string Inspector::vector_key() const {
       if (f.clog_open)
         std::snprintf(line, sizeof line, "info\tclog %d open%s\n", f.clog_number,
                       f.clog_arrested ? " (arrested)" : "");
+      else if (f.arch_forming)
+        std::snprintf(line, sizeof line, "info\tclog %d forming\n", f.clog_number);
       else
         std::snprintf(line, sizeof line, "info\tflowing\n");
       k += line;
@@ -486,22 +495,18 @@ std::string Inspector::export_frames(const std::string& pattern, long from, long
   const long keep = frame_;
   painter->start_afresh();
   const long copies = freeze.copies(fps);
-  using At = render::Freeze::At;
   for (long k = from; k <= to; ++k) {
     core::throw_if_interrupted();  // the clip's partial file goes with its writer
     frame_ = k;
     const core::Image img = render_current(*painter, width, height);
     movie->add(img);
-    // A freeze: the first frame at which a clog is open (as the recording's steps reported it), or the last
-    // frame before the rule fires.
-    bool event = false;
-    if (freeze.at == At::Clog) {
-      const core::Frame now = traj_.frame(k);
-      event = now.clog_open &&
-              (k == 0 || !traj_.frame(k - 1).clog_open || traj_.frame(k - 1).clog_number != now.clog_number);
-    } else if (freeze.at == At::Rule) {
-      event = k + 1 < traj_.size() && traj_.long_arches(k + 1) > traj_.long_arches(k);
-    }
+    // A freeze: by the movie's own rule (render::freeze_fires): the first frame showing a clog's arch, or the
+    // last frame before the rule fires.
+    const core::Frame now = traj_.frame(k);
+    const std::optional<core::Frame> before =
+        k > 0 ? std::optional<core::Frame>(traj_.frame(k - 1)) : std::nullopt;
+    const bool rule_next = k + 1 < traj_.size() && traj_.long_arches(k + 1) > traj_.long_arches(k);
+    const bool event = freeze && render::freeze_fires(freeze, before ? &*before : nullptr, now, rule_next);
     for (long c = 0; event && c < copies; ++c) movie->add(img);
   }
   frame_ = keep;

@@ -76,7 +76,11 @@ void draw_arch_summary(const core::Frame& f, const render::OverlayData& od) {
   const bool shorthand = names.size() == 2 && names[0] == "original";
   int added = 0;
   for (int id : f.arch) added += f.particles[static_cast<size_t>(id)].species != core::Species::Original;
-  const char* state = f.clog_arrested ? ", arrested" : ", clogging";
+  // Forming: it stands, its clog not yet confirmed (no exit for clog_min_gap); then clogging, then arrested.
+  const char* state = f.arch_forming
+                          ? ", forming (the clog is confirmed once no grain has left for clog_min_gap)"
+                      : f.clog_arrested ? ", arrested"
+                                        : ", clogging";
   if (shorthand)
     ImGui::Text("arch of clog %d: %zu disks, %d added%s", f.clog_number, f.arch.size(), added, state);
   else

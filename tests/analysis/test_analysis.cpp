@@ -145,15 +145,15 @@ TEST_CASE("avalanches held: only clogs the outlet held end one, transient stops 
   int id = 0;
   for (double t : {1.0, 1.1, 1.2, 1.8, 2.0, 3.0, 3.1, 3.2, 3.3})
     exits.push_back({t, id++, Species::Original});
-  const std::vector<core::ClogEvent> clogs = {{1.2, 1.8, core::ClogEnd::Spontaneous, false},
-                                              {2.0, 3.0, core::ClogEnd::Rule, true}};
+  const std::vector<core::ClogEvent> clogs = {{1.2, 1.8, core::ClogEnd::Spontaneous, false, NAN, {}},
+                                              {2.0, 3.0, core::ClogEnd::Rule, true, NAN, {}}};
   using analysis::AvalancheEnd;
   CHECK(analysis::avalanche_sizes(exits, clogs, 0.5, AvalancheEnd::Held) == std::vector<double>{5});
   CHECK(analysis::avalanche_sizes(exits, clogs, 0.5, AvalancheEnd::Gaps) == std::vector<double>{3, 2});
   // A clog still standing at the run's end closes the avalanche before it; clogs.csv's millisecond times
   // still find their exits.
   std::vector<core::ClogEvent> run_end = clogs;
-  run_end.push_back({3.3004, 10.0, core::ClogEnd::RunEnd, true});
+  run_end.push_back({3.3004, 10.0, core::ClogEnd::RunEnd, true, NAN, {}});
   CHECK(analysis::avalanche_sizes(exits, run_end, 0.5, AvalancheEnd::Held) == std::vector<double>{5, 4});
   core::Events ev;
   ev.exits = exits;
@@ -193,10 +193,10 @@ TEST_CASE("per-realization measurements from synthetic events", "[analysis]") {
                        core::ArchMethod::ContactPath,
                        {},
                        {}});
-  ev.clogs = {{5, 10, core::ClogEnd::Rule, true},
-              {12, 13, core::ClogEnd::Vibration, true},
-              {14, 15, core::ClogEnd::Spontaneous, false},
-              {15, 20, core::ClogEnd::Rule, true}};
+  ev.clogs = {{5, 10, core::ClogEnd::Rule, true, NAN, {}},
+              {12, 13, core::ClogEnd::Vibration, true, NAN, {}},
+              {14, 15, core::ClogEnd::Spontaneous, false, NAN, {}},
+              {15, 20, core::ClogEnd::Rule, true, NAN, {}}};
   auto m = analysis::measure(ev, 30.0, 0.5);
   CHECK(m.exits == 30);
   CHECK(m.exits_added == 10);
@@ -221,7 +221,7 @@ TEST_CASE("event files round-trip, truncated or corrupted ones are refused with 
   fs::create_directories(dir);
   core::Events ev;
   ev.exits = {{0.25, 3, Species::Original}, {0.5, 7, Species::Added}};
-  ev.clogs = {{0.5, 5.5, core::ClogEnd::Rule, true}};
+  ev.clogs = {{0.5, 5.5, core::ClogEnd::Rule, true, NAN, {}}};
   ev.arches.push_back({5.5,
                        5.0,
                        {4, 9},

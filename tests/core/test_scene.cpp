@@ -113,7 +113,7 @@ TEST_CASE("command-line overrides edit the same fields", "[sim][scene]") {
 TEST_CASE("a run's metadata file loads back as the same scene", "[sim][scene]") {
   core::Scene s;
   core::apply_overrides(s, {"mu=0.7", "size_ratio=0.25", "seed=99", "dt=0.0005", "arch_method=visible"});
-  io::RunInfo info{"siloscope run test", {{"steps", 10}}, {}};
+  io::RunInfo info{"siloscope run test", {{"steps", 10}}, {}, {}};
   auto p = write_temp("metadata.toml", io::metadata_toml(core::compile(s), info));
   core::Scene back = core::load_scene(p);
   for (const auto& f : core::scene_fields()) CHECK(core::field_text(back, f) == core::field_text(s, f));
@@ -131,7 +131,8 @@ TEST_CASE(
                     {"label", "mu = 2.2 \"strong\""},
                     {"labels", std::vector<std::string>{"a", "b\"c"}},
                     {"never", std::numeric_limits<double>::infinity()}},
-                   {{"ballistic", true}}};
+                   {{"ballistic", true}},
+                   {}};
   const toml::table t = toml::parse(io::metadata_toml(core::compile(s), info));
   CHECK(t["run"]["steps"].is_integer());
   CHECK(t["run"]["steps"].value<std::int64_t>() == 150000);

@@ -79,7 +79,7 @@ TEST_CASE("species tables parse, resolve and round-trip through a run's metadata
   CHECK(st.geo.hopper_height == 0.0);
   CHECK(st.reference_radius == Approx(0.05));
   // Through a metadata file and back: every key, species included, the same.
-  io::RunInfo info{"test", {}, {}};
+  io::RunInfo info{"test", {}, {}, {}};
   const core::Scene back =
       core::load_scene(write_temp("meta.toml", io::metadata_toml(core::compile(s), info)));
   CHECK(core::scene_values(back) == core::scene_values(s));

@@ -246,6 +246,7 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                     {"runs_refused", refused.size()},
                     {"ballistic_runs", std::count_if(runs.begin(), runs.end(),
                                                      [](const analysis::Run& r) { return r.m.ballistic; })}},
+                   {},
                    {}};
   io::write_file_atomic(out.file(io::kMetadataFile),
                         io::metadata_toml({runs.front().scene, runs.front().setup}, info));

@@ -141,6 +141,7 @@ int export_vtu(const ExportOptions& o, const io::Run& run, long first, long last
                     {"vtu_encoding", o.vtu_encoding},
                     {"last_frame", last},
                     {"open_in_paraview", "trajectory.pvd"}},
+                   {},
                    {}};
   io::write_file_atomic(dir.file(io::kMetadataFile), io::metadata_toml(model, info));
   dir.commit();

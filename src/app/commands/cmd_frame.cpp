@@ -78,7 +78,7 @@ fs::path resimulate_for_frame(const io::Run& run, const std::string& kind, const
   const FrameClock clock = FrameClock::every(model.scene.dt, 1.0 / 30, "frame");
   fs::create_directories(tmp);
   const fs::path path = tmp / io::run_file::kTrajectory;
-  io::RunInfo info{command_line(), {}, {}};
+  io::RunInfo info{command_line(), {}, {}, {}};
   std::unique_ptr<TrajectorySink> sink;
   resimulate(
       run, stop, clock,

@@ -9,12 +9,14 @@
 #include <exception>
 #include <functional>
 #include <future>
+#include <optional>
 #include <sstream>
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/commands/record_plan.h"
 #include "app/services/cli.h"
+#include "app/services/hindsight.h"
 #include "app/services/looks.h"
 #include "app/services/pipeline.h"
 #include "app/services/process.h"
@@ -105,7 +107,7 @@ class MovieSink : public Sink {
         }
         continue;
       }
-      render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.events[i], tick.frames[i].t);
+      render::Annotations notes = panels_[i].marks.update(*tick.worlds[i], tick.events[i], tick.frames[i]);
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
       if (!plan_.path.empty()) {
@@ -114,7 +116,7 @@ class MovieSink : public Sink {
         v.rect.x += static_cast<int>(i) * panel_w_;
         pf.views.push_back({v});
       }
-      freeze = freeze || freezes(tick.frames[i], tick.events[i]);
+      freeze = freezes(i, tick.frames[i], tick.events[i]) || freeze;
     }
     // The user's notes due at this time, in every panel.
     for (auto& n : pf.notes)
@@ -179,11 +181,15 @@ class MovieSink : public Sink {
   }
   // Whether a panel's frame is a freeze's event, as its steps reported it: a clog opened since the previous
   // frame, or the rule falls due before the next frame (the last frame before it fires) with an arch shown.
-  bool freezes(const core::Frame& f, const core::StepEvents& e) const {
-    if (!plan_.freeze) return false;
-    if (plan_.freeze.at == render::Freeze::At::Clog) return !e.clogs_opened.empty();
-    return f.clog_open && e.rule_due_in > 0 && e.rule_due_in <= clock_.frame_interval && !f.arch.empty();
+  bool freezes(size_t panel, const core::Frame& f, const core::StepEvents& e) {
+    if (last_.size() <= panel) last_.resize(panel + 1);
+    const bool fires =
+        plan_.freeze && render::freeze_fires(plan_.freeze, last_[panel] ? &*last_[panel] : nullptr, f,
+                                             e.rule_due_in > 0 && e.rule_due_in <= clock_.frame_interval);
+    last_[panel] = f;
+    return fires;
   }
+  std::vector<std::optional<core::Frame>> last_;  // each panel's previous frame (the freeze rule compares)
   FramePipeline& pipeline_;
   std::vector<Panel>& panels_;
   const FrameClock& clock_;
@@ -355,6 +361,7 @@ int record_movie(const RecordOptions& o) {
   std::unique_ptr<Session> session;
   std::vector<std::unique_ptr<TrajectorySink>> trajectories;
   std::unique_ptr<MovieSink> movie;
+  std::unique_ptr<HindsightSink> hindsight;
   try {
     std::vector<core::Model> scenes;
     for (const auto& p : panels)
@@ -371,11 +378,17 @@ int record_movie(const RecordOptions& o) {
     }
     movie = std::make_unique<MovieSink>(pipeline, panels, plan, o.speed, video.width);
     sinks.push_back(movie.get());
-    completed = session->run(scene.duration, plan.clock, sinks, interrupted, [&](double t) {
+    // The movie and the trajectories see each arch from its formation: frames reach them clog_min_gap late.
+    double latency = 0;
+    for (const auto& p : panels) latency = std::max(latency, p.model.scene.clog_min_gap);
+    hindsight = std::make_unique<HindsightSink>(sinks, latency + plan.clock.frame_interval);
+    completed = session->run(scene.duration, plan.clock, {hindsight.get()}, interrupted, [&](double t) {
       char extra[96];
       std::snprintf(extra, sizeof extra, "t = %.1f s, %zu exits", t, session->world(0).events().exits.size());
       progress.update(t, extra);
     });
+    // The run's end closes open clogs (the trajectories keep them); the frames held for hindsight go on.
+    session->finish({hindsight.get()});
   } catch (...) {
     sim_error = std::current_exception();
   }
@@ -398,9 +411,6 @@ int record_movie(const RecordOptions& o) {
 
   // --- finish: the run's end closes open clogs (the trajectories keep them), the movie goes into place
   // first, then the directory that describes it ---
-  std::vector<Sink*> closing;
-  for (auto& t : trajectories) closing.push_back(t.get());
-  session->finish(closing);
   for (auto& t : trajectories) t->close();
   if (mp4) {
     mp4->finish();

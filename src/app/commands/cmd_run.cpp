@@ -4,6 +4,7 @@
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/services/cli.h"
+#include "app/services/hindsight.h"
 #include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "app/services/session.h"
@@ -73,7 +74,7 @@ int simulate(const RunOptions& o, const core::Model& model) {
   std::unique_ptr<TrajectorySink> trajectory;
   std::vector<Sink*> sinks;
   if (clock.steps > 0) {
-    io::RunInfo tinfo{command_line(), {}, {}};
+    io::RunInfo tinfo{command_line(), {}, {}, {}};
     trajectory = std::make_unique<TrajectorySink>(
         dir.file(io::run_file::kTrajectory),
         trajectory_info(hopper, clock.frame_interval, io::metadata_toml(model, tinfo)));
@@ -86,12 +87,14 @@ int simulate(const RunOptions& o, const core::Model& model) {
                   hopper.events().exits.size(), t / std::max(wall, 1e-9));
     progress.update(t, extra);
   };
-  if (!session.run(scene.duration, clock, sinks, interrupted, report)) {
+  // The trajectory sees each arch from its formation: its frames reach it clog_min_gap late.
+  HindsightSink hindsight(sinks, scene.clog_min_gap + clock.frame_interval);
+  if (!session.run(scene.duration, clock, {&hindsight}, interrupted, report)) {
     progress.finish();
     std::fprintf(stderr, "siloscope: interrupted at t = %.1f s; nothing written\n", hopper.time());
     return 130;
   }
-  session.finish(sinks);  // the trajectory keeps the clog the run's end closed
+  session.finish({&hindsight});  // the trajectory keeps the clog the run's end closed
   if (trajectory) trajectory->close();
   progress.finish();
   auto wall2 = std::chrono::steady_clock::now();

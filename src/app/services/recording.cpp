@@ -14,13 +14,16 @@
 
 namespace app {
 
-render::Annotations EventMarks::update(const sim::Silo& h, const core::StepEvents& events, double t) {
+render::Annotations EventMarks::update(const sim::Silo& h, const core::StepEvents& events,
+                                       const core::Frame& f) {
+  const double t = f.t;
   render::Annotations notes;
   if (!events.rule_removed.empty()) {
     const core::ArchEvent& a = events.rule_removed.back();
     rings_.clear();
-    // Where they stood, in the container's frame; drawn where the container is now.
-    const core::Vec2 off = h.container_offset();
+    // Where they stood, in the container's frame; drawn where the container is in this frame (frames may
+    // reach the movie later than the world moved on: hindsight).
+    const core::Vec2 off{f.container_x, f.container_y};
     for (size_t k = 0; k < a.ids.size() && k < a.x.size(); ++k)
       rings_.push_back({static_cast<float>(a.x[k] + off.x), static_cast<float>(a.y[k] + off.y),
                         static_cast<float>(h.radii()[static_cast<size_t>(a.ids[k])])});

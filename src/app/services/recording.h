@@ -49,7 +49,7 @@ class EventMarks {
   static constexpr int kMinFrames = 10;
   static constexpr double kMinSeconds = 0.7;
   // `events`: what world h's steps reported since the previous frame.
-  render::Annotations update(const sim::Silo& h, const core::StepEvents& events, double t);
+  render::Annotations update(const sim::Silo& h, const core::StepEvents& events, const core::Frame& f);
 
  private:
   void start(const std::string& caption, double t, bool keep_rings);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "app/services/hindsight.h"
 #include "app/services/terminal.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -34,10 +35,11 @@ void resimulate(const io::Run& run, double until, const FrameClock& clock, const
   const core::Events& recorded = run.events();
   const core::Model& model = run.model();
   Session session({model});
-  const std::vector<Sink*> sinks = sinks_for(session.world(0));
+  // As the run itself was written: arches seen from their formation (hindsight's latency).
+  HindsightSink hindsight(sinks_for(session.world(0)), model.scene.clog_min_gap + clock.frame_interval);
   Progress progress(label, until, true);
-  session.run(until, clock, sinks, {}, [&](double t) { progress.update(t); });
-  session.finish(sinks);
+  session.run(until, clock, {&hindsight}, {}, [&](double t) { progress.update(t); });
+  session.finish({&hindsight});
   progress.finish();
   const core::Events& again = session.world(0).events();
   auto differs = [&](const std::string& what) {

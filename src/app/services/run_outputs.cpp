@@ -1,6 +1,8 @@
 // A run's outputs, written the same way by run and record: events, measurements, metadata, the trajectory's
 // header.
 #include "app/services/run_outputs.h"
+
+#include <cmath>
 #include "io/run.h"
 
 #include "analysis/tidy.h"
@@ -58,7 +60,11 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
   io::write_events(dir, h.events(), h.setup().species_names());
   // The arch literature's descriptors of each removed arch, beside arches.csv (whose bytes the paper's golden
   // events fix).
-  io::write_file_atomic(dir / "arch_shapes.csv", arch_shapes_csv(h.events(), h.radii()));
+  io::write_file_atomic(dir / io::run_file::kArchShapes, arch_shapes_csv(h.events(), h.radii()));
+  // Each clog's arch from its formation (the first check it stood), its confirmation and its members in the
+  // order they arrived: what the movie and the inspector show from formation on.
+  io::write_file_atomic(dir / io::run_file::kArchFormation,
+                        arch_formation_csv(h.events(), scene.clog_min_gap));
   io::write_file_atomic(dir / "species.csv", analysis::species_csv(h.setup(), m));
   io::write_file_atomic(dir / "summary.csv",
                         analysis::summary_header() + "\n" + analysis::summary_row(scene, m) + "\n");
@@ -76,6 +82,22 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
   }
   io::write_file_atomic(dir / io::run_file::kMetadata, io::metadata_toml(h.model(), info));
   return m;
+}
+
+std::string arch_formation_csv(const core::Events& ev, double clog_min_gap) {
+  std::string out = "clog,start_s,formed_s,confirmed_s,end_s,ended_by,formed_before_confirmed_s,arrival\n";
+  for (size_t k = 0; k < ev.clogs.size(); ++k) {
+    const core::ClogEvent& c = ev.clogs[k];
+    if (std::isnan(c.formed)) continue;
+    const double confirmed = c.start + clog_min_gap;
+    std::string ids;
+    for (int id : c.arrival) ids += (ids.empty() ? "" : ";") + std::to_string(id);
+    out += std::to_string(k + 1) + "," + core::format_g(c.start, 9) + "," + core::format_g(c.formed, 9) +
+           "," + core::format_g(confirmed, 9) + "," + core::format_g(c.end, 9) + "," +
+           core::clog_end_name(c.ended_by) + "," + core::format_g(std::max(0.0, confirmed - c.formed), 6) +
+           "," + ids + "\n";
+  }
+  return out;
 }
 
 io::Facts health_facts(const sim::Silo& h) {

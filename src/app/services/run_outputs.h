@@ -25,6 +25,9 @@ io::TrajectoryInfo trajectory_info(const sim::Silo& h, double frame_interval, co
 io::Facts health_facts(const sim::Silo& h);
 // A finished run's measurements over `duration` s of discharge, with its health (for summary.csv).
 analysis::Measurements measure_run(const sim::Silo& h, double duration);
+// arch_formation.csv: per clog with an arch, when it formed (before the clog's confirmation at start +
+// clog_min_gap), and its members in the order they arrived.
+std::string arch_formation_csv(const core::Events& ev, double clog_min_gap);
 // arch_shapes.csv: per arch the clog rule removed, the descriptors of core::arch_descriptors.
 std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii);
 // A run's outputs into `dir`: exits/clogs/arches.csv, arch_shapes.csv, species.csv, summary.csv,

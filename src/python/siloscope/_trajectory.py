@@ -30,8 +30,9 @@ def frame_dtype(n, max_arch, version=2, n_species=2):
     return np.dtype(fields)
 
 
-def _read_events(raw, at, end, n, path):
-    """The events block of a version 2 file (docs/trajectory.md): exits, clogs and the rule's removals."""
+def _read_events(raw, at, end, n, path, version=3):
+    """The events block of a version 2 or 3 file (docs/trajectory.md): exits, clogs (version 3: with their arch's
+    formation) and the rule's removals."""
     import pandas as pd
 
     def bad(what):
@@ -41,13 +42,14 @@ def _read_events(raw, at, end, n, path):
         raise bad("no SILOEVTS at its offset")
     n_exits, n_clogs, n_arches = (int(v) for v in np.frombuffer(raw, "<u4", 3, at + 8))
     at += 24
-    if n_exits * 16 + n_clogs * 24 + n_arches * 48 > end - at:
+    clog_bytes = 32 if version >= 3 else 24
+    if n_exits * 16 + n_clogs * clog_bytes + n_arches * 48 > end - at:
         raise bad(f"{n_exits} exits, {n_clogs} clogs and {n_arches} arches do not fit")
     ex = np.frombuffer(raw, [("t_s", "<f8"), ("id", "<i4"), ("species", "<u4")], n_exits, at)
     at += 16 * n_exits
-    cl = np.frombuffer(raw, [("start_s", "<f8"), ("end_s", "<f8"), ("ended_by", "<u4"), ("arrested", "<u4")],
-                       n_clogs, at)
-    at += 24 * n_clogs
+    fields = [("start_s", "<f8"), ("end_s", "<f8"), ("ended_by", "<u4"), ("arrested", "<u4")]
+    cl = np.frombuffer(raw, fields + ([("formed_s", "<f8")] if version >= 3 else []), n_clogs, at)
+    at += clog_bytes * n_clogs
     if not (np.all(np.isfinite(ex["t_s"])) and np.all((ex["id"] >= 0) & (ex["id"] < n))):
         raise bad("an exit's time or id is out of range")
     if not (np.all(np.isfinite(cl["start_s"])) and np.all(cl["end_s"] >= cl["start_s"])
@@ -75,7 +77,8 @@ def _read_events(raw, at, end, n, path):
     clogs = pd.DataFrame({"start_s": cl["start_s"].astype(float), "end_s": cl["end_s"].astype(float),
                           "duration_s": (cl["end_s"] - cl["start_s"]).astype(float),
                           "ended_by": [ENDED_BY[int(v)] for v in cl["ended_by"]],
-                          "arrested": cl["arrested"].astype(np.int64)})
+                          "arrested": cl["arrested"].astype(np.int64),
+                          "formed_s": cl["formed_s"].astype(float) if version >= 3 else np.full(n_clogs, np.nan)})
     return exits, clogs, arches
 
 
@@ -102,8 +105,8 @@ class Trajectory:
         if head["magic"] != b"SILOTRAJ":
             raise SiloscopeError(f"{path}: not a siloscope trajectory (no SILOTRAJ header)")
         self.version = int(head["version"])
-        if self.version not in (1, 2):
-            raise SiloscopeError(f"{path}: trajectory version {self.version}; this reader reads versions 1 and 2")
+        if self.version not in (1, 2, 3):
+            raise SiloscopeError(f"{path}: trajectory version {self.version}; this reader reads versions 1 to 3")
         self.n = int(head["n"])
         self.max_arch = int(head["max_arch"])
         self.header_bytes = int(head["header_bytes"])
@@ -153,7 +156,8 @@ class Trajectory:
                 with open(real, "rb") as f:
                     f.seek(offset)
                     raw = f.read(size - 16 - offset)
-                self.exit_events, self.clogs, self.arch_events = _read_events(raw, 0, len(raw), self.n, path)
+                self.exit_events, self.clogs, self.arch_events = _read_events(raw, 0, len(raw), self.n, path,
+                                                                              self.version)
                 frames_end = offset
         count = (frames_end - self.header_bytes) // dtype.itemsize  # whole frames: a cut file reads to its last
         self.truncated = (frames_end - self.header_bytes) % dtype.itemsize != 0
@@ -190,7 +194,7 @@ class Trajectory:
             refuse(bad[0], "its time since the last exit is negative or not a finite number")
         if self.version >= 2:
             bad = np.flatnonzero(~np.isfinite(f["clog_start"]) | np.isnan(f["rule_due_in"]) |
-                                 (f["clog_number"] < 0) | (f["clog_flags"] > 3))
+                                 (f["clog_number"] < 0) | (f["clog_flags"] > (7 if self.version >= 3 else 3)))
             if len(bad):
                 refuse(bad[0], "its clog state (start, rule time, number or flags) is out of range")
         scene = self.metadata.get("scene", {}) if isinstance(self.metadata, dict) else {}
@@ -230,11 +234,17 @@ class Trajectory:
             return bool(int(f["clog_flags"]) & 1)
         return bool(f["since_last_exit"] >= self.clog_min_gap and f["t"] > 0)
 
+    def arch_forming(self, k):
+        """Whether the arch of frame k is forming: it stands, its clog not yet confirmed (version 3)."""
+        return self.version >= 3 and bool(int(self.frames[k]["clog_flags"]) & 4)
+
     def arch(self, k):
-        """The open clog's arch at frame k, grain ids left to right (empty: no clog open, or none found)."""
+        """The arch at frame k, grain ids left to right: the open clog's, or (version 3) the forming one; empty
+        when there is none."""
         f = self.frames[k]
         ids = np.asarray(f["arch"][: max(0, min(int(f["arch_count"]), self.max_arch))], dtype=np.int64)
-        return ids if len(ids) >= 2 and self.clog_open(k) else np.zeros(0, dtype=np.int64)
+        shown = self.clog_open(k) or self.arch_forming(k)
+        return ids if len(ids) >= 2 and shown else np.zeros(0, dtype=np.int64)
 
 
 def read_trajectory(path):
