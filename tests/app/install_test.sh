@@ -23,7 +23,7 @@ PYTHONPATH="$tmp/prefix/share/siloscope/python" /usr/bin/python3 -c "import silo
 # The installed package: its in-process module (not in a sanitized build, which makes none: CMakeLists.txt), and
 # siloscope.run() finding PREFIX/bin/siloscope (not PATH).
 module=no
-if ls "$tmp/prefix/share/siloscope/python/siloscope/"_siloscope*.so > /dev/null 2>&1; then module=yes; fi
+if ls "$tmp/prefix/lib/siloscope/"_siloscope*.so > /dev/null 2>&1; then module=yes; fi
 grep -q "SILOSCOPE_SANITIZE:BOOL=ON" "$build/CMakeCache.txt" || test "$module" = yes
 env -u SILOSCOPE_BINARY PATH=/usr/bin:/bin PYTHONPATH="$tmp/prefix/share/siloscope/python" /usr/bin/python3 -c "
 import siloscope

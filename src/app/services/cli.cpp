@@ -1,12 +1,15 @@
 // The command line's shared pieces: scene options, integer checks, "did you mean", the command line itself.
 #include "app/services/cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
+#include "app/services/process.h"
 #include "core/error.h"
 #include "core/format.h"
 
@@ -18,7 +21,8 @@ std::string g_command;
 
 void SceneOptions::add_to(CLI::App& cmd, bool scene_required) {
   auto* opt = cmd.add_option("scene", path,
-                             "scene file (TOML), e.g. assets/scenes/paper.toml, or a run's metadata.toml");
+                             "scene file (TOML), e.g. assets/scenes/paper.toml, a run's metadata.toml, or a "
+                             "preset by name (paper, paper-vibrated, pentagons, silo-obstacle, ...)");
   if (scene_required) opt->required();
   cmd.add_option("--seed", seed, "random seed (overrides the scene's)")
       ->check(whole_number(0, 9223372036854775807.0L));  // 2^63 - 1: what metadata.toml can hold
@@ -44,7 +48,32 @@ core::Scene SceneOptions::load() const {
   return compile().scene;
 }
 
+std::string scene_file(const std::string& given) {
+  std::error_code ec;
+  if (given.empty() || std::filesystem::exists(given, ec) || given.find('/') != std::string::npos ||
+      (given.size() > 5 && given.compare(given.size() - 5, 5, ".toml") == 0))
+    return given;
+  // A preset by its name: SHARE/scenes/NAME.toml (beside the binary, or installed).
+  std::filesystem::path dir;
+  try {
+    dir = share_dir() / "scenes";
+  } catch (const core::RuntimeFault&) {
+    return given;
+  }
+  if (std::filesystem::is_regular_file(dir / (given + ".toml"), ec))
+    return (dir / (given + ".toml")).string();
+  std::vector<std::string> presets;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.path().extension() == ".toml") presets.push_back(e.path().stem().string());
+  std::sort(presets.begin(), presets.end());
+  std::string names;
+  for (const auto& n : presets) names += (names.empty() ? "" : ", ") + n;
+  throw core::InputError(given + ": no such scene file, and no preset scene of that name (presets: " + names +
+                         ")");
+}
+
 core::Model SceneOptions::compile() const {
+  const std::string path = scene_file(this->path);
   core::Scene s = path.empty() ? core::Scene{} : core::load_scene(path);
   if (!path.empty() && core::scene_is_empty_file(path))
     std::fprintf(stderr, "siloscope: %s sets no keys: running the built-in default scene\n", path.c_str());

@@ -25,6 +25,10 @@ CLI::Validator number_in(double lo, double hi, const std::string& unit = "");
 // Levenshtein distance (for "did you mean").
 size_t edit_distance(const std::string& a, const std::string& b);
 
+// A scene given on the command line: a file, or a preset by its name (`paper`: SHARE/scenes/paper.toml);
+// throws core::InputError listing the presets when it is neither.
+std::string scene_file(const std::string& given);
+
 // SCENE [--seed N] [--duration S] [--set key=value ...], shared by run, record and bench.
 struct SceneOptions {
   std::string path;
@@ -52,7 +56,8 @@ int analyze_runs(const std::vector<std::string>& inputs, const std::string& out_
                  bool include_interrupted = false, bool include_unhealthy = false,
                  const std::vector<std::string>& by = {}, const std::string& avalanche_end = "auto");
 // bench record's rule for a stage against its committed figure: "" within 1.5x, else the flag's text.
-std::string slowed_stage(const std::string& name, const std::string& stage, double measured, double reference);
+std::string slowed_stage(const std::string& name, const std::string& stage, double measured,
+                         double reference);
 // bench's own subcommands (bench is a row of the command table, app/services/commands.h).
 void add_bench_arch_command(CLI::App& bench, Action& action);
 void add_bench_accuracy_command(CLI::App& bench, Action& action);

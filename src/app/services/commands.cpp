@@ -62,6 +62,20 @@ std::string parsed_path(CLI::App& cli) {
   return path;
 }
 
+// A table row's example as a reader would type it: its placeholders as typical paths.
+std::string readable_example(std::string text) {
+  static const std::pair<const char*, const char*> kNames[] = {
+      {"{scene}", "paper"},           {"{recording}", "recordings/demo"},
+      {"{run}", "runs/s1"},           {"{campaign}", "assets/campaigns/quick.toml"},
+      {"{results}", "results/quick"}, {"{analysis}", "analysis"},
+      {"{video}", "film.mp4"},        {"{tracks}", "tracks.csv"},
+      {"{script}", "session.txt"},    {"{out}", "out"}};
+  for (const auto& [key, name] : kNames)
+    for (size_t at; (at = text.find(key)) != std::string::npos;)
+      text.replace(at, std::string(key).size(), name);
+  return text;
+}
+
 int interrupted_exit() {
   std::fprintf(stderr, "siloscope: interrupted: stopped before finishing; nothing half-written is left\n");
   return 130;
@@ -105,6 +119,7 @@ int run_command_line(int argc, char** argv) {
     CLI::App* sub = cli.add_subcommand(c.name, c.help);
     c.define(*sub, action);
     add_version_flags(*sub);
+    sub->footer("Example: siloscope " + readable_example(c.example));
   }
   if (argc > 1 && argv[1][0] != '-') {
     const std::string message = misspelt(argv[1]);

@@ -27,7 +27,28 @@ from ._run import Run, read_run, run
 from ._campaign import Campaign, read_campaign
 from ._simulation import Simulation
 from ._contacts import read_contacts
+from ._presets import presets, scene_file
 
 __all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "read_run", "run", "Campaign", "read_campaign",
-           "Simulation", "read_contacts"]
-__version__ = "0.1.0"
+           "Simulation", "read_contacts", "presets", "scene_file"]
+
+
+def _version():
+    """The version CMakeLists.txt defines: written beside the package when it is built or installed
+    (_version.py), else read from the clone this package sits in."""
+    try:
+        from ._version import version
+        return version
+    except ImportError:
+        pass
+    import os
+    import re
+    cmake = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "CMakeLists.txt")
+    try:
+        with open(cmake) as f:
+            return re.search(r"project\(siloscope VERSION ([0-9.]+)", f.read()).group(1)
+    except (OSError, AttributeError):
+        return "unknown"
+
+
+__version__ = _version()

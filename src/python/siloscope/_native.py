@@ -8,15 +8,19 @@ import os
 
 @functools.lru_cache(maxsize=1)
 def module_or_none():
-    """The module installed beside this package, else the one a build of this clone staged; None without one."""
+    """The module beside this package (a build's staged copy, a pip install), else the one installed with it
+    (PREFIX/lib/siloscope for PREFIX/share/siloscope/python/siloscope), else the one a build of this clone
+    staged; None without one."""
     try:
         from . import _siloscope
         return _siloscope
     except ImportError:
         pass
     here = os.path.dirname(os.path.abspath(__file__))
-    staged = os.path.join(here, "..", "..", "..", "build", "share", "siloscope", "python", "siloscope")
-    found = sorted(glob.glob(os.path.join(staged, "_siloscope*.so")))
+    found = []
+    for where in (os.path.join(here, "..", "..", "..", "..", "lib", "siloscope"),
+                  os.path.join(here, "..", "..", "..", "build", "share", "siloscope", "python", "siloscope")):
+        found = found or sorted(glob.glob(os.path.join(where, "_siloscope*.so")))
     if not found:
         return None
     spec = importlib.util.spec_from_file_location("siloscope._siloscope", found[0])

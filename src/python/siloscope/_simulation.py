@@ -18,6 +18,7 @@ import numpy as np
 
 from ._errors import SiloscopeError
 from ._native import module_or_none
+from ._presets import scene_file
 
 
 def _module():
@@ -59,7 +60,7 @@ class Simulation:
             raise SiloscopeError(f"seed = {seed!r}: expected a whole number from 0 to 2^63 - 1")
         assignments = [f"{k}={_toml(v)}" for k, v in {**(keys or {}), **more}.items()]
         try:
-            self._s = m.Simulation("" if scene is None else os.fspath(scene), -1 if seed is None else int(seed),
+            self._s = m.Simulation("" if scene is None else scene_file(scene), -1 if seed is None else int(seed),
                                    assignments)
         except (m.InputError, m.Unstable, m.RuntimeFault) as e:
             raise SiloscopeError(str(e)) from None
