@@ -57,14 +57,6 @@ void ClogTracker::formed_now(double t) {
   for (const auto& [since, k] : order) state_.arrival.push_back(state_.arch[static_cast<size_t>(k)]);
 }
 
-void ClogTracker::drop_arch() {
-  if (!state_.open || state_.arch.empty()) return;
-  state_.arch.clear();  // when it formed stays: the clog's arch did form, then part
-  seen_arch_.clear();
-  member_since_.clear();
-  candidate_.clear();
-}
-
 void ClogTracker::close(double t, core::ClogEnd how, core::StepEvents& out) {
   if (how == core::ClogEnd::Rule || t - last_ >= min_gap_) {
     // A gap that qualifies as a clog always opened one first (in this very step if need be), so that every

@@ -29,9 +29,6 @@ class ClogTracker {
   // kick's own velocity change: a clog that was arrested and then flows again was broken by a kick, at any
   // kick strength. `arch`: the blocking arch found at this check (core::blocks_outlet), or empty.
   void on_rest_check(double t, bool outlet_at_rest, const std::vector<int>& arch);
-  // The held arch no longer stands as a chain of touching grains (a member's contact lost): it is dropped,
-  // and the clog shows no arch until a check finds one again. Does not change when the clog opens or ends.
-  void drop_arch();
   // After the step's exits and rule at time t: opens a clog when the gap has reached clog_min_gap, with the
   // arch `find_arch()` finds then (a blocking arch or empty: the last check's arch of this gap is kept).
   template <class FindArch>
@@ -56,6 +53,7 @@ class ClogTracker {
 
   double since_last(double t) const { return t - last_; }
   void set_driven(bool driven) { driven_ = driven; }
+  void set_timeout(double timeout) { timeout_ = timeout; }  // s; 0: the rule off
   bool arrested() const { return arrested_; }
   const core::ClogState& state() const { return state_; }
   const std::vector<core::ClogEvent>& clogs() const { return clogs_; }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry.h"
+
 namespace core {
 
 // A grain's species: its place in the scene's species list (core/setup.h), 0 to 15. The paper's shorthand
@@ -36,6 +38,20 @@ double polygon_extent(int sides);
 struct Contact {
   int a, b;
   float force;
+};
+
+// A contact's force as the solver applied it in the last step, split into its normal and tangential parts:
+// what the Love-Weber stress, an arch's load and its force balance are made of. `b` is a grain; `a` is a
+// grain or a wall (-1 - its core::Wall index). On b the force is fn * normal + ft * tangent() (on a, the
+// opposite).
+struct ContactForce {
+  int a = 0, b = 0;
+  Vec2 point;     // m, where they touch (world frame; the manifold's mean point)
+  Vec2 normal;    // unit, from a towards b
+  double fn = 0;  // N, >= 0: compression
+  double ft = 0;  // N, signed, along tangent() (friction; |ft| <= friction * fn)
+  Vec2 tangent() const { return {normal.y, -normal.x}; }
+  Vec2 on_b() const { return {fn * normal.x + ft * normal.y, fn * normal.y - ft * normal.x}; }
 };
 
 struct Frame {
@@ -130,6 +146,10 @@ struct ArchEvent {
   ArchGeometry geometry;
   ArchMethod method = ArchMethod::ContactPath;  // how the members were found
   std::vector<float> x, y;                      // m, where each member stood when it was removed
+  // The arch's forces in the step the rule fired (core/forces.h; NaN where nobody measured them, as in an
+  // imported run): the load the grains above put on it and what its walls held up, along gravity, and its
+  // own weight, N; the imbalance |sum of forces| / held.
+  double load_N = NAN, held_N = NAN, weight_N = NAN, imbalance = NAN;
 };
 
 struct Events {

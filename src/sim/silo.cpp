@@ -282,10 +282,10 @@ void Silo::integrate_step() {
       std::vector<int> arch = current_arch();
       const bool arrested = outlet_arrested(arch);
       // The arch drawn and counted is a chain of touching grains (the arrest above keeps its own rule): one
-      // whose neighbours have come apart is no arch, and a held arch that no longer touches is dropped.
+      // whose neighbours have come apart is no arch. A held arch is checked again in every frame (frame()):
+      // hidden while a kick holds its grains apart, shown again when they touch, replaced by the next arch.
       if (!core::blocks_outlet(arch, positions(), radius_, geo_.half_aperture) || !chain_touches(arch))
         arch.clear();
-      if (clogs_.state().open && !chain_touches(clogs_.state().arch)) clogs_.drop_arch();
       clogs_.on_rest_check(t_, arrested, arch);
       check_overlaps();
       sample_airborne();
@@ -448,6 +448,7 @@ void Silo::apply_clog_rule() {
     ev.y.push_back(static_cast<float>(p[id].y));
   }
   ev.geometry = core::arch_geometry(ev.ids, p, radius_);
+  record_arch_forces(ev);
   for (int id : ev.ids) reinject(id);
   events_.arches.push_back(std::move(ev));
   clogs_.on_rule(t_, events_.arches.back(), last_);

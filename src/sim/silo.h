@@ -71,6 +71,13 @@ class Silo {
   // show the open clog's arch instead (clog().arch).
   std::vector<int> current_arch() const;
   core::ContactGraph contact_graph() const;
+  // Every touching contact's force as the last step's solver applied it (normal and tangential impulses over
+  // dt; grain-grain and grain-wall, the wall first), N, world frame (silo_forces.cpp).
+  std::vector<core::ContactForce> contact_forces() const;
+  // Each grain's weight, mass times gravity, N.
+  std::vector<core::Vec2> weights() const;
+  // The arch's load, its walls' reaction, its weight and its imbalance, into the event (silo_forces.cpp).
+  void record_arch_forces(core::ArchEvent& ev) const;
 
   // Events so far; finish() closes an open clog as censored (call once at the end of a run) and reports it.
   const core::Events& events() const { return events_; }
@@ -160,6 +167,14 @@ class Silo {
     model_.setup.drive.kick_impulse_max = j;
     clogs_.set_driven(j > 0 || model_.setup.drive.vibrating());
   }
+  // Switch the clog_timeout rule off from now on (or back on at the scene's timeout): the break test
+  // (sim/break_test.h) keeps an arch as long as it stands.
+  void set_clog_rule(bool on) { clogs_.set_timeout(on ? scene_.clog_timeout : 0); }
+  // Every grain's velocity changed at once (the break test's kick, silo_forces.cpp): by dv along gravity's up
+  // direction (m/s; the container dropped away from under the packing), or, `random`, by the scene's kick law
+  // as velocities (each grain its own change, direction uniform, size uniform in [0, dv], plus one shared
+  // change of the same law) drawn from `seed`: the same draws scaled for every dv.
+  void kick_all(double dv, bool random = false, std::uint64_t seed = 0);
   // Close the outlet (the lid the deposition stood on, back across the aperture) or open it again, from the
   // next step; for protocols of one's own (the Python bindings). While it is closed no grain exits, so the
   // clog tracker sees a gap like any other.

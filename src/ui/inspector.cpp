@@ -145,8 +145,16 @@ long Inspector::final_arch_frame(size_t i) const {
   while (k > c.first && traj_.frame(k).arch.empty()) --k;
   const std::vector<int> final_arch = traj_.frame(k).arch;
   if (final_arch.empty()) return c.last;
-  while (k > c.first && core::same_grains(traj_.frame(k - 1).arch, final_arch)) --k;
-  return k;
+  // Frames where a kick held its grains apart show no arch: passed over, back to the first frame that shows
+  // it.
+  long first = k;
+  for (long j = k - 1; j >= c.first; --j) {
+    const std::vector<int> a = traj_.frame(j).arch;
+    if (a.empty()) continue;
+    if (!core::same_grains(a, final_arch)) break;
+    first = j;
+  }
+  return first;
 }
 
 std::string Inspector::clog_caption(size_t i) const {

@@ -221,6 +221,8 @@ def check(binary, scenes, work, preset, rule_off, raw):
             counts["vtu_differs"] += 1
         if insp_arch is not None and k in insp_arch and insp_arch[k] != arch:
             counts["inspector_differs"] += 1
+        if arch and (forming or is_open):
+            last_arch = (k, [int(i) for i in tr.arch(k)])  # a forming arch too: it may part at confirmation
         if forming and not is_open:
             counts["forming"] += 1
             counts["forming_no_halo"] += bool(arch) and halo == 0
@@ -232,8 +234,6 @@ def check(binary, scenes, work, preset, rule_off, raw):
             counts["flowing_halo"] += halo > 0
             continue
         counts["open"] += 1
-        if arch:
-            last_arch = (k, [int(i) for i in tr.arch(k)])
         if hit[0][3]:
             counts["arrested_open"] += 1
             # A frame of an arrested clog without an arch is one where the arch has parted (a kick): its last

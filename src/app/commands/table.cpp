@@ -19,6 +19,7 @@ void define_export_command(CLI::App& cmd, Action& action);
 void define_import_command(CLI::App& cmd, Action& action);
 void define_detect_command(CLI::App& cmd, Action& action);
 void define_scene_command(CLI::App& cmd, Action& action);
+void define_breaking_command(CLI::App& cmd, Action& action);
 void define_bench_command(CLI::App& cmd, Action& action);
 
 const std::vector<Command>& command_table() {
@@ -59,6 +60,9 @@ const std::vector<Command>& command_table() {
       {"detect",
        "locate and track the disks of a film (a video or a directory of frames) as the CSV import reads",
        define_detect_command, "detect {video} --out {out}.csv", true},
+      {"breaking",
+       "the kick that breaks each arrested clog's arch: copies of the state, kicked harder until it flows",
+       define_breaking_command, "breaking {run} --out {out}", true},
       {"scene", "list every scene key (--keys), or validate and resolve a scene file", define_scene_command,
        "scene {scene}", false},
       {"bench", "benchmarks that print tables and write CSV", define_bench_command,

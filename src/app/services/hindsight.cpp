@@ -1,6 +1,9 @@
 // Arches seen from the moment they form (app/services/hindsight.h).
 #include "app/services/hindsight.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/silo.h"
 
 namespace app {
@@ -36,15 +39,34 @@ void HindsightSink::step(const sim::Silo& h, const core::StepEvents& e, size_t w
 
 void HindsightSink::mark(const FrameTick& opening) {
   for (size_t k = 0; k < opening.events.size() && k < opening.worlds.size(); ++k) {
-    if (opening.events[k].clogs_opened.empty() || !opening.worlds[k]) continue;
+    const core::StepEvents& ev = opening.events[k];
+    if (ev.clogs_opened.empty() || !opening.worlds[k]) continue;
     const core::ClogState& st = opening.worlds[k]->clog();
-    if (st.arch.empty() || !(st.formed == st.formed)) continue;
+    // The clog confirmed in this tick: still open, or (a clog that ended right after its confirmation) closed
+    // before the tick's frame, its arch then in its closing record (members in the order they arrived).
+    std::vector<int> members;
+    double formed = NAN, end = INFINITY;
+    bool left_to_right = true;
+    if (st.open && !st.arch.empty()) {
+      members = st.arch;
+      formed = st.formed;
+    } else if (!st.open && !ev.clogs_closed.empty()) {
+      members = ev.clogs_closed.back().arrival;
+      formed = ev.clogs_closed.back().formed;
+      end = ev.clogs_closed.back().end;
+      left_to_right = false;
+    }
+    if (members.size() < 2 || !(formed == formed)) continue;
     // Every frame held from the formation on, and the opening's own, shows the arch as forming.
     auto show = [&](core::Frame& f) {
-      if (f.clog_open || f.t < st.formed - 1e-9) return;
-      f.arch = st.arch;
+      if (f.clog_open || f.t < formed - 1e-9 || f.t > end + 1e-9) return;
+      f.arch = members;
+      if (!left_to_right)
+        std::sort(f.arch.begin(), f.arch.end(), [&](int a, int b) {
+          return f.particles[static_cast<size_t>(a)].x < f.particles[static_cast<size_t>(b)].x;
+        });
       f.arch_forming = true;
-      f.clog_number = st.number;
+      f.clog_number = ev.clogs_opened.back();
     };
     for (FrameTick& held : held_)
       if (k < held.frames.size()) show(held.frames[k]);

@@ -33,7 +33,7 @@ analysis::Measurements measure_run(const sim::Silo& h, double duration) {
 std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& radii) {
   std::string out =
       "t_s,grains,span_m,rise_m,aspect_rise_over_half_span,half_span_over_rise,theta_max_deg,defects,"
-      "bead_angle_sd_deg\n";
+      "bead_angle_sd_deg,load_N,held_N,weight_N,imbalance\n";
   for (const auto& a : ev.arches) {
     std::vector<core::Vec2> pos(radii.size());
     std::vector<int> local;
@@ -46,9 +46,11 @@ std::string arch_shapes_csv(const core::Events& ev, const std::vector<double>& r
     pos.resize(local.size());
     const core::ArchDescriptors d = core::arch_descriptors(local, pos, r);
     auto g = [](double v) { return core::format_g(v, 6); };
+    auto n = [&](double v) { return std::isnan(v) ? std::string() : g(v); };  // not measured: empty
     out += g(a.t) + "," + std::to_string(d.grains) + "," + g(d.span) + "," + g(d.rise) + "," + g(d.aspect) +
            "," + g(d.inverse_aspect) + "," + g(d.theta_max_deg) + "," + std::to_string(d.defects) + "," +
-           g(d.angle_sd_deg) + "\n";
+           g(d.angle_sd_deg) + "," + n(a.load_N) + "," + n(a.held_N) + "," + n(a.weight_N) + "," +
+           n(a.imbalance) + "\n";
   }
   return out;
 }

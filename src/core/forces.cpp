@@ -1,0 +1,64 @@
+// Love-Weber stress and arch force balance from a step's contact forces (core/forces.h).
+#include "core/forces.h"
+
+#include <algorithm>
+
+namespace core {
+
+namespace {
+Vec2 minus(Vec2 v) {
+  return {-v.x, -v.y};
+}
+}  // namespace
+
+std::vector<Stress> love_weber(const std::vector<ContactForce>& forces, const std::vector<Vec2>& centres,
+                               const std::vector<double>& areas) {
+  std::vector<Stress> s(centres.size());
+  auto add = [&](int i, Vec2 point, Vec2 f) {
+    if (i < 0 || static_cast<size_t>(i) >= centres.size()) return;
+    const Vec2 r{point.x - centres[i].x, point.y - centres[i].y};
+    s[i].xx += r.x * f.x, s[i].xy += r.x * f.y, s[i].yx += r.y * f.x, s[i].yy += r.y * f.y;
+  };
+  for (const ContactForce& c : forces) {
+    const Vec2 f = c.on_b();
+    add(c.b, c.point, f);
+    add(c.a, c.point, minus(f));
+  }
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double a = i < areas.size() && areas[i] > 0 ? areas[i] : 0;
+    if (a == 0) {
+      s[i] = {};
+      continue;
+    }
+    s[i].xx /= a, s[i].xy /= a, s[i].yx /= a, s[i].yy /= a;
+  }
+  return s;
+}
+
+ArchBalance arch_balance(const std::vector<ContactForce>& forces, const std::vector<int>& members,
+                         const std::vector<Vec2>& weights) {
+  auto member = [&](int i) {
+    return i >= 0 && std::find(members.begin(), members.end(), i) != members.end();
+  };
+  ArchBalance b;
+  for (const ContactForce& c : forces) {
+    const bool in_a = member(c.a), in_b = member(c.b);
+    if (in_a == in_b) continue;  // inside the arch, or not touching it
+    const Vec2 on_member = in_b ? c.on_b() : minus(c.on_b());
+    const int other = in_b ? c.a : c.b;
+    Vec2& sum = other < 0 ? b.from_walls : b.from_grains;
+    sum = sum + on_member;
+  }
+  for (int i : members)
+    if (i >= 0 && static_cast<size_t>(i) < weights.size()) b.weight = b.weight + weights[i];
+  return b;
+}
+
+Vec2 wall_reaction(const std::vector<ContactForce>& forces) {
+  Vec2 sum;
+  for (const ContactForce& c : forces)
+    if (c.a < 0) sum = sum + c.on_b();
+  return sum;
+}
+
+}  // namespace core

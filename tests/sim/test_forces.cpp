@@ -1,0 +1,134 @@
+// Contact forces from the solver (issue 51, forces): normal and tangential, with the walls, and what they
+// must satisfy at rest: the walls carry the column's weight, an arch's load balances what its walls give
+// back, and friction stays in its cone.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "core/forces.h"
+#include "core/physics.h"
+#include "core/scene.h"
+#include "sim/break_test.h"
+#include "sim/silo.h"
+
+namespace {
+
+double norm(core::Vec2 v) {
+  return std::hypot(v.x, v.y);
+}
+
+// A preset without kicks or the clog rule, stepped until a clog is arrested and half a second beyond: every
+// grain at rest on the walls, the outlet held by an arch.
+struct Resting {
+  core::Scene scene;
+  std::unique_ptr<sim::Silo> silo;
+  explicit Resting(const std::string& preset) {
+    scene = core::load_scene(std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/" + preset + ".toml");
+    scene.kick_impulse_max = 0;
+    scene.clog_timeout = 0;
+    silo = std::make_unique<sim::Silo>(core::compile(scene));
+    while (!(silo->clog().open && silo->clog().arrested) && silo->time() < 30) silo->step();
+    silo->advance_to(silo->time() + 0.5);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("contact forces at rest: the walls carry the weight, an arch's load meets its walls' reaction",
+          "[sim][forces]") {
+  for (const char* preset : {"paper", "pentagons", "silo-obstacle"}) {
+    CAPTURE(preset);
+    Resting r(preset);
+    sim::Silo& h = *r.silo;
+    REQUIRE(h.clog().open);
+    REQUIRE(h.clog().arrested);
+    const auto forces = h.contact_forces();
+    const auto weights = h.weights();
+    core::Vec2 weight;
+    for (const auto& w : weights) weight = weight + w;
+    const core::Vec2 down{weight.x / norm(weight), weight.y / norm(weight)};
+    // The column's weight comes out at the walls (grain-grain forces cancel in pairs; dipoles too).
+    const core::Vec2 walls = core::wall_reaction(forces);
+    CHECK(norm(walls + weight) < 0.02 * norm(weight));
+    // Friction inside its cone, compression only.
+    double mu = r.scene.friction;
+    for (const auto& sp : r.scene.species)
+      if (sp.friction) mu = std::max(mu, *sp.friction);
+    int outside = 0;
+    for (const auto& c : forces) outside += c.fn < 0 || std::abs(c.ft) > mu * c.fn * 1.001 + 1e-9;
+    CHECK(outside == 0);
+    // The arch as a body: the load from the grains above against what the walls hold up, with its weight.
+    const std::vector<int>& arch = h.clog().arch;
+    REQUIRE(arch.size() >= 2);
+    const core::ArchBalance b = core::arch_balance(forces, arch, weights);
+    CAPTURE(b.load(down), b.held(down), norm(b.weight));
+    CHECK(b.load(down) > 0);
+    CHECK(b.held(down) > b.load(down));  // the walls carry the load and the arch's own weight
+    CHECK(norm(b.residual()) < 0.02 * b.held(down));
+    // Love-Weber: every grain that touches something is compressed; the pressure sums its contacts' work.
+    std::vector<core::Vec2> centres;
+    std::vector<double> areas;
+    const core::Frame f = h.frame(false);
+    for (const auto& p : f.particles) {
+      centres.push_back({p.x, p.y});
+      areas.push_back(core::kPi * p.radius * p.radius);
+    }
+    const auto stress = core::love_weber(forces, centres, areas);
+    int loaded = 0, compressed = 0;
+    for (const auto& s : stress) {
+      if (s.xx == 0 && s.yy == 0) continue;
+      ++loaded;
+      compressed += s.pressure() > 0;
+    }
+    CHECK(loaded > static_cast<int>(stress.size()) / 2);
+    CHECK(compressed == loaded);
+  }
+}
+
+TEST_CASE("the kick that breaks an arrested clog: bracketed by bisection, the same in every copy",
+          "[sim][forces][slow]") {
+  core::Scene s = core::load_scene(std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml");
+  s.seed = 3;
+  s.duration = 4;  // its first clog is arrested from about 1 s on
+  const core::Model model = core::compile(s);
+  sim::Silo h(model);
+  h.advance_to(s.duration);
+  h.finish();
+  int row = 0;
+  for (size_t k = 0; k < h.events().clogs.size() && row == 0; ++k)
+    if (h.events().clogs[k].arrested) row = static_cast<int>(k) + 1;
+  REQUIRE(row > 0);
+  const core::ClogEvent& c = h.events().clogs[static_cast<size_t>(row) - 1];
+  sim::BreakOptions o;
+  o.bisections = 4;
+  const sim::BreakResult r = sim::break_clog(model, c, row, o);
+  CAPTURE(r.outcome, r.t, r.dv_held, r.dv_broke, r.trials);
+  REQUIRE(r.outcome == "broken");
+  CHECK(r.t > c.start);
+  CHECK(r.t < c.end + o.settle);
+  CHECK(r.arch.size() >= 2);
+  CHECK(r.load_N > 0);
+  CHECK(r.held_N > r.load_N);
+  CHECK(r.dv_held < r.dv_broke);
+  // Doubling from dv_first, then four halvings of the bracket.
+  CHECK(r.dv_broke - r.dv_held <= r.dv_broke / 16 + 1e-12);
+  // A copy is the state bit for bit: the same test gives the same numbers.
+  const sim::BreakResult again = sim::break_clog(model, c, row, o);
+  CHECK(again.dv_broke == r.dv_broke);
+  CHECK(again.arch == r.arch);
+  // Kicks too weak for this arch: it holds, and says up to what.
+  sim::BreakOptions weak = o;
+  weak.dv_first = weak.dv_max = r.dv_held > 0 ? r.dv_held : r.dv_broke / 4;
+  const sim::BreakResult held = sim::break_clog(model, c, row, weak);
+  CHECK(held.outcome == "held");
+  CHECK(held.dv_held == weak.dv_max);
+  // The scene's kick law as velocity changes: every grain its own, the same draws at every amplitude.
+  sim::BreakOptions law = o;
+  law.random = true;
+  const sim::BreakResult random = sim::break_clog(model, c, row, law);
+  CHECK(random.arch == r.arch);
+  CHECK((random.outcome == "broken" || random.outcome == "held"));
+}
