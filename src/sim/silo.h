@@ -168,7 +168,7 @@ class Silo {
     clogs_.set_driven(j > 0 || model_.setup.drive.vibrating());
   }
   // Switch the clog_timeout rule off from now on (or back on at the scene's timeout): the break test
-  // (sim/break_test.h) keeps an arch as long as it stands.
+  // (sim/breaking.h) keeps an arch as long as it stands.
   void set_clog_rule(bool on) { clogs_.set_timeout(on ? scene_.clog_timeout : 0); }
   // Every grain's velocity changed at once (the break test's kick, silo_forces.cpp): by dv along gravity's up
   // direction (m/s; the container dropped away from under the packing), or, `random`, by the scene's kick law

@@ -11,7 +11,7 @@
 #include "core/forces.h"
 #include "core/physics.h"
 #include "core/scene.h"
-#include "sim/break_test.h"
+#include "sim/breaking.h"
 #include "sim/silo.h"
 
 namespace {

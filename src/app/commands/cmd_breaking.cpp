@@ -1,4 +1,4 @@
-// siloscope breaking RUN --out DIR: the kick that breaks each arrested clog's arch (sim/break_test.h), one
+// siloscope breaking RUN --out DIR: the kick that breaks each arrested clog's arch (sim/breaking.h), one
 // row per clog in DIR/breaking.csv with the arch's descriptors and load, beside DIR/metadata.toml (the run's
 // scene, the test's options, the version). Clogs run in parallel, one copy of the state per try.
 #include <algorithm>
@@ -16,7 +16,7 @@
 #include "io/metadata.h"
 #include "io/output.h"
 #include "io/run.h"
-#include "sim/break_test.h"
+#include "sim/breaking.h"
 
 namespace app {
 

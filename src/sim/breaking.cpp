@@ -1,5 +1,5 @@
-// The kick that breaks an arch: replays, copies and bisection (sim/break_test.h).
-#include "sim/break_test.h"
+// The kick that breaks an arch: replays, copies and bisection (sim/breaking.h).
+#include "sim/breaking.h"
 
 #include <cmath>
 #include <memory>
