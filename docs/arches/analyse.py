@@ -18,7 +18,7 @@ import pandas as pd
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "src", "python"))
 from siloscope import stats  # noqa: E402
 
-BINS = [(90, 140), (140, 160), (160, 180), (180, 270)]
+BINS = [(0, 140), (140, 160), (160, 180), (180, 270)]
 
 
 def pooled(results):
