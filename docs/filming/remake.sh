@@ -6,8 +6,8 @@
 #   3. docs/filming/reference.csv: this build's per-stage figures, which `bench record` compares every later
 #      build with (a stage 1.5x slower is flagged).
 # Usage: bash docs/filming/remake.sh OLD_BINARY
-# (OLD_BINARY: e.g. a build of commit 7fc777e^, the one before the layout: git worktree add /tmp/old 7fc777e^ &&
-#  cmake -S /tmp/old -B /tmp/old/build -DBUILD_TESTING=OFF && cmake --build /tmp/old/build --target siloscope)
+# (OLD_BINARY: e.g. a build of commit 7fc777e^, the one before the layout: git worktree add OLD 7fc777e^ &&
+#  cmake -S OLD -B OLD/build -DBUILD_TESTING=OFF && cmake --build OLD/build --target siloscope, OLD any directory)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 old=${1:?usage: bash docs/filming/remake.sh OLD_BINARY}
