@@ -1,7 +1,7 @@
 // sim::Silo: the Box2D world of one scene (walls, grains, deposition, kicks, vibration, dipoles) and its
 // step. Over 400 lines because the step's parts share the b2World's state; its health checks are in
-// silo_health.cpp, filling in silo_fill.cpp, arches in silo_arches.cpp, contact forces in silo_forces.cpp, the
-// dipole forces in dipole.cpp.
+// silo_health.cpp, filling in silo_fill.cpp, arches in silo_arches.cpp, contact forces in silo_forces.cpp,
+// the dipole forces in dipole.cpp.
 #include "sim/silo.h"
 #include "core/format.h"
 
