@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -367,8 +368,13 @@ void run_jobs(const std::vector<Job>& jobs, const fs::path& dir, int workers, bo
       running[spawn_job(jobs[next], dir)] = next;
       ++next;
     }
+    // Polled: a signal landing just before a blocking wait would be passed on only when a worker ends.
     int status = 0;
-    pid_t pid = ::waitpid(-1, &status, 0);
+    pid_t pid = ::waitpid(-1, &status, WNOHANG);
+    if (pid == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
     if (pid < 0) {
       if (errno == EINTR) continue;
       break;

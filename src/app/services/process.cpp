@@ -7,7 +7,9 @@
 #include <csignal>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <thread>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -68,11 +70,15 @@ pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, const 
 }
 
 int wait_child(pid_t pid, bool retry_on_interrupt) {
+  // Polled rather than blocking: a Ctrl-C that lands after the last check and before a blocking waitpid()
+  // would otherwise wait for the child to finish (a figure script: seconds) and be lost with it.
   int status = 0;
   for (;;) {
-    if (::waitpid(pid, &status, 0) == pid) break;
-    if (errno != EINTR) return -1;
     if (!retry_on_interrupt && core::interrupt_requested()) return -1;
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) return -1;
+    if (r == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
@@ -81,12 +87,15 @@ int wait_child(pid_t pid, bool retry_on_interrupt) {
 
 int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log) {
   // The child has a process group of its own, so a Ctrl-C at the terminal reaches this process alone (a
-  // Python child would die printing a traceback); on Ctrl-C this process ends the child and stops.
+  // Python child would die printing a traceback); on Ctrl-C this process ends the child and stops, even if
+  // the child had just finished: nothing it made is kept.
   const pid_t pid = spawn(argv, cwd, log, true);
   const int status = wait_child(pid, false);
-  if (status != -1 || !core::interrupt_requested()) return status;
-  ::kill(pid, SIGTERM);
-  wait_child(pid, true);
+  if (!core::interrupt_requested()) return status;
+  if (status == -1) {  // not reaped yet (a finished child is a zombie until then: its pid is still ours)
+    ::kill(pid, SIGTERM);
+    wait_child(pid, true);
+  }
   throw core::Interrupted();
 }
 

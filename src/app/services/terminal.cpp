@@ -24,7 +24,7 @@ void on_signal(int sig) {
 }  // namespace
 
 void install_interrupt_handler() {
-  // No SA_RESTART: a blocking waitpid() returns EINTR so the sweep can pass the interrupt on to its workers.
+  // No SA_RESTART: a blocking call returns EINTR, so a wait for a child or a sleep ends at once.
   struct sigaction sa = {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
