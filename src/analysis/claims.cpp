@@ -265,10 +265,15 @@ Claim c4(const Data& d) {
         "column, "
         "averaged over each run's frames (0 the bottom, 1/2 spread evenly, 1 the top; analyze's column.csv)";
   }
+  // "Float on top", in numbers: the added disks' mean height rank up by at least 0.05 (a twentieth of the
+  // column's order from bottom to top), the least shift a reader of "on top" would see.
+  floats.implied = Implied{"a rise of the added disks' mean height rank by >= 0.05 (of 0 to 1)", 0.05,
+                           Implied::Of::Absolute};
   c.parts.push_back(floats);
   conclude(c);
   for (auto& part : c.parts)
     if (part.verdict != Verdict::NotTested) part.verdict = by_pool(part);
+  for (auto& part : c.parts) apply_size(part);
   return c;
 }
 
@@ -377,6 +382,9 @@ Claim c6(const Data& d) {
   Claim c{"C6", "Survival at r = 0.4, read as P(lapse >= 1 s) between original exits"};
   const Point *pure = d.pure(), *plain = d.at(0.4, 0), *strong = d.at(0.4, fr);
   Part rarer{"small non-magnetic additives make long clogs much rarer than in the pure system"};
+  // "Much rarer", in numbers: at most half as often as in the pure system.
+  rarer.implied = Implied{"at most half as often: P(lapse >= 1 s) down by >= 50% of the pure system's", 0.5,
+                          Implied::Of::A};
   Part again{"raising mu makes them more frequent again"};
   Part most{"the pure system always has the most long clogs"};
   std::uint64_t seed = kSeed + 10;
@@ -411,6 +419,7 @@ Claim c6(const Data& d) {
           "vibration broke " + core::format_g(100 * b.fraction, 2) +
           "% of the clogs here: every clog lasts to the rule, so a lapse of 1 s is a clog, and P(lapse >= "
           "1 s) counts how often arches form per exit, not how long they last";
+    apply_size(p);
   }
   return c;
 }

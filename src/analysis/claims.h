@@ -11,6 +11,9 @@
 // - "cannot be tested at this kick" where the protocol pins the measure (almost every clog lasting to the 5 s
 //   rule pins the long arches per minute), with the measured fraction of clogs broken by vibration.
 // - "not tested" where the outputs hold no measure of the part.
+// - "resolved, smaller than its words" where a part's words imply a size ("much rarer") written down with
+//   the claim (Part::implied) and the effect, resolved the claim's way, falls short of it over its whole
+//   interval; a part whose effect reaches the size only within its interval is not resolved.
 // A claim is reproduced when all its parts are, contradicted when one is, partly reproduced when some are and
 // the rest are not resolved or cannot be tested, not resolved otherwise.
 #pragma once
@@ -31,7 +34,7 @@ struct Est {
   bool finite() const;
 };
 
-enum class Verdict { Reproduced, Contradicted, NotResolved, Partly, Pinned, NotTested };
+enum class Verdict { Reproduced, Contradicted, NotResolved, Partly, Pinned, NotTested, Smaller };
 const char* verdict_text(Verdict v);
 
 // `a` against `b`: the claim says a > b (expected +1), a < b (-1), or a = b within kEquivalence of b (0).
@@ -53,6 +56,10 @@ struct Comparison {
 constexpr double kEquivalence = 0.10;
 // Below this fraction of clogs broken by vibration, the long arches per minute are pinned by the 5 s rule.
 constexpr double kPinnedVibration = 0.05;
+// Rounding allowed in every comparison of an interval with the paper's range, on both sides alike (relative
+// to the numbers compared, at least 1): an end that touches the range within this is neither inside nor
+// outside.
+constexpr double kRounding = 1e-9;
 // The lapse the survival of C6 is read at, s.
 constexpr double kLongLapse = 1.0;
 
@@ -67,6 +74,15 @@ struct Located {
   double missing = 0;                // fraction of resamples in which it could not be located
 };
 
+// The size a part's words imply, written down with the claim before any verdict: the effect (the pooled
+// comparison, or each) in the claim's direction, absolute or relative to one side of the comparison.
+struct Implied {
+  enum class Of { Absolute, A, B };
+  std::string words;  // what the words mean in numbers, e.g. "at most half as often: a fall of >= 50%"
+  double size = 0;    // the least effect
+  Of of = Of::Absolute;
+};
+
 struct Part {
   Part() = default;
   explicit Part(std::string w) : words(std::move(w)) {}
@@ -74,9 +90,10 @@ struct Part {
   Verdict verdict = Verdict::NotResolved;
   std::vector<Comparison> comparisons;
   std::optional<Located> located;
-  std::string evidence;     // a summary of the estimates (empty: the comparisons speak for themselves)
-  std::string why;          // Pinned / NotTested: the reason; otherwise a remark (may be empty)
-  bool own_family = false;  // its comparisons are a Holm family of their own (C3's "only there")
+  std::string evidence;            // a summary of the estimates (empty: the comparisons speak for themselves)
+  std::string why;                 // Pinned / NotTested: the reason; otherwise a remark (may be empty)
+  bool own_family = false;         // its comparisons are a Holm family of their own (C3's "only there")
+  std::optional<Implied> implied;  // the effect its words imply (none: the sign alone)
 };
 
 struct Claim {

@@ -120,6 +120,9 @@ Verdict by_each(const Part& part);
 Verdict by_equality(const Part& part);
 Verdict by_location(const Located& l);
 Verdict claim_verdict(const std::vector<Part>& parts);
+// A part reproduced in sign whose words imply a size (Part::implied): kept only when the effect reaches it,
+// "smaller than its words" when its whole interval falls short, not resolved between; says so in `why`.
+void apply_size(Part& part);
 // Long arches per minute are pinned when vibration breaks fewer than kPinnedVibration of the clogs at `pts`:
 // marks `part` so and says why (false: not pinned, or the table lacks the counts).
 Broken broken_by_vibration(const Data& d, const std::vector<const Point*>& pts);

@@ -204,7 +204,8 @@ std::string gaps_section(const std::vector<Preset>& presets) {
         const Part& part = c.parts[k];
         if (part.verdict == Verdict::Reproduced) continue;
         std::string why;
-        if (part.verdict == Verdict::Pinned || part.verdict == Verdict::NotTested) {
+        if (part.verdict == Verdict::Pinned || part.verdict == Verdict::NotTested ||
+            part.verdict == Verdict::Smaller) {  // no number of realizations changes a size
           why = part.why;
         } else {
           if (part.located) why = located_gap(*part.located, p.n_min);
@@ -253,7 +254,10 @@ std::string markdown(const std::vector<Preset>& presets, const std::string& vers
        "paper's "
        "value +- one grid step, contradicted when it lies wholly outside. A claim of equality needs the "
        "difference's "
-       "interval within +-10%. \"Cannot be tested at this kick\" names a measure the protocol pins (below 5% "
+       "interval within +-10%. Where a part's words imply a size (\"much rarer\", \"on top\"), that size is "
+       "written down with the claim before any verdict: the part is reproduced only when its effect reaches "
+       "it, \"resolved, smaller than its words\" when the effect's whole interval falls short of it, and not "
+       "resolved between. \"Cannot be tested at this kick\" names a measure the protocol pins (below 5% "
        "of clogs "
        "broken by vibration, the 5 s rule ends every clog). A claim is reproduced when every part is, "
        "contradicted "

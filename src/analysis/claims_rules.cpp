@@ -35,6 +35,8 @@ const char* verdict_text(Verdict v) {
       return "cannot be tested at this kick";
     case Verdict::NotTested:
       return "not tested";
+    case Verdict::Smaller:
+      return "resolved, smaller than its words";
   }
   return "?";
 }
@@ -280,10 +282,37 @@ Verdict by_equality(const Part& part) {
 }
 Verdict by_location(const Located& l) {
   if (!std::isfinite(l.lo) || !std::isfinite(l.hi) || l.missing > 0.05) return Verdict::NotResolved;
+  // One allowance for rounding on both sides: 0.4 - 0.1 is 0.30000000000000004, and an interval ending at
+  // 0.3 touches the paper's range; it is neither wholly inside nor wholly outside it.
   const double a = l.paper - l.tolerance, b = l.paper + l.tolerance;
-  if (l.lo >= a - 1e-12 && l.hi <= b + 1e-12) return Verdict::Reproduced;
-  if (l.hi < a || l.lo > b) return Verdict::Contradicted;
+  const double eps = kRounding * std::max({1.0, std::abs(a), std::abs(b)});
+  if (l.lo >= a - eps && l.hi <= b + eps) return Verdict::Reproduced;
+  if (l.hi < a - eps || l.lo > b + eps) return Verdict::Contradicted;
   return Verdict::NotResolved;
+}
+
+void apply_size(Part& part) {
+  if (!part.implied || part.verdict != Verdict::Reproduced) return;
+  const Implied& want = *part.implied;
+  const bool any_pooled = std::any_of(part.comparisons.begin(), part.comparisons.end(),
+                                      [](const Comparison& c) { return c.pooled; });
+  bool reaches = true, short_of = false;
+  std::string measured;
+  for (const auto& c : part.comparisons) {
+    if (any_pooled && !c.pooled) continue;
+    const double scale = want.of == Implied::Of::A ? c.a.m : want.of == Implied::Of::B ? c.b.m : 1.0;
+    const double e = c.expected * c.diff / scale, h = c.half / std::abs(scale);
+    reaches = reaches && std::isfinite(e) && e >= want.size;
+    short_of = short_of || !(e + h >= want.size);
+    measured += (measured.empty() ? "" : "; ") + core::format_g(e, 2) + " [" + core::format_g(e - h, 2) +
+                ", " + core::format_g(e + h, 2) + "]";
+  }
+  part.verdict = reaches ? Verdict::Reproduced : short_of ? Verdict::Smaller : Verdict::NotResolved;
+  part.why += std::string(part.why.empty() ? "" : ". ") + "The words read as " + want.words +
+              " (written down before the verdict); measured " + measured +
+              (reaches    ? ": reached"
+               : short_of ? ": short of it over the whole interval"
+                          : ": reached only within the interval");
 }
 
 Verdict claim_verdict(const std::vector<Part>& parts) {

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/claims_detail.h"
 #include "analysis/stats.h"
 #include "helpers.h"
 
@@ -435,22 +436,28 @@ TEST_CASE("claims: a claim split over r (C2) is judged per range, each pooled, b
 
 TEST_CASE("claims: C6 reads the survival of lapses at 1 s, bootstrapped over realizations", "[claims][app]") {
   fs::path d = temp_dir("claims-c6");
-  Model paper, flat;
-  paper.long_lapse = [](double, double fr) { return fr > 0 ? 0.07 : 0.05; };  // rarer, then more with mu
+  Model paper, flat, slight;
+  paper.long_lapse = [](double, double fr) { return fr > 0 ? 0.07 : 0.03; };  // much rarer, then more with mu
   flat.long_lapse = [](double, double) { return 0.08; };                      // as the pure system
+  // Resolved fewer, but by a quarter, where "much rarer" is written down as at most half as often.
+  slight.long_lapse = [](double, double fr) { return fr > 0 ? 0.07 : 0.06; };
   write_campaign(d / "paper" / "analysis", paper);
   write_campaign(d / "flat" / "analysis", flat);
-  auto r = cli("claims paper=" + (d / "paper").string() + " flat=" + (d / "flat").string() + " --out " +
-               (d / "claims.md").string());
+  write_campaign(d / "slight" / "analysis", slight);
+  auto r = cli("claims paper=" + (d / "paper").string() + " flat=" + (d / "flat").string() +
+               " slight=" + (d / "slight").string() + " --out " + (d / "claims.md").string());
   REQUIRE(r.code == 0);
   const std::string md = slurp(d / "claims.md");
   INFO(md);
-  CHECK(part_verdict(md, "C6.1") == "reproduced | not resolved");
-  CHECK(part_verdict(md, "C6.2") == "reproduced | not resolved");
-  CHECK(part_verdict(md, "C6.3") == "reproduced | not resolved");
+  CHECK(part_verdict(md, "C6.1") == "reproduced | not resolved | resolved, smaller than its words");
+  CHECK(part_verdict(md, "C6.2") == "reproduced | not resolved | reproduced");
+  CHECK(part_verdict(md, "C6.3") == "reproduced | not resolved | reproduced");
   CHECK_THAT(r.output, Catch::Matchers::Contains("paper: C1") && Catch::Matchers::Contains("C6 reproduced"));
   CHECK_THAT(md, Catch::Matchers::Contains("P(lapse >= 1 s), pure against r = 0.4 non-magnetic: 0.08 +- ") &&
                      Catch::Matchers::Contains("bootstrap"));
+  // The size is stated beside the verdict, with the measured fall and its interval.
+  CHECK_THAT(md, Catch::Matchers::Contains("The words read as at most half as often") &&
+                     Catch::Matchers::Contains("short of it over the whole interval"));
 }
 
 TEST_CASE("claims: C1.1 and C1.2 pool Q~/Q_p over r with the one Q_p they share, not as independent ratios",
@@ -519,4 +526,27 @@ TEST_CASE("claims: 'n would resolve it' only where the estimate points the claim
   CHECK_THAT(with, Catch::Matchers::Contains("would be resolved for the claim at about n = "));
   CHECK_THAT(against, Catch::Matchers::Contains("more realizations could only resolve it against the claim"));
   CHECK(against.find("would be resolved") == std::string::npos);
+}
+
+TEST_CASE(
+    "claims: a located interval touching the paper's range is neither inside nor outside it, rounding alike",
+    "[claims]") {
+  using analysis::claims::Located;
+  using analysis::claims::Verdict;
+  using analysis::claims::detail::by_location;
+  // 0.4 - 0.1 is 0.30000000000000004: [0.2, 0.3] touches the range [0.3, 0.5] at its end.
+  Located touching("r of the largest measured Q~", 0.25, 0.4, 0.1);
+  touching.lo = 0.2, touching.hi = 0.3;
+  CHECK(by_location(touching) == Verdict::NotResolved);
+  Located inside = touching;  // [0.3, 0.5]: inside, its ends rounded either way
+  inside.lo = 0.3, inside.hi = 0.5;
+  CHECK(by_location(inside) == Verdict::Reproduced);
+  Located outside = touching;
+  outside.lo = 0.1, outside.hi = 0.29;
+  CHECK(by_location(outside) == Verdict::Contradicted);
+  Located above = touching;  // [0.5, 0.6] touches the top end
+  above.lo = 0.5, above.hi = 0.6;
+  CHECK(by_location(above) == Verdict::NotResolved);
+  above.lo = 0.51;
+  CHECK(by_location(above) == Verdict::Contradicted);
 }
