@@ -3,6 +3,7 @@
 // writing one format belong together: a field's text form is parsed and printed by the same templates here.
 #include "core/scene.h"
 #include "core/model.h"
+#include "core/scene_history.h"
 
 #include <toml++/toml.h>
 
@@ -201,6 +202,10 @@ void set_species_field(Scene& s, const std::string& key, const std::string& valu
 void set_field(Scene& s, const std::string& key, const std::string& value, const std::string& origin) {
   if (key.rfind("species.", 0) == 0) return set_species_field(s, key, value, origin);
   const Field* f = find_field(key);
+  if (const RetiredKey* r = f ? nullptr : find_retired(key))
+    throw InputError(origin + ": '" + key + "' is a key of an earlier siloscope, retired in " + r->since +
+                     ": " +
+                     (r->renamed ? std::string("it is now '") + r->renamed + "'" : std::string(r->why)));
   if (!f) {
     std::string keys;
     for (const auto& g : scene_fields()) keys += std::string(keys.empty() ? "" : ", ") + g.key;
@@ -431,6 +436,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
                                                        : "realizations") +
                        "), not a scene: run it with `siloscope sweep " + path + "`");
   // A run's metadata.toml keeps the scene in a [scene] table: loading it repeats the run.
+  const bool from_run = tbl["scene"].as_table() != nullptr;
   if (auto* inner = tbl["scene"].as_table()) {
     toml::table copy = *inner;  // *inner lives inside tbl: copy before replacing
     tbl = std::move(copy);
@@ -446,6 +452,15 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     std::string key(k.str());
     if (key == "species") continue;
     std::string where = path + ":" + std::to_string(node.source().begin.line);
+    // A run's stored scene from an earlier siloscope: its retired keys translated or dropped, and said so. A
+    // scene file a person wrote is refused by set_field, naming what replaced the key.
+    if (const RetiredKey* r = from_run && !find_field(key) ? find_retired(key) : nullptr) {
+      s.history.push_back(
+          "'" + key + "' (retired in " + r->since + ") " +
+          (r->renamed ? std::string("read as '") + r->renamed + "'" : "dropped: " + std::string(r->why)));
+      if (!r->renamed) continue;
+      key = r->renamed;
+    }
     const Field* f = find_field(key);
     if (!f) set_field(s, key, "", where);  // throws "unknown key" with the list of keys
     const bool is_text = std::holds_alternative<std::string Scene::*>(f->ptr);

@@ -119,6 +119,9 @@ struct Scene {
 
   // Where each key was set ("FILE:LINE" or "--set"), for error messages; not a parameter.
   std::map<std::string, std::string> origin;
+  // Keys of an earlier siloscope met in a run's stored scene and translated or dropped
+  // (core/scene_history.h), one sentence each; not a parameter.
+  std::vector<std::string> history;
 
   // The shorthand's derived counts (rounded N_a = chi * N).
   std::int64_t n_added() const;

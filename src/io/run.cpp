@@ -2,6 +2,7 @@
 #include "io/run.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -158,6 +159,10 @@ Run Run::open(const fs::path& path, const std::string& who, unsigned needs) {
     throw core::InputError(
         s.where(s.dir) +
         ": no trajectory.sstraj (record writes one; run writes one with --trajectory-fps 30)");
+  // A run of an earlier siloscope opens; what was translated or dropped from its scene is said once.
+  for (const std::string& h : s.model.scene.history)
+    std::fprintf(stderr, "siloscope %s: %s was made by an earlier siloscope: its scene key %s\n", who.c_str(),
+                 path.string().c_str(), h.c_str());
   return run;
 }
 

@@ -430,3 +430,35 @@ TEST_CASE(
   CHECK(bad.code == 2);
   CHECK(bad.output.find("--at clog:9: the run has 2 clogs (numbered from 1)") != std::string::npos);
 }
+
+TEST_CASE("runs of every earlier trajectory version open: inspect, frame and export", "[app][history]") {
+  // One file of each earlier version in the test data (version 1 stores a scene with a key since retired),
+  // and one of the current version made now.
+  const std::string corpus = std::string(SILOSCOPE_SOURCE_DIR) + "/tests/fuzz/corpus/trajectory/";
+  const fs::path d = temp_dir("history");
+  const std::vector<std::pair<std::string, int>> files = {
+      {corpus + "small.sstraj", 1},
+      {corpus + "small-v2.sstraj", 2},
+      {(recorded("history_v3") / "trajectory.sstraj").string(), 3}};
+  for (const auto& [file, version] : files) {
+    INFO(file);
+    std::ifstream in(file, std::ios::binary);
+    char head[12] = {};
+    in.read(head, sizeof head);
+    CHECK(std::string(head, 8) == "SILOTRAJ");
+    CHECK(static_cast<int>(static_cast<unsigned char>(head[8])) == version);
+    const std::string tag = "v" + std::to_string(version);
+    std::ofstream(d / (tag + ".txt")) << "snapshot " << (d / (tag + ".png")).string() << " 320x180\n";
+    const auto insp = cli("inspect " + file + " --script " + (d / (tag + ".txt")).string());
+    INFO(insp.output);
+    CHECK(insp.code == 0);
+    CHECK(fs::file_size(d / (tag + ".png")) > 1000);
+    CHECK(cli("frame " + file + " --at t:0 --out " + (d / (tag + "-frame.png")).string()).code == 0);
+    CHECK(cli("export " + file + " --format csv --out " + (d / (tag + ".csv")).string()).code == 0);
+    // A retired key is said once, by name, and the run opens all the same.
+    if (version == 1)
+      CHECK_THAT(insp.output, Catch::Contains("arrest_speed") && Catch::Contains("earlier siloscope"));
+    else
+      CHECK_THAT(insp.output, !Catch::Contains("earlier siloscope"));
+  }
+}

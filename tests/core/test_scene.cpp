@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/scene.h"
+#include "core/scene_history.h"
 #include "io/metadata.h"
 
 using Catch::Matchers::Contains;
@@ -147,4 +148,31 @@ TEST_CASE(
   CHECK(t["siloscope"]["command"].value<std::string>() == info.command);
   CHECK(t["derived"]["n_original"].is_integer());
   CHECK(t["derived"]["mass_added_kg"].is_floating_point());
+}
+
+TEST_CASE(
+    "retired keys: a run's stored scene from an earlier siloscope opens, a new scene file is told the "
+    "replacement",
+    "[scene][history]") {
+  // The table itself: a retired key is no current key, and a renamed one names a current key.
+  for (const core::RetiredKey& r : core::retired_keys()) {
+    INFO(r.key);
+    core::Scene s;
+    CHECK_THROWS_AS(core::set_field(s, r.key, "1", "test"), core::InputError);
+    if (r.renamed) CHECK(core::find_retired(r.renamed) == nullptr);
+  }
+  // A run's metadata (the scene in a [scene] table) written before arrest_speed was retired: dropped, said.
+  const core::Scene old = core::parse_scene("[scene]\narrest_speed = 0.01\nmu = 0.5\n", "old/metadata.toml");
+  CHECK(old.mu == 0.5);
+  REQUIRE(old.history.size() == 1);
+  CHECK_THAT(old.history[0], Contains("arrest_speed") && Contains("dropped") && Contains("arrest_hold"));
+  // The same key in a scene file a person writes, or on the command line: refused, naming what replaced it.
+  CHECK_THROWS_WITH(core::parse_scene("arrest_speed = 0.01\n", "mine.toml"),
+                    Contains("mine.toml:1") && Contains("arrest_speed") && Contains("arrest_hold") &&
+                        Contains("earlier siloscope"));
+  core::Scene s;
+  CHECK_THROWS_WITH(core::set_field(s, "arrest_speed", "0.01", "--set"),
+                    Contains("--set") && Contains("arrest_shift"));
+  // A current scene's history is empty.
+  CHECK(core::parse_scene("[scene]\nmu = 0.5\n", "new/metadata.toml").history.empty());
 }
