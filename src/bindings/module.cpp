@@ -7,8 +7,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,6 +34,24 @@ const char* kSettable =
     "kick_impulse_max (N*s: the random kicks from the next kick on; 0: none), outlet_open (true/false: the "
     "lid back across the outlet, or away)";
 
+// One thread in a Simulation at a time: a second one (stepping or reading while the first steps with the
+// GIL released) gets a RuntimeError instead of Box2D's abort. Two Simulations in two threads run freely.
+class Busy {
+ public:
+  Busy(std::atomic<bool>& flag, const char* what) : flag_(flag) {
+    if (flag_.exchange(true))
+      throw std::runtime_error(std::string(what) +
+                               "(): this Simulation is being stepped by another thread; use one Simulation "
+                               "per thread (they run in parallel), or a lock around its calls");
+  }
+  ~Busy() { flag_ = false; }
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
 class Simulation {
  public:
   // `scene`: a scene file (or a run's metadata.toml), or "" for the built-in default scene; `keys`:
@@ -42,22 +63,25 @@ class Simulation {
     silo_ = std::make_unique<sim::Silo>(core::compile(s));
   }
 
-  // Step n time steps; returns the events of those steps (also kept for events()).
+  // Step n time steps; returns the events of those steps (also kept for events()). Ctrl-C stops it between
+  // two steps within about 20 ms (KeyboardInterrupt; the steps done stand, their events come with the next
+  // call).
   py::dict step(long n) {
     if (n < 0) throw core::InputError("step(n): n = " + std::to_string(n) + " must be >= 0");
-    {
-      py::gil_scoped_release free;
-      for (long k = 0; k < n; ++k) silo_->step();
-    }
+    const Busy busy(busy_, "step");
+    stepping([&](long k) { return k < n; });
     last_ = silo_->take_events();
     return events_dict(last_);
   }
-  // Step until time() >= t (s since the outlet opened).
+  // Step until time() >= t (s since the outlet opened), as Silo::advance_to does.
   py::dict advance_to(double t) {
-    {
-      py::gil_scoped_release free;
-      silo_->advance_to(t);
-    }
+    if (!std::isfinite(t) || t < silo_->time() - 0.01 * silo_->scene().dt)
+      throw core::InputError("advance_to(t): t = " + core::format_shortest(t) +
+                             " s: expected a finite time from now (" + core::format_shortest(silo_->time()) +
+                             " s) on");
+    const Busy busy(busy_, "advance_to");
+    const double dt = silo_->scene().dt;
+    stepping([&](long) { return silo_->time() < t - 0.01 * dt; });
     last_ = silo_->take_events();
     return events_dict(last_);
   }
@@ -199,10 +223,45 @@ class Simulation {
     d["rule_removed"] = removed;
     return d;
   }
+  // Steps while more(k) for the k-th step, the GIL released; every 20 ms it takes the GIL back to let Python
+  // handle a signal (Ctrl-C raises KeyboardInterrupt here, between two steps).
+  template <class More>
+  void stepping(More more) {
+    using clock = std::chrono::steady_clock;
+    py::gil_scoped_release free;
+    auto next_check = clock::now() + std::chrono::milliseconds(20);
+    for (long k = 0; more(k); ++k) {
+      silo_->step();
+      if ((k & 63) == 63 && clock::now() >= next_check) {
+        py::gil_scoped_acquire held;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        next_check = clock::now() + std::chrono::milliseconds(20);
+      }
+    }
+  }
   std::unique_ptr<sim::Silo> silo_;
   core::StepEvents last_;
   bool finished_ = false;
+
+ public:
+  mutable std::atomic<bool> busy_{false};  // a thread is inside (Busy)
 };
+
+// A reader or setter of `Simulation` wrapped in its Busy guard, under `name`.
+template <class R, class... A>
+auto guarded(R (Simulation::*f)(A...) const, const char* name) {
+  return [f, name](const Simulation& s, A... a) {
+    const Busy busy(s.busy_, name);
+    return (s.*f)(a...);
+  };
+}
+template <class R, class... A>
+auto guarded(R (Simulation::*f)(A...), const char* name) {
+  return [f, name](Simulation& s, A... a) {
+    const Busy busy(s.busy_, name);
+    return (s.*f)(std::move(a)...);
+  };
+}
 
 }  // namespace
 
@@ -231,17 +290,17 @@ PYBIND11_MODULE(_siloscope, m) {
       .def_property_readonly("dt", &Simulation::dt)
       .def_property_readonly("n", &Simulation::n)
       .def_property_readonly("seed", &Simulation::seed)
-      .def("positions", &Simulation::positions)
-      .def("grains", &Simulation::grains)
+      .def("positions", guarded(&Simulation::positions, "positions"))
+      .def("grains", guarded(&Simulation::grains, "grains"))
       .def("species_names", &Simulation::species_names)
-      .def("contacts", &Simulation::contacts)
-      .def("clog", &Simulation::clog)
-      .def("arch", &Simulation::arch)
-      .def("exits", &Simulation::exits)
-      .def("event_files", &Simulation::event_files)
-      .def("finish", &Simulation::finish)
-      .def("last_events", &Simulation::last_events)
-      .def("set", &Simulation::set)
+      .def("contacts", guarded(&Simulation::contacts, "contacts"))
+      .def("clog", guarded(&Simulation::clog, "clog"))
+      .def("arch", guarded(&Simulation::arch, "arch"))
+      .def("exits", guarded(&Simulation::exits, "exits"))
+      .def("event_files", guarded(&Simulation::event_files, "event_files"))
+      .def("finish", guarded(&Simulation::finish, "finish"))
+      .def("last_events", guarded(&Simulation::last_events, "last_events"))
+      .def("set", guarded(&Simulation::set, "set"))
       .def_property_readonly("outlet_open", &Simulation::outlet_open)
-      .def("scene_toml", &Simulation::scene_toml);
+      .def("scene_toml", guarded(&Simulation::scene_toml, "scene_toml"));
 }

@@ -75,3 +75,80 @@ def test_bad_input_raises_one_line_naming_it(root):
         s.set("outlet_open", 1)
     with pytest.raises(siloscope.SiloscopeError, match="n = -1"):
         s.step(-1)
+
+
+def test_two_threads_on_one_simulation_raise_never_abort(root):
+    # One Simulation stepped from two threads: the second gets a RuntimeError naming the cause (before: Box2D's
+    # assertion aborted Python). Two Simulations in two threads both finish.
+    import threading
+    scene = os.path.join(root, "assets/scenes/paper.toml")
+    s = siloscope.Simulation(scene, seed=7)
+    errors, done = [], []
+
+    def work(sim):
+        try:
+            for _ in range(10):
+                sim.step(2000)
+            done.append(sim)
+        except RuntimeError as e:
+            errors.append(str(e))
+
+    threads = [threading.Thread(target=work, args=(s,)) for _ in range(2)]
+    reader_errors = []
+
+    def read():  # a reader while another thread steps: refused the same way, never a crash
+        for _ in range(200):
+            try:
+                s.grains()
+            except RuntimeError as e:
+                reader_errors.append(str(e))
+    threads.append(threading.Thread(target=read))
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(done) >= 1
+    assert all("another thread" in e for e in errors + reader_errors)
+    assert len(errors) + len(reader_errors) >= 1
+    s.step(10)  # still usable
+    pair = [siloscope.Simulation(scene, seed=k) for k in (1, 2)]
+    done.clear()
+    threads = [threading.Thread(target=work, args=(p,)) for p in pair]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(done) == 2
+
+
+def test_ctrl_c_stops_a_long_step_and_leaves_it_usable(root):
+    import signal
+    import threading
+    import time
+    s = siloscope.Simulation(os.path.join(root, "assets/scenes/paper.toml"), seed=7)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        s.step(10**9)
+    late = time.monotonic() - start - 0.5
+    assert late < 0.5, f"KeyboardInterrupt {late:.2f} s after SIGINT"
+    t = s.time
+    assert 0 < t < 10**6 * s.dt
+    s.step(100)
+    assert s.time == pytest.approx(t + 100 * s.dt, rel=1e-9)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        s.advance_to(10**7)
+
+
+def test_advance_to_refuses_times_it_cannot_reach(root):
+    s = siloscope.Simulation(os.path.join(root, "assets/scenes/paper.toml"), seed=1)
+    s.advance_to(0.5)
+    for bad in (float("nan"), float("inf"), -1.0, 0.1):
+        with pytest.raises(ValueError, match=r"advance_to\(t\): t = "):
+            s.advance_to(bad)
+    assert s.time == pytest.approx(0.5, abs=s.dt)
+    with pytest.raises(ValueError):  # the package's error is a ValueError
+        s.step(-1)

@@ -1,2 +1,3 @@
-class SiloscopeError(Exception):
-    """A file siloscope wrote cannot be read as it should: the message names the file, the field and the value."""
+class SiloscopeError(ValueError):
+    """A value siloscope was given or a file it wrote cannot be used as it should: the message names the file,
+    the field and the value. A ValueError, so code that catches bad values catches it."""

@@ -75,13 +75,18 @@ class Simulation:
 
     def step(self, n=1):
         """Step n time steps; returns the events of those steps: exits [(t_s, id, species index)],
-        clogs_opened [clog number], clogs_closed [(start_s, end_s, arrested)], rule_removed [(t_s, ids)]."""
+        clogs_opened [clog number], clogs_closed [(start_s, end_s, arrested)], rule_removed [(t_s, ids)].
+
+        Ctrl-C stops it between two steps (KeyboardInterrupt within about 20 ms); the steps done stand and their
+        events come with the next call. One thread at a time: a second thread calling this Simulation while it
+        steps gets a RuntimeError (use one Simulation per thread; they run in parallel)."""
         if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 0:
             raise SiloscopeError(f"step(n): n = {n!r} must be a whole number >= 0")
         return self._call(self._s.step, int(n))
 
     def advance_to(self, t):
-        """Step until time >= t (s since the outlet opened)."""
+        """Step until time >= t (s since the outlet opened). t must be finite and not before `time`
+        (ValueError otherwise); Ctrl-C and threads as for `step`."""
         return self._call(self._s.advance_to, float(t))
 
     @property
