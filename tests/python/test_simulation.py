@@ -152,3 +152,37 @@ def test_advance_to_refuses_times_it_cannot_reach(root):
     assert s.time == pytest.approx(0.5, abs=s.dt)
     with pytest.raises(ValueError):  # the package's error is a ValueError
         s.step(-1)
+
+
+def test_a_saved_state_continues_with_the_same_events(root):
+    import copy
+    import json
+    import pickle
+    import time
+    s = siloscope.Simulation(os.path.join(root, "assets/scenes/paper.toml"), seed=7)
+    s.step(3000)
+    s.set("kick_impulse_max", np.float64(1e-4))  # a numpy value, kept as a float
+    s.advance_to(5.0)
+    s.set("outlet_open", np.bool_(False))         # a numpy bool is a bool
+    s.step(500)
+    s.set("outlet_open", True)
+    s.step(1234)
+    state = s.state()
+    assert json.loads(json.dumps(state)) == state   # plain data
+    start = time.monotonic()
+    copies = [siloscope.Simulation.from_state(state), pickle.loads(pickle.dumps(s)), copy.deepcopy(s)]
+    restore = (time.monotonic() - start) / 3
+    for c in copies:
+        assert c.time == s.time and c.seed == s.seed and c.outlet_open
+        assert np.array_equal(c.positions, s.positions)
+    s.step(4000)
+    s.finish()
+    for c in copies:
+        c.step(4000)
+        c.finish()
+        assert c.event_files() == s.event_files()
+    print(f"restore {restore:.2f} s for {s.time:.1f} s simulated")
+    with pytest.raises(ValueError, match="version"):
+        siloscope.Simulation.from_state({**state, "version": "0.0.1"})
+    with pytest.raises(ValueError, match="not a Simulation state"):
+        siloscope.Simulation.from_state({"format": "x"})

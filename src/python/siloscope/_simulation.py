@@ -10,9 +10,11 @@ between steps, and the keys that may change during a run set between them.
     >>> s.contacts                     # DataFrame: a, b, force (N), grain pairs in contact now
     >>> s.clog, s.arch                 # the open clog (None when flowing), the arch over the outlet now
     >>> s.set("outlet_open", False)    # keys that may change during a run: siloscope.Simulation.SETTABLE
+    >>> t = siloscope.Simulation.from_state(s.state())   # or pickle / copy.deepcopy: the same next events
 """
 import numbers
 import os
+import tempfile
 
 import numpy as np
 
@@ -66,6 +68,69 @@ class Simulation:
             raise SiloscopeError(str(e)) from None
         self._m = m
         self.species_names = list(self._s.species_names())
+        # What was done to it since it was made: ("to", time after a step or advance_to call), ("set", key,
+        # value), ("finish",). With the scene and seed it is the state (state()): replayed, it gives the same
+        # simulation step for step (time grows with every step, so a time names a step count).
+        self._protocol = []
+
+    STATE_FORMAT = "siloscope.Simulation state 1"
+
+    def state(self):
+        """This simulation as plain data (picklable, JSON-able): its scene with its seed, and every call that
+        changed it since it was made. from_state() replays it to the same simulation, step for step, and the
+        next steps give the same events as this one's; the replay costs the simulated time again (the scene is
+        re-deposited and re-stepped: a snapshot of Box2D's internal state cannot be restored exactly)."""
+        return {"format": self.STATE_FORMAT, "version": self._m.version, "scene": self.scene_toml(),
+                "protocol": [list(p) for p in self._protocol]}
+
+    @classmethod
+    def from_state(cls, state):
+        """The simulation a state() describes, replayed (see state()); ValueError for a state of another
+        format or of another siloscope version (whose steps may differ)."""
+        if not isinstance(state, dict) or state.get("format") != cls.STATE_FORMAT:
+            raise SiloscopeError(f"from_state: not a Simulation state (format {state.get('format') if isinstance(state, dict) else type(state).__name__!r}; expected {cls.STATE_FORMAT!r})")
+        m = _module()
+        if state.get("version") != m.version:
+            raise SiloscopeError(f"from_state: the state was saved by siloscope {state.get('version')}, this is "
+                                 f"{m.version}: its steps would not be the same (replay with that version, or "
+                                 "start again from the scene)")
+        fd, path = tempfile.mkstemp(suffix=".toml", prefix="siloscope-state-")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(state["scene"])
+            sim = cls(path)
+        finally:
+            os.remove(path)
+        for entry in state["protocol"]:
+            if entry[0] == "to":
+                sim.advance_to(float(entry[1]))
+            elif entry[0] == "set":
+                sim.set(entry[1], entry[2])
+            elif entry[0] == "finish":
+                sim.finish()
+            else:
+                raise SiloscopeError(f"from_state: unknown protocol entry {entry!r}")
+        return sim
+
+    def __reduce__(self):
+        return (Simulation.from_state, (self.state(),))
+
+    def __deepcopy__(self, memo):
+        return Simulation.from_state(self.state())
+
+    def __copy__(self):
+        return Simulation.from_state(self.state())
+
+    def _stepped(self, f, *args):
+        """A stepping call; its end time enters the protocol even when Ctrl-C cut it short."""
+        try:
+            return self._call(f, *args)
+        finally:
+            now = self._s.time
+            if self._protocol and self._protocol[-1][0] == "to":
+                self._protocol[-1] = ("to", now)
+            elif now > 0 or self._protocol:
+                self._protocol.append(("to", now))
 
     def _call(self, f, *args):
         try:
@@ -82,12 +147,12 @@ class Simulation:
         steps gets a RuntimeError (use one Simulation per thread; they run in parallel)."""
         if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 0:
             raise SiloscopeError(f"step(n): n = {n!r} must be a whole number >= 0")
-        return self._call(self._s.step, int(n))
+        return self._stepped(self._s.step, int(n))
 
     def advance_to(self, t):
         """Step until time >= t (s since the outlet opened). t must be finite and not before `time`
         (ValueError otherwise); Ctrl-C and threads as for `step`."""
-        return self._call(self._s.advance_to, float(t))
+        return self._stepped(self._s.advance_to, float(t))
 
     @property
     def time(self):
@@ -164,10 +229,16 @@ class Simulation:
     def finish(self):
         """Close an open clog as censored, as the end of a run does (once, at the end)."""
         self._call(self._s.finish)
+        self._protocol.append(("finish",))
 
     def set(self, key, value):
         """Change a key from the next step on: kick_impulse_max (N*s), outlet_open (True/False)."""
+        if isinstance(value, np.bool_):
+            value = bool(value)
+        elif isinstance(value, numbers.Real) and not isinstance(value, bool):
+            value = float(value)
         self._call(self._s.set, str(key), value)
+        self._protocol.append(("set", str(key), value))
 
     @property
     def outlet_open(self):
