@@ -342,13 +342,36 @@ void Silo::advance_to(double t) {
   while (t_ < t - 0.01 * scene_.dt) step();
 }
 
+double Silo::ExitDirection::mean_velocity_deg() const {
+  return exits > 0 ? std::atan2(sum_vx, -sum_vy) * 180.0 / M_PI : NAN;
+}
+double Silo::ExitDirection::angle_sd_deg() const {
+  if (exits < 2) return NAN;
+  const double n = static_cast<double>(exits), mean = sum_angle / n;
+  return std::sqrt(std::max(0.0, (sum_angle2 - n * mean * mean) / (n - 1))) * 180.0 / M_PI;
+}
+
 void Silo::handle_exits() {
+  const auto n = static_cast<size_t>(particle_count());
+  if (crossed_.size() != n) crossed_.assign(n, 0), crossing_v_.assign(n, {0, 0});
   for (int i = 0; i < particle_count(); ++i) {
     if (!parked_.empty() && parked_[static_cast<size_t>(i)]) continue;
     core::Vec2 p = pos(i);
-    check_health_fast(i, p, vel(i));
+    const core::Vec2 v = vel(i);
+    check_health_fast(i, p, v);
+    // Read only: the velocity as the centre passes the outlet's line, for the exit direction.
+    if (open_ && p.y < 0 && !crossed_[static_cast<size_t>(i)])
+      crossed_[static_cast<size_t>(i)] = 1, crossing_v_[static_cast<size_t>(i)] = v;
     // A disk wholly below the aperture line has fallen clear of it: one exit, then back to the top.
     if (open_ && p.y < -extent_[i]) {
+      if (crossed_[static_cast<size_t>(i)]) {
+        const core::Vec2 c = crossing_v_[static_cast<size_t>(i)];
+        const double angle = std::atan2(c.x, -c.y);
+        exit_direction_.exits += 1;
+        exit_direction_.sum_vx += c.x, exit_direction_.sum_vy += c.y;
+        exit_direction_.sum_angle += angle, exit_direction_.sum_angle2 += angle * angle;
+      }
+      crossed_[static_cast<size_t>(i)] = 0;
       events_.exits.push_back({t_, i, species_[i]});
       ++exits_by_species_[static_cast<size_t>(core::species_index(species_[i]))];
       last_.exits.push_back(events_.exits.back());

@@ -112,6 +112,18 @@ class Silo {
     double end_s = NAN;
   };
   const Drain& drain() const { return drain_; }
+
+  // The direction the exiting grains move as they cross the outlet's line (their centre passing it), in the
+  // container's frame: the angle of each one's velocity from the outlet's outward normal (positive towards
+  // +x), deg. Thomas and Durian project the outlet across this direction, not across gravity.
+  struct ExitDirection {
+    long exits = 0;                        // exits whose crossing was seen
+    double sum_vx = 0, sum_vy = 0;         // their crossing velocities, m/s
+    double sum_angle = 0, sum_angle2 = 0;  // their angles, rad
+    double mean_velocity_deg() const;      // the direction of their mean velocity
+    double angle_sd_deg() const;           // the spread of their angles
+  };
+  const ExitDirection& exit_direction() const { return exit_direction_; }
   bool drained_out() const { return drain_.outcome != "draining"; }
 
   // Number of arch fallbacks (the primary arch method found nothing when the rule fired).
@@ -278,9 +290,12 @@ class Silo {
   bool profiling_ = false;
   OverlapStats overlaps_;
   Airborne airborne_;
-  std::uint64_t hold_steps_ = 1;      // arrest_hold in steps
-  std::vector<core::Vec2> hold_pos_;  // positions arrest_hold before the coming kick
-  std::vector<core::Vec2> kick_pos_;  // positions at the last kick (the shortcut's stillness test)
+  ExitDirection exit_direction_;
+  std::vector<core::Vec2> crossing_v_;  // each grain's velocity as its centre crossed the outlet's line
+  std::vector<char> crossed_;           // whether it has crossed since it was (re)placed
+  std::uint64_t hold_steps_ = 1;        // arrest_hold in steps
+  std::vector<core::Vec2> hold_pos_;    // positions arrest_hold before the coming kick
+  std::vector<core::Vec2> kick_pos_;    // positions at the last kick (the shortcut's stillness test)
   Drain drain_;
   std::vector<char> parked_;      // drain: grains that left (empty otherwise)
   std::uint64_t skip_until_ = 0;  // the shortcut: steps before this one are not integrated

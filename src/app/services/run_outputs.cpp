@@ -78,6 +78,11 @@ analysis::Measurements write_run_outputs(const std::filesystem::path& dir, const
     info.facts.push_back({"drain_end_s", m.drain_end_s});
     info.facts.push_back({"drain_remaining", static_cast<long>(m.drain_remaining)});
   }
+  // Where the grains leave (Thomas and Durian's projection of a tilted outlet), in every run.
+  const sim::Silo::ExitDirection& exit = h.exit_direction();
+  info.facts.push_back({"exit_direction_exits", exit.exits});
+  if (exit.exits > 0) info.facts.push_back({"exit_direction_deg", exit.mean_velocity_deg()});
+  if (exit.exits > 1) info.facts.push_back({"exit_angle_sd_deg", exit.angle_sd_deg()});
   if (scene.arrest_skip > 0) {
     info.facts.push_back({"arrest_skips", h.arrest_skips()});
     info.facts.push_back({"arrest_skipped_s", h.skipped_seconds()});
