@@ -124,12 +124,15 @@ def per_run_avalanches(results, keys):
     """Each realization's avalanche count and mean size (analysis/realizations.csv, by the definition the
     analysis used) with the scene keys `keys` of its point (read from the run's own metadata)."""
     c = siloscope.read_campaign(results)
-    scenes = {os.path.relpath(r.path, results): r.scene for r in runs_of(results)}
+    read = {os.path.relpath(r.path, results): r for r in runs_of(results)}
     rows = []
     for _, r in c.realizations.iterrows():
-        sc = scenes[r["source"]]
+        run = read[r["source"]]
+        sc = run.scene
+        # Where the grains left (metadata [run], from siloscope 0.2.0 on; NaN for runs made before).
+        exit_deg = float(run.metadata.get("run", {}).get("exit_direction_deg", math.nan))
         rows.append({**{k: sc[k] for k in keys}, "avalanches": int(r["avalanches"]), "mean": float(r["avalanche_mean"]),
-                     "spontaneous": int(r["clogs_spontaneous"])})
+                     "spontaneous": int(r["clogs_spontaneous"]), "exit_deg": exit_deg})
     import pandas as pd
     return pd.DataFrame(rows)
 
@@ -416,6 +419,84 @@ def choose_tmin(t, observed):
     return best[1]
 
 
+# The arrest-time tail is fitted above one cut-off at every Gamma (issue 53): 1 s, ten periods of the 10 Hz drive,
+# chosen once before the fits; 0.5 s and 2 s show how alpha moves with it. The earlier rule (t_min chosen per
+# Gamma, closest to the Kaplan-Meier tail) is kept in the sensitivity table for comparison.
+T_MIN = 1.0
+T_MIN_SENS = (0.5, 1.0, 2.0)
+BOOT = 400
+
+
+def arrests(runs):
+    """Per realization: the arrested clogs' durations, whether each ended (1) or was censored by the run's end
+    (0), the clogs never arrested, the flowing rate and the overall rate."""
+    per_run = []
+    for r in runs:
+        c = r.clogs
+        arrested = c["arrested"].to_numpy() == 1 if "arrested" in c else np.ones(len(c), bool)
+        dur = c["duration_s"].to_numpy()[arrested]
+        ended = (c["ended_by"].to_numpy()[arrested] != "run_end").astype(int)
+        per_run.append((dur, ended, int((~arrested).sum()), flowing_rate(r), len(r.exits) / r.scene["duration"]))
+    return per_run
+
+
+def alpha_boot(per_run, tmin, rng):
+    """alpha at tmin for BOOT resamples of the realizations (NaN where a resample's tail is too short)."""
+    out = np.full(BOOT, math.nan)
+    for k in range(BOOT):
+        pick = rng.integers(0, len(per_run), len(per_run))
+        bt = np.concatenate([per_run[j][0] for j in pick])
+        be = np.concatenate([per_run[j][1] for j in pick])
+        a, *_rest, d = tail_fit(bt, be, tmin)
+        out[k] = a if d >= 20 else math.nan
+    return out
+
+
+def crossing(gs, alphas, level=2.0):
+    """The Gamma where alpha(Gamma), linear between grid points, first rises through `level` (NaN: it does not)."""
+    for k in range(len(gs) - 1):
+        a0, a1 = alphas[k], alphas[k + 1]
+        if math.isfinite(a0) and math.isfinite(a1) and a0 < level <= a1:
+            return gs[k] + (level - a0) * (gs[k + 1] - gs[k]) / (a1 - a0)
+    return math.nan
+
+
+def interpolate(gs, values, g):
+    """values (over the grid gs) at g, linear between the neighbouring grid points."""
+    k = int(np.searchsorted(gs, g))
+    if k == 0 or k >= len(gs):
+        return math.nan
+    w = (g - gs[k - 1]) / (gs[k] - gs[k - 1])
+    return (1 - w) * values[k - 1] + w * values[k]
+
+
+def heldout(results, rows, gs):
+    """alpha at T_MIN at each held-out Gamma with its bootstrap, against the grid's curve interpolated there (its
+    interval from the same resamples); [] where the held-out campaign is absent."""
+    if not os.path.isdir(results):
+        return []
+    runs = runs_of(results)
+    rng = np.random.default_rng(54)
+    held = []
+    for g in sorted({r.scene["vibration_gamma"] for r in runs}):
+        per_run = arrests([r for r in runs if r.scene["vibration_gamma"] == g])
+        t = np.concatenate([p[0] for p in per_run])
+        e = np.concatenate([p[1] for p in per_run])
+        a, *_rest, d = tail_fit(t, e, T_MIN)
+        if d < 20:
+            continue
+        boot = alpha_boot(per_run, T_MIN, rng)
+        fin = boot[np.isfinite(boot)]
+        lo, hi = np.quantile(fin, [0.025, 0.975])
+        pred = interpolate(gs, [r["ca"] for r in rows], g)
+        pb = np.asarray([interpolate(gs, [r["c_boot"][k] for r in rows], g) for k in range(BOOT)])
+        pb = pb[np.isfinite(pb)]
+        p_lo, p_hi = np.quantile(pb, [0.025, 0.975]) if len(pb) > 20 else (math.nan, math.nan)
+        held.append(dict(g=g, ca=a, lo=lo, hi=hi, n=len(per_run), d=d, pred=pred, pred_lo=p_lo, pred_hi=p_hi,
+                         agrees=bool(lo <= pred <= hi)))
+    return held
+
+
 def transition(results, out, lines):
     """The vibration transition (issue 38): arrest times against Gamma on a fine grid."""
     runs = runs_of(results)
@@ -429,15 +510,10 @@ def transition(results, out, lines):
     rows = []
     fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(13, 3.8))
     cmap = plt.get_cmap("viridis")
+    rng = np.random.default_rng(53)  # the common rule's resamples (RNG keeps the earlier rule's draws)
     for i, g in enumerate(gammas):
         rs = [r for r in runs if r.scene["vibration_gamma"] == g]
-        per_run = []  # (durations, ended, never-arrested count, flowing rate, overall rate)
-        for r in rs:
-            c = r.clogs
-            arrested = c["arrested"].to_numpy() == 1 if "arrested" in c else np.ones(len(c), bool)
-            dur = c["duration_s"].to_numpy()[arrested]
-            ended = (c["ended_by"].to_numpy()[arrested] != "run_end").astype(int)
-            per_run.append((dur, ended, int((~arrested).sum()), flowing_rate(r), len(r.exits) / r.scene["duration"]))
+        per_run = arrests(rs)  # (durations, ended, never-arrested count, flowing rate, overall rate)
         t = np.concatenate([p[0] for p in per_run])
         e = np.concatenate([p[1] for p in per_run])
         never = sum(p[2] for p in per_run)
@@ -455,9 +531,21 @@ def transition(results, out, lines):
         qf = ci95([p[3] for p in per_run])
         qa = ci95([p[4] for p in per_run])
         # The overall rate's interval can reach below 0 where clogs last most of the run: clipped on a log axis.
+        # The common rule: alpha above T_MIN at this Gamma (at least 20 ended clogs in the tail), its bootstrap,
+        # and alpha at the other cut-offs of the sensitivity table.
+        ca, _lam, c_llr, c_vuong, c_n, c_d = tail_fit(t, e, T_MIN)
+        ca = ca if c_d >= 20 else math.nan
+        c_boot = alpha_boot(per_run, T_MIN, rng) if math.isfinite(ca) else np.full(BOOT, math.nan)
+        fin = c_boot[np.isfinite(c_boot)]
+        c_lo, c_hi = np.quantile(fin, [0.025, 0.975]) if len(fin) > 20 else (math.nan, math.nan)
+        sens = {}
+        for tm in T_MIN_SENS:
+            a_s, *_r, d_s = tail_fit(t, e, tm)
+            sens[tm] = (a_s if d_s >= 20 else math.nan, d_s)
         rows.append(dict(g=g, n=len(rs), clogs=len(t) + never, arrested=len(t), ended=int(e.sum()), never=never,
                          tmin=tmin, alpha=alpha, lo=lo, hi=hi, n_tail=n_tail, d_tail=d_tail, llr=llr, vuong=vuong,
-                         qf=qf, qa=qa, censored=int(len(t) - e.sum())))
+                         qf=qf, qa=qa, censored=int(len(t) - e.sum()), ca=ca, c_lo=c_lo, c_hi=c_hi, c_boot=c_boot,
+                         c_llr=c_llr, c_vuong=c_vuong, c_n=c_n, c_d=c_d, sens=sens))
         if len(t):
             times, surv = kaplan_meier(t, e)
             color = cmap(i / max(1, len(gammas) - 1) * 0.9)
@@ -467,13 +555,34 @@ def transition(results, out, lines):
     ax.set_xlabel("arrest time T [s] (arrested clogs)")
     ax.set_ylabel("P(T > t) (Kaplan-Meier)")
     ax.legend(fontsize=6, ncol=2)
-    ok = [r for r in rows if math.isfinite(r["alpha"])]
-    bx.errorbar([r["g"] for r in ok], [r["alpha"] for r in ok],
-                yerr=[[r["alpha"] - r["lo"] for r in ok], [r["hi"] - r["alpha"] for r in ok]], fmt="o-", capsize=3)
+    # The common rule's curve, the transition alpha = 2 with its bootstrap interval, the held-out points.
+    gs = np.asarray([r["g"] for r in rows], float)
+    ca = np.asarray([r["ca"] for r in rows], float)
+    gc = crossing(gs, ca)
+    gc_boot = np.asarray([crossing(gs, [r["c_boot"][k] for r in rows]) for k in range(BOOT)])
+    gc_fin = gc_boot[np.isfinite(gc_boot)]
+    gc_lo, gc_hi = np.quantile(gc_fin, [0.025, 0.975]) if len(gc_fin) > 20 else (math.nan, math.nan)
+    ok = [r for r in rows if math.isfinite(r["ca"])]
+    for tm, style in zip(T_MIN_SENS, (":", None, "--")):
+        if tm == T_MIN:
+            continue
+        bx.plot(gs, [r["sens"][tm][0] for r in rows], style, color="0.55", lw=1,
+                label=f"t_min = {tm:g} s (sensitivity)")
+    bx.errorbar([r["g"] for r in ok], [r["ca"] for r in ok],
+                yerr=[[r["ca"] - r["c_lo"] for r in ok], [r["c_hi"] - r["ca"] for r in ok]], fmt="o-", capsize=3,
+                label=f"t_min = {T_MIN:g} s at every Gamma")
+    if math.isfinite(gc_lo):
+        bx.axvspan(gc_lo, gc_hi, color="tab:orange", alpha=0.2, lw=0,
+                   label=f"alpha = 2 at Gamma = {gc:.2f} ({gc_lo:.2f}-{gc_hi:.2f})")
+    held = heldout(os.path.join(os.path.dirname(os.path.abspath(results)), "vibration-heldout"), rows, gs)
+    if held:
+        bx.errorbar([h["g"] for h in held], [h["ca"] for h in held],
+                    yerr=[[h["ca"] - h["lo"] for h in held], [h["hi"] - h["ca"] for h in held]], fmt="D",
+                    mfc="white", color="tab:red", capsize=3, label="held out (another seed family)")
     bx.axhline(2, color="k", lw=0.8, ls="--")
-    bx.text(bx.get_xlim()[0], 2.03, "alpha = 2: mean arrest time diverges below", fontsize=7, va="bottom")
     bx.set_xlabel(r"$\Gamma = A (2\pi f)^2 / g$")
     bx.set_ylabel(r"tail exponent $\alpha$ (MLE, 95% bootstrap)")
+    bx.legend(fontsize=6, loc="upper left")
     ns = [r["n"] for r in rows]
     bx.set_title(f"n = {min(ns)}-{max(ns)} realizations per Gamma" if min(ns) != max(ns)
                  else f"n = {ns[0]} realizations per Gamma", fontsize=8)
@@ -501,40 +610,84 @@ def transition(results, out, lines):
               "arrested clog (an arch stood and the outlet held still) is its duration until the vibration broke "
               "it; clogs still standing at the run's end are censored. Clogs never arrested (a transient stop "
               "of at least clog_min_gap without a standing arch) are counted apart and left out of T. The tail "
-              "P(T > t) ~ t^(1 - alpha) for t >= t_min is fitted by right-censored maximum likelihood; t_min is "
-              "chosen per Gamma as the 5th-80th percentile of the ended arrest times whose fit is closest to the "
-              "Kaplan-Meier tail (at least 20 ended clogs above it); alpha's 95% interval is a bootstrap over "
-              "realizations (400 resamples, t_min held). R is the log-likelihood ratio of the power law over a "
-              "shifted exponential on the same tail (> 0 favours the power law) with Vuong's p-value. The flow "
-              "rate while flowing (exits over the time not clogged) stands beside the overall rate (Janda et al., "
-              f"EPL 87, 24002, 2009).{partial}", "",
-              "| Gamma | realizations | clogs | never arrested | arrested: ended / censored | t_min [s] | tail: n (ended) "
-              "| alpha (95%) | R, Vuong p | Q flowing [1/s] | Q overall [1/s] |",
-              "|---|---|---|---|---|---|---|---|---|---|---|"]
+              "P(T > t) ~ t^(1 - alpha) for t >= t_min is fitted by right-censored maximum likelihood with **one "
+              f"cut-off at every Gamma, t_min = {T_MIN:g} s** (ten periods of the drive), fixed before the fits "
+              "(at least 20 ended clogs above it); alpha's 95% interval is a bootstrap over realizations "
+              f"({BOOT} resamples). R is the log-likelihood ratio of the power law over a shifted exponential on "
+              "the same tail (> 0 favours the power law) with Vuong's p-value. The transition, where alpha rises "
+              "through 2 (below it the mean arrest time diverges), is located on the curve, linear between grid "
+              "points, with the same resamples. The flow rate while flowing (exits over the time not clogged) "
+              f"stands beside the overall rate (Janda et al., EPL 87, 24002, 2009).{partial}", "",
+              f"| Gamma | realizations | clogs | never arrested | arrested: ended / censored | tail above {T_MIN:g} s: "
+              "n (ended) | alpha (95%) | R, Vuong p | Q flowing [1/s] | Q overall [1/s] |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        fit = (f"{r['alpha']:.2f} ({r['lo']:.2f}-{r['hi']:.2f})" if math.isfinite(r["alpha"])
+        fit = (f"{r['ca']:.2f} ({r['c_lo']:.2f}-{r['c_hi']:.2f})" if math.isfinite(r["ca"])
                else "too few ended clogs")
-        tm = f"{r['tmin']:.2f}" if math.isfinite(r["tmin"]) else "-"
-        lr = f"{r['llr']:.1f}, {r['vuong']:.2g}" if math.isfinite(r["llr"]) else "-"
-        lines.append(f"| {r['g']:g} | {r['n']} | {r['clogs']} | {r['never']} | {r['ended']} / {r['censored']} | {tm} | "
-                     f"{r['n_tail']} ({r['d_tail']}) | {fit} | {lr} | {r['qf'][0]:.2f} +- {r['qf'][1]:.2f} | "
+        lr = f"{r['c_llr']:.1f}, {r['c_vuong']:.2g}" if math.isfinite(r["c_llr"]) else "-"
+        lines.append(f"| {r['g']:g} | {r['n']} | {r['clogs']} | {r['never']} | {r['ended']} / {r['censored']} | "
+                     f"{r['c_n']} ({r['c_d']}) | {fit} | {lr} | {r['qf'][0]:.2f} +- {r['qf'][1]:.2f} | "
                      f"{r['qa'][0]:.2f} +- {r['qa'][1]:.2f} |")
-    power_law_gammas = ", ".join("%g" % r["g"] for r in ok if r["llr"] > 0 and r["vuong"] < 0.05)
+    below = [r["g"] for r in ok if r["c_hi"] < 2]
+    above = [r["g"] for r in ok if r["c_lo"] > 2]
+    power_law_gammas = ", ".join("%g" % r["g"] for r in ok if r["c_llr"] > 0 and r["c_vuong"] < 0.05)
     never_text = ", ".join("%d of %d at Gamma = %g" % (r["never"], r["clogs"], r["g"])
                            for r in (rows[0], rows[len(rows) // 2], rows[-1]))
-    below = [r["g"] for r in ok if r["hi"] < 2]
-    above = [r["g"] for r in ok if r["lo"] > 2]
-    lines += ["", "Reading: alpha's interval lies below 2 (the mean arrest time diverges: arrests without a "
-              f"typical duration) at Gamma = {', '.join(f'{g:g}' for g in below) or 'none'} and above 2 (a finite "
-              f"mean) at Gamma = {', '.join(f'{g:g}' for g in above) or 'none'}; the rest straddle 2. Censoring "
-              f"at the run's length ({scene['duration']:g} s) bounds what the longest arrests can show. The power law "
-              "describes the tail better than an exponential (R > 0, Vuong p < 0.05) at Gamma = "
-              f"{power_law_gammas or 'none'}; elsewhere "
-              "the two are not told apart, and alpha, fitted to a short tail, moves with t_min (it does not grow "
-              "steadily there). Clogs never arrested (stops without a standing arch) are "
-              + never_text
-              + ": they grow with the drive, and counting them as clogs would shorten the mean arrest time.", "",
-              "![Vibration transition](figures/transition.png)", ""]
+    no_cross = len(gc_boot) - len(gc_fin)
+    lines += ["", f"Reading: alpha rises smoothly with Gamma at one cut-off. Its interval lies below 2 (the mean "
+              "arrest time diverges: arrests without a typical duration) at Gamma = "
+              f"{', '.join(f'{g:g}' for g in below) or 'none'} and above 2 (a finite mean) at Gamma = "
+              f"{', '.join(f'{g:g}' for g in above) or 'none'}. **alpha = 2 at Gamma = {gc:.3f} (95% "
+              f"{gc_lo:.3f}-{gc_hi:.3f}**, bootstrap over realizations"
+              + (f"; {no_cross} of {BOOT} resamples without a crossing" if no_cross else "")
+              + f"). Censoring at the run's length ({scene['duration']:g} s) bounds what the longest arrests can "
+              "show. The power law describes the tail better than an exponential (R > 0, Vuong p < 0.05) at "
+              f"Gamma = {power_law_gammas or 'none'}; elsewhere the two are not told apart. Clogs never arrested "
+              "(stops without a standing arch) are " + never_text
+              + ": they grow with the drive, and counting them as clogs would shorten the mean arrest time.", ""]
+    lines += [f"Sensitivity to the cut-off (alpha by maximum likelihood, ended clogs in the tail in brackets; "
+              "\"per Gamma\" is the earlier rule, t_min chosen separately at each Gamma as the 5th-80th "
+              "percentile whose fit is closest to the Kaplan-Meier tail, with its bootstrap interval):", "",
+              "| Gamma | " + " | ".join(f"t_min = {tm:g} s" for tm in T_MIN_SENS) + " | per Gamma: t_min [s], "
+              "alpha (95%) |", "|---|" + "---|" * (len(T_MIN_SENS) + 1)]
+    for r in rows:
+        cells = [f"{r['sens'][tm][0]:.2f} ({r['sens'][tm][1]})" if math.isfinite(r["sens"][tm][0])
+                 else f"- ({r['sens'][tm][1]})" for tm in T_MIN_SENS]
+        old = (f"{r['tmin']:.2f}, {r['alpha']:.2f} ({r['lo']:.2f}-{r['hi']:.2f})" if math.isfinite(r["alpha"])
+               else "-")
+        lines.append(f"| {r['g']:g} | " + " | ".join(cells) + f" | {old} |")
+    gc_s = {tm: crossing(gs, [r["sens"][tm][0] for r in rows]) for tm in T_MIN_SENS}
+
+    def spread(r):
+        v = [r["sens"][tm][0] for tm in T_MIN_SENS if math.isfinite(r["sens"][tm][0])]
+        return max(v) - min(v) if v else math.nan
+
+    low = max((spread(r) for r in rows if r["g"] < 1), default=math.nan)
+    high = max((spread(r) for r in rows if r["g"] > 1), default=math.nan)
+    far = [r for r in rows if math.isfinite(r["alpha"]) and math.isfinite(r["ca"])
+           and abs(r["alpha"] - r["ca"]) > 0.2]
+    gc_fin_s = [v for v in gc_s.values() if math.isfinite(v)]
+    lines += ["", f"Across cut-offs from {T_MIN_SENS[0]:g} s to {T_MIN_SENS[-1]:g} s alpha moves by up to "
+              f"{low:.2f} below Gamma = 1 and up to {high:.2f} above it: there the tail bends down faster than a "
+              "power law (the longest arrests are rarer than the short ones predict), so a value of alpha is a "
+              "statement about the cut-off as much as about the drive. The transition moves by "
+              f"{max(gc_fin_s) - min(gc_fin_s):.2f} in Gamma: alpha = 2 at Gamma = "
+              + ", ".join(f"{gc_s[tm]:.3f} (t_min = {tm:g} s)" for tm in T_MIN_SENS) + "."
+              + ((" The earlier per-Gamma choice differs from the common cut-off by more than 0.2 at Gamma = "
+                  + ", ".join(f"{r['g']:g} ({r['alpha']:.2f} at t_min = {r['tmin']:.2f} s against {r['ca']:.2f})"
+                              for r in far)
+                  + ": a longer cut-off picked there, not the drive, made those values.") if far else "")]
+    if held:
+        lines += ["", "Held out (`assets/campaigns/vibration-heldout.toml`, another seed family, run after the rule "
+                  "was fixed): " + "; ".join(
+                      f"Gamma = {h['g']:g}: alpha = {h['ca']:.2f} ({h['lo']:.2f}-{h['hi']:.2f}), n = {h['n']} "
+                      f"realizations, {h['d']} ended clogs in the tail; the curve between its grid neighbours "
+                      f"predicts {h['pred']:.2f} ({h['pred_lo']:.2f}-{h['pred_hi']:.2f}): "
+                      + ("within" if h["agrees"] else "outside") + " the held-out interval"
+                      for h in held) + "."]
+    else:
+        lines += ["", "Held-out points (`assets/campaigns/vibration-heldout.toml`): not measured yet."]
+    lines += ["", "![Vibration transition](figures/transition.png)", ""]
 
 
 def main(src, out):
@@ -542,7 +695,7 @@ def main(src, out):
     os.makedirs(figs, exist_ok=True)
     lines = ["# Physics of the general scenes, measured", "",
              "Generated by `docs/physics/physics.py` from the committed campaigns (docs/campaigns/{beverloo,obstacle,obstacle-baseline,"
-             "polygons,harmonic,vibration-transition,tilt,tilt-hopper,drain}); every interval is 95% over realizations unless said. Measured against the "
+             "polygons,harmonic,vibration-transition,vibration-heldout,tilt,tilt-hopper,drain,drain-fine,drain-700}); every interval is 95% over realizations unless said. Measured against the "
              "literature, never tuned to it (../shared/model.md, 'Beyond the paper').", ""]
     import protocols
     helpers = (runs_of, per_run_avalanches, pooled_mean, boot_stat, boot_ratio)
