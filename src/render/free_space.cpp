@@ -172,6 +172,11 @@ std::optional<Box> FreeSpace::place_at_corner(float w, float h, const Box& withi
   return place(w, h, in, ax > 0 ? in.x1 : in.x0, ay > 0 ? in.y1 : in.y0, ax, ay);
 }
 
+float overlay_style_scale(float em) {
+  // Square root: at 4K (51 px) a gap of 16 px, not 31: the words stay apart and the box keeps its size.
+  return std::max(1.0f, std::sqrt(em / 13.0f));
+}
+
 float info_title_wrap(float em, int margin_w) {
   float wrap = 18 * em;
   if (margin_w > 0) wrap = std::min(wrap, margin_w - 1.2f * em - 2 * 8.0f);  // ImGui's window padding: 8 px
@@ -186,9 +191,10 @@ float overlay_em(int h, double font_scale) {
 std::pair<float, float> info_box_estimate(const OverlayOptions& o, float em,
                                           const std::vector<std::string>& species, const std::string& title,
                                           bool colour_rows, float wrap) {
-  // ImGui's default style: 8 px window padding, 4 px between items, a progress bar 6 px taller than text.
-  // Characters of the sans-serif font average under half an em (measured: 0.46 em on the rate line); the
-  // title wraps at `wrap` (words do not fill rows: 15% more than its length).
+  // ImGui's default style: 8 px window padding, 4 px between rows, a progress bar 6 px taller than text (the
+  // gaps within a row scale with the text: overlay_style_scale). Characters of the sans-serif font average
+  // under half an em (measured: 0.46 em on the rate line); the title wraps at `wrap` (words do not fill rows:
+  // 15% more than its length).
   const float ch = 0.5f * em;
   float w = 0, h = 16;
   int items = 0;
@@ -209,7 +215,7 @@ std::pair<float, float> info_box_estimate(const OverlayOptions& o, float em,
   if (o.time) line(12);
   if (o.counts) line(names + 8);  // "52 exits: 30 a, 22 b" or "40 original 12 added exits"
   if (o.rate) line(24 + first);   // "Q~ = 12.34 /s (originals, so far)"
-  if (o.timer) line(0, 6), w = std::max(w, 14 * em);
+  if (o.timer) line(0, 6), w = std::max(w, 5 * em + 21 * ch);  // the bar, then "clogged 12.3 s / 5 s"
   if (o.arch) line(24);
   if (o.legend) {
     h += 1;

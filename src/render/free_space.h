@@ -72,6 +72,9 @@ class FreeSpace {
 // Where the information box's title wraps, pixels: at 18 em (a long scene's title would make the box as wide
 // as the picture), or inside a margin of margin_w pixels (0: none) with the box's padding.
 float info_title_wrap(float em, int margin_w);
+// How much wider the gaps within a row of the overlay's boxes are than ImGui's defaults (made for its 13 px
+// font): sqrt(em / 13 px), at least 1.
+float overlay_style_scale(float em);
 
 // The text height the overlay uses in a picture h pixels tall at a font scale (the same rule as its font).
 float overlay_em(int h, double font_scale);

@@ -200,6 +200,18 @@ void Overlay::ensure_font(int h, double scale) {
     throw core::RuntimeFault("ImGui: cannot create the font texture");
   font_px_ = px;
   laid_out_ = false;  // the panel's size changes with the font
+  // The gaps between words and swatches on one row in proportion to the text (ImGui's defaults are for its 13
+  // px font): at 4K "27 added exits" and the legend's swatches keep the room they have at 720p. Paddings and
+  // row spacing stay: the boxes keep the size the layout plans for.
+  ImGuiStyle style;
+  if (dark_)
+    ImGui::StyleColorsDark(&style);
+  else
+    ImGui::StyleColorsLight(&style);
+  const float k = overlay_style_scale(static_cast<float>(px));
+  style.ItemSpacing.x *= k;
+  style.ItemInnerSpacing.x *= k;
+  ImGui::GetStyle() = style;
 }
 
 void Overlay::reset() {

@@ -70,8 +70,11 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       std::snprintf(label, sizeof label, "clogged %.1f s / %.0f s", f.since_last_exit, d.clog_timeout);
     else
       std::snprintf(label, sizeof label, "clogged %.1f s (no rule)", f.since_last_exit);
-    ImGui::ProgressBar(static_cast<float>(frac), ImVec2(14 * em, 0), label);
+    // The label beside the bar, not over it: over it, it begins wherever the fill ends, half on red.
+    ImGui::ProgressBar(static_cast<float>(frac), ImVec2(5 * em, 0), "");
     ImGui::PopStyleColor();
+    ImGui::SameLine();
+    ImGui::TextUnformatted(label);
   }
   if (o.arch && !f.arch.empty()) {
     int added = 0;
@@ -86,11 +89,13 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
     ImGui::Separator();
     const float r = 0.4f * em;
     auto swatch = [&](Rgba fill, Rgba ring, const char* text) {
+      // The ring's outer edge (its radius and half its stroke) inside the swatch's own room, on both sides.
+      const float outer = r + 0.3f * em;
       ImVec2 p = ImGui::GetCursorScreenPos();
-      ImVec2 c(p.x + r + 2, p.y + 0.5f * ImGui::GetTextLineHeight());
+      ImVec2 c(p.x + outer, p.y + 0.5f * ImGui::GetTextLineHeight());
       if (ring.a > 0) ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(ring), 0, 0.25f * em);
       ImGui::GetWindowDrawList()->AddCircleFilled(c, r, to_u32(fill));
-      ImGui::Dummy(ImVec2(2 * r + 0.5f * em, ImGui::GetTextLineHeight()));
+      ImGui::Dummy(ImVec2(2 * outer, ImGui::GetTextLineHeight()));
       ImGui::SameLine();
       ImGui::TextUnformatted(text);
     };
