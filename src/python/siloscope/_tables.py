@@ -4,7 +4,6 @@ import math
 import os
 
 import numpy as np
-import pandas as pd
 
 from ._errors import SiloscopeError
 from ._manifest import verify_listed
@@ -35,6 +34,7 @@ def read_table(path, first_columns=(), counts=(), finite=(), optional=False, non
     (NaN allowed: not measured), `fractions`: numbers in [0, 1] (NaN allowed), each checked where the column
     exists.
     optional: None if the file is absent."""
+    import pandas as pd  # on first use: `import siloscope` does not pay for pandas
     if optional and not os.path.exists(path):
         return None
     regular_file(path, "table")
