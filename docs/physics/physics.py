@@ -124,15 +124,12 @@ def per_run_avalanches(results, keys):
     """Each realization's avalanche count and mean size (analysis/realizations.csv, by the definition the
     analysis used) with the scene keys `keys` of its point (read from the run's own metadata)."""
     c = siloscope.read_campaign(results)
-    read = {os.path.relpath(r.path, results): r for r in runs_of(results)}
+    scenes = {os.path.relpath(r.path, results): r.scene for r in runs_of(results)}
     rows = []
     for _, r in c.realizations.iterrows():
-        run = read[r["source"]]
-        sc = run.scene
-        # Where the grains left (metadata [run], from siloscope 0.2.0 on; NaN for runs made before).
-        exit_deg = float(run.metadata.get("run", {}).get("exit_direction_deg", math.nan))
+        sc = scenes[r["source"]]
         rows.append({**{k: sc[k] for k in keys}, "avalanches": int(r["avalanches"]), "mean": float(r["avalanche_mean"]),
-                     "spontaneous": int(r["clogs_spontaneous"]), "exit_deg": exit_deg})
+                     "spontaneous": int(r["clogs_spontaneous"])})
     import pandas as pd
     return pd.DataFrame(rows)
 
