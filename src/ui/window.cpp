@@ -106,9 +106,12 @@ class Window {
   // When the oldest key of the last non-empty take_keys() arrived.
   Clock::time_point key_at() const { return key_at_; }
   // Poll while something moves (playing, a test's frame budget, the few frames ImGui needs to settle after an
-  // event); otherwise sleep until the next event: an idle window costs no CPU.
-  void wait_or_poll(bool busy) {
-    if (busy || settle_ > 0) {
+  // event); otherwise sleep until the next event: an idle window costs no CPU. `stale`: the picture on screen
+  // is older than the state (the panels run after the picture is drawn, so a key or a click changed the
+  // frame, the colouring or the camera after it): redraw at once rather than sleep on it.
+  void wait_or_poll(bool busy, bool stale = false) {
+    if (stale && !busy && settle_ == 0) ++stale_frames_;
+    if (busy || stale || settle_ > 0) {
       glfwPollEvents();
       if (settle_ > 0) --settle_;
     } else {
@@ -116,11 +119,14 @@ class Window {
       settle_ = 3;
     }
   }
+  // Redraws made because the window would otherwise have slept on a picture older than the state.
+  long stale_frames() const { return stale_frames_; }
 
  private:
   KeyQueue queue_;
   Clock::time_point key_at_;
   int settle_ = 3;
+  long stale_frames_ = 0;
   GLFWwindow* win_ = nullptr;
   ImGuiContext* ctx_ = nullptr;
 };
@@ -287,9 +293,10 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
   Clock::time_point key_seen;
   long shown = -1;
   double play_acc = 0;
+  bool stale = false;  // the panels changed the state after the picture was drawn
   auto last = Clock::now();
   for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
-    win.wait_or_poll(ps.playing || o.frames > 0);
+    win.wait_or_poll(ps.playing || o.frames > 0, stale);
     const auto now = Clock::now();
     // At most 0.1 s per redraw: time spent waiting for an event does not fast-forward playback.
     const double dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
@@ -303,6 +310,8 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     }
     const auto t0 = Clock::now();
     const core::Frame f = insp.current();
+    const long drawn = insp.frame_index();
+    const std::vector<std::string> drawn_state = insp.state_lines();
     draw_frame(win, painter, f, insp, ps.font_scale, [&](float scene_w, float fw, float fh, float scene_h) {
       ImGui::SetCurrentContext(win.imgui());
       ImGui::GetIO().FontGlobalScale = ps.font_scale;
@@ -311,17 +320,21 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
       draw_panels(insp, ps, &painter, scene_w, fw - scene_w, fh, scene_h, scene_w, fh - scene_h);
       insp.sync_history();  // what the controls changed, written down as script lines
     });
-    if (insp.frame_index() != shown || n == 0) {
+    // The picture is drawn before the panels run, so a key or a click that changed the frame, the colouring,
+    // the camera or the selection shows in the next redraw: make it now.
+    stale = insp.state_lines() != drawn_state;
+    if (drawn != shown || n == 0) {
       glFinish();  // the redraw is done when the pixels are
       const auto done = Clock::now();
       ps.last_redraw_ms = 1e3 * std::chrono::duration<double>(done - t0).count();
       if (n > 0) redraws.push_back(ps.last_redraw_ms);
-      // A key moved the frame: from its arrival to the new picture's pixels (before the buffer swap).
+      // A key moved the frame: from its arrival to the pixels of the picture of the new frame (before the
+      // buffer swap), not to the redraw whose panels took the key.
       if (n > 0 && win.key_at() > key_seen) {
         key_to_picture.push_back(1e3 * std::chrono::duration<double>(done - win.key_at()).count());
         key_seen = win.key_at();
       }
-      shown = insp.frame_index();
+      shown = drawn;
     }
     if (o.frames > 0 && n + 1 >= o.frames) {
       int fw = 0, fh = 0;
@@ -334,6 +347,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
+  std::fprintf(stderr, "redraws for a picture older than the panels: %ld\n", win.stale_frames());
   if (!key_to_picture.empty())
     std::fprintf(stderr, "key to picture: median %.1f ms, largest %.1f ms (%zu keys that moved the frame)\n",
                  core::median(key_to_picture),

@@ -611,6 +611,45 @@ TEST_CASE("a window session saved as a script replays off-screen to the same sna
   CHECK(pa == pb);
 }
 
+TEST_CASE(
+    "every click on the step buttons and the colourings is on screen before the window goes idle (Xvfb)",
+    "[ui]") {
+  fs::path d = temp_dir("clicks");
+  REQUIRE(sh(kBin + " run " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/assets/scenes/paper.toml --duration 3 --trajectory-fps 30 --quiet --out " +
+             (d / "rec").string()) == 0);
+  const std::string log = (d / "log.txt").string();
+  REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
+             "/tests/ui/ui_clicks.sh " + kBin + " " + (d / "rec").string() + " " + d.string() + " > " + log +
+             " 2>&1") == 0);
+  const std::string text = test::slurp(log);
+  INFO(text);
+  CHECK_THAT(text, Contains("inspector exit 0") && Contains("inspector closed at frame 12"));
+  // The scene (left of the 400-pixel panel, above the 80-pixel timeline) after each click against before it:
+  // the first 12 clicks step through flowing frames, the other 8 switch the colouring, so every one changes
+  // it.
+  auto scene = [&](int k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "shot-%02d.rgb", k);
+    const std::string raw = test::slurp(d / name);
+    REQUIRE(raw.size() == 1280u * 720 * 3);
+    std::string out;
+    for (int y = 0; y < 640; ++y) out += raw.substr(static_cast<size_t>(y) * 1280 * 3, 880 * 3);
+    return out;
+  };
+  std::string before = scene(0);
+  int unchanged = 0;
+  for (int k = 1; k <= 20; ++k) {
+    std::string now = scene(k);
+    if (now == before) {
+      ++unchanged;
+      UNSCOPED_INFO("click " << k << " is not on screen");
+    }
+    before = std::move(now);
+  }
+  CHECK(unchanged == 0);
+}
+
 namespace {
 // Synthetic mouse input for a panel drawn by `draw` (between NewFrame and Render): a click (press, release)
 // at every point of a grid over [x0, x1] x [y0, y1], then a 40-pixel drag to the right from the same point,
