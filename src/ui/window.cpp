@@ -48,14 +48,19 @@ void* glfw_proc(const char* name) {
 // per-frame key state saw 2 of 5 quick taps). ImGui's own callback is chained after this one.
 struct KeyQueue {
   std::vector<int> keys;
-  Clock::time_point first;  // when the oldest queued key arrived (key-to-picture latency)
+  Clock::time_point last_key, last_click;  // when the newest key press and mouse release arrived (latency)
 };
 void on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
   if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) {
-    if (q->keys.empty()) q->first = Clock::now();
+    q->last_key = Clock::now();
     q->keys.push_back(action == GLFW_REPEAT ? -key : key);
   }
+}
+// A click acts on its release (ImGui's buttons): the time the picture's latency is counted from.
+void on_mouse_button(GLFWwindow* w, int /*button*/, int action, int /*mods*/) {
+  if (action != GLFW_RELEASE) return;
+  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) q->last_click = Clock::now();
 }
 
 // A GLFW window with a GL 3.3 core context and an ImGui context of its own.
@@ -79,7 +84,8 @@ class Window {
     glfwMakeContextCurrent(win_);
     glfwSwapInterval(1);
     glfwSetWindowUserPointer(win_, &queue_);
-    glfwSetKeyCallback(win_, on_key);  // before ImGui's, which chains to it
+    glfwSetKeyCallback(win_, on_key);  // before ImGui's, which chain to them
+    glfwSetMouseButtonCallback(win_, on_mouse_button);
     render::load_gl(&glfw_proc);
     ctx_ = ImGui::CreateContext();
     ImGui::SetCurrentContext(ctx_);
@@ -99,12 +105,10 @@ class Window {
   GLFWwindow* get() const { return win_; }
   ImGuiContext* imgui() const { return ctx_; }
   // The key presses since the last call (negative: auto-repeat of a held key).
-  std::vector<int> take_keys() {
-    if (!queue_.keys.empty()) key_at_ = queue_.first;
-    return std::exchange(queue_.keys, {});
-  }
-  // When the oldest key of the last non-empty take_keys() arrived.
-  Clock::time_point key_at() const { return key_at_; }
+  std::vector<int> take_keys() { return std::exchange(queue_.keys, {}); }
+  // When the newest key press and the newest mouse release arrived.
+  Clock::time_point last_key() const { return queue_.last_key; }
+  Clock::time_point last_click() const { return queue_.last_click; }
   // Poll while something moves (playing, a test's frame budget, the few frames ImGui needs to settle after an
   // event); otherwise sleep until the next event: an idle window costs no CPU. `stale`: the picture on screen
   // is older than the state (the panels run after the picture is drawn, so a key or a click changed the
@@ -124,7 +128,6 @@ class Window {
 
  private:
   KeyQueue queue_;
-  Clock::time_point key_at_;
   int settle_ = 3;
   long stale_frames_ = 0;
   GLFWwindow* win_ = nullptr;
@@ -289,8 +292,10 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     glfwGetFramebufferSize(win.get(), &fw, &fh);
     ps.font_scale = std::clamp(static_cast<float>(fh) / 720.0f, 1.0f, 2.0f);
   }
-  std::vector<double> redraws, key_to_picture;
-  Clock::time_point key_seen;
+  std::vector<double> redraws, key_to_picture, click_to_picture;
+  // The key or click that changed the state, waiting for the picture that shows it.
+  Clock::time_point cause_at, counted;
+  bool awaiting = false, by_click = false;
   long shown = -1;
   double play_acc = 0;
   bool stale = false;  // the panels changed the state after the picture was drawn
@@ -323,18 +328,26 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     // The picture is drawn before the panels run, so a key or a click that changed the frame, the colouring,
     // the camera or the selection shows in the next redraw: make it now.
     stale = insp.state_lines() != drawn_state;
-    if (drawn != shown || n == 0) {
+    if (stale) {
+      // Caused by the newest key or click not yet counted (none: the panels' own doing, e.g. a camera glide).
+      const Clock::time_point key = win.last_key(), click = win.last_click();
+      const Clock::time_point newest = std::max(key, click);
+      if (newest > counted) awaiting = true, by_click = click > key, cause_at = newest;
+    }
+    const bool shows_cause = awaiting && !stale;  // this picture was drawn with the state the input made
+    if (drawn != shown || n == 0 || shows_cause) {
       glFinish();  // the redraw is done when the pixels are
       const auto done = Clock::now();
       ps.last_redraw_ms = 1e3 * std::chrono::duration<double>(done - t0).count();
-      if (n > 0) redraws.push_back(ps.last_redraw_ms);
-      // A key moved the frame: from its arrival to the pixels of the picture of the new frame (before the
-      // buffer swap), not to the redraw whose panels took the key.
-      if (n > 0 && win.key_at() > key_seen) {
-        key_to_picture.push_back(1e3 * std::chrono::duration<double>(done - win.key_at()).count());
-        key_seen = win.key_at();
-      }
+      if (n > 0 && drawn != shown) redraws.push_back(ps.last_redraw_ms);
       shown = drawn;
+      // From the key's or click's arrival to the pixels of the first picture showing what it did (before the
+      // buffer swap), not to the redraw whose panels took it.
+      if (shows_cause) {
+        (by_click ? click_to_picture : key_to_picture)
+            .push_back(1e3 * std::chrono::duration<double>(done - cause_at).count());
+        awaiting = false, counted = cause_at;
+      }
     }
     if (o.frames > 0 && n + 1 >= o.frames) {
       int fw = 0, fh = 0;
@@ -348,10 +361,12 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
   }
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
   std::fprintf(stderr, "redraws for a picture older than the panels: %ld\n", win.stale_frames());
-  if (!key_to_picture.empty())
-    std::fprintf(stderr, "key to picture: median %.1f ms, largest %.1f ms (%zu keys that moved the frame)\n",
-                 core::median(key_to_picture),
-                 *std::max_element(key_to_picture.begin(), key_to_picture.end()), key_to_picture.size());
+  for (const auto& [what, ms] : {std::pair{"key", &key_to_picture}, std::pair{"click", &click_to_picture}})
+    if (!ms->empty())
+      std::fprintf(stderr,
+                   "%s to picture: median %.1f ms, largest %.1f ms (%zu %s%s that changed the picture)\n",
+                   what, core::median(*ms), *std::max_element(ms->begin(), ms->end()), ms->size(), what,
+                   ms->size() == 1 ? "" : "s");
   return redraws.empty() ? 0.0 : core::median(redraws);
 }
 

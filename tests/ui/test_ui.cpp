@@ -342,6 +342,7 @@ TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvf
   const double idle = std::stod(text.substr(at + 18));
   CHECK(idle < 0.05);  // was 0.75-0.93 when the window redrew continuously
   CHECK_THAT(text, Contains("exit 0") && Contains("inspector closed at frame 5\n"));  // 5 quick taps, 5 steps
+  CHECK_THAT(text, Contains("key to picture: median ") && Contains(" that changed the picture)"));
 }
 
 TEST_CASE(
@@ -625,6 +626,8 @@ TEST_CASE(
   const std::string text = test::slurp(log);
   INFO(text);
   CHECK_THAT(text, Contains("inspector exit 0") && Contains("inspector closed at frame 12"));
+  // Each click's latency counted to the first picture that shows what it did.
+  CHECK_THAT(text, Contains("(20 clicks that changed the picture)"));
   // The scene (left of the 400-pixel panel, above the 80-pixel timeline) after each click against before it:
   // the first 12 clicks step through flowing frames, the other 8 switch the colouring, so every one changes
   // it.
