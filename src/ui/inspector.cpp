@@ -280,8 +280,15 @@ void Inspector::pan_by(double dx, double dy) {
   log("pan " + std::to_string(dx) + " " + std::to_string(dy));
 }
 
+void Inspector::switch_color(render::Style& st, render::ColorMode m, ColorMins& mins) {
+  if (st.color == m) return;
+  mins.at(static_cast<size_t>(st.color)) = st.color_min;
+  st.color = m;
+  st.color_min = mins.at(static_cast<size_t>(m));
+}
+
 void Inspector::set_color(render::ColorMode m, const std::string& name) {
-  style.color = m;
+  switch_color(style, m, color_mins_);
   log("color " + name);
 }
 

@@ -20,6 +20,7 @@
 //                                arch member by member) on standard output
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -191,6 +192,11 @@ class Inspector {
   void track_command(const std::vector<std::string>& a);
   void species_color_command(const std::vector<std::string>& a);
   bool look_command(const std::vector<std::string>& a, const std::string& line);
+  // The "from" each colouring last had (each keeps its own; its "to" is its own in Style already).
+  using ColorMins = std::array<double, 6>;
+  ColorMins color_mins_{};
+  // Switches `st` to colouring m, its "from" restored from `mins` and the one it leaves kept there.
+  static void switch_color(render::Style& st, render::ColorMode m, ColorMins& mins);
   std::vector<std::string> history_;
   std::vector<std::string> recorded_;  // state_lines() as history_ last left it (sync_history)
   bool synced_tail_ = false;           // history_'s last line came from sync_history (it may be merged)

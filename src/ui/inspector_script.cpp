@@ -190,7 +190,8 @@ void Inspector::color_command(const std::vector<std::string>& a, const std::stri
   const render::ColorMode m = render::parse_color_mode(a[1]);
   size_t k = 2;
   render::Style next = style;
-  next.color = m;
+  ColorMins mins = color_mins_;  // kept only if the line is taken
+  switch_color(next, m, mins);
   if (k < a.size() && a[k] != "from") render::set_color_range(next, a[k++]);
   if (k < a.size()) {
     if (a[k] != "from" || k + 2 != a.size() || m != render::ColorMode::Displacement)
@@ -198,6 +199,7 @@ void Inspector::color_command(const std::vector<std::string>& a, const std::stri
     next.displacement_from = to_double(a[k + 1], "from");
   }
   style = next;
+  color_mins_ = mins;
   return set_color(m, line.substr(line.find_first_not_of(" \t") + 6));
 }
 

@@ -140,7 +140,8 @@ void draw_keys_overlay(PanelState& ps, float w, float h) {
   }
   if (ImGui::Button("close")) ps.show_keys = false;
   remember(ps, "close keys");
-  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !ImGui::IsWindowHovered()) ps.show_keys = false;
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !ImGui::IsWindowHovered())
+    ps.show_keys = false, ps.swallow_release = true;
   ImGui::End();
 }
 

@@ -25,9 +25,10 @@ struct PanelState {
   int export_from = 0, export_to = 0;
   char export_path[256] = "clip-{frame}.mp4";
   char session_path[256] = "session-{frame}.txt";
-  std::string trajectory_name;  // named in a saved session's first line
-  float font_scale = 1.0f;      // the window's text size (io.FontGlobalScale); pictures keep their own
-  bool show_keys = false;       // the key overlay ('?')
+  std::string trajectory_name;   // named in a saved session's first line
+  float font_scale = 1.0f;       // the window's text size (io.FontGlobalScale); pictures keep their own
+  bool show_keys = false;        // the key overlay ('?')
+  bool swallow_release = false;  // the press that closed the key overlay: its release selects nothing
   double last_redraw_ms = 0;
   // Screen rectangles (x0, y0, x1, y1) of named widgets from the last frame, for tests and tooltips.
   std::map<std::string, std::array<float, 4>> rects;

@@ -160,6 +160,13 @@ const render::View* mouse_zoom_pan(const std::vector<render::View>& views, doubl
 // The inspector's mouse: zoom and pan, a click (no drag) on a grain selects it (on empty space: none), and a
 // grain under the resting cursor names itself in a tooltip.
 void mouse_view(Inspector& insp, PanelState& ps, float scene_w, float scene_h) {
+  // The key overlay takes the scene's clicks; the click that closes it ends there (it kept clearing the
+  // selection on its release).
+  if (ps.show_keys) return;
+  if (ps.swallow_release) {
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) ps.swallow_release = false;
+    return;
+  }
   const auto views = insp.views(static_cast<int>(scene_w), static_cast<int>(scene_h));
   const render::View* under = mouse_zoom_pan(views, insp.zoom, insp.pan, scene_w, scene_h);
   if (!under) return;

@@ -578,6 +578,32 @@ TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, an
   CHECK_THROWS_WITH(insp.execute("camera-path 0:hopper,1:grain:3"), Contains("`record` does"));
 }
 
+TEST_CASE("each colouring keeps its own colour range; a refused colour line changes nothing", "[ui]") {
+  fs::path d = temp_dir("ranges");
+  io::Trajectory t(test::synthetic_trajectory(d));
+  const app::TrajectoryFrames frames(t);
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), nullptr);
+  insp.execute("color force 1.63:20");
+  insp.execute("color speed");  // was "from 1.63 to 0.5", a range the script itself refuses
+  CHECK(insp.style.color_min == 0);
+  insp.execute("color speed 0.1:0.5");
+  insp.set_color(render::ColorMode::Force, "force");  // the panel's radio button
+  CHECK(insp.style.color_min == 1.63);
+  CHECK(insp.style.force_max == 20);
+  insp.execute("color speed");
+  CHECK(insp.style.color_min == 0.1);
+  CHECK(insp.style.speed_max == 0.5);
+  CHECK_THROWS(insp.execute("color force 3:2"));
+  CHECK(insp.style.color == render::ColorMode::Speed);
+  insp.execute("color force");
+  CHECK(insp.style.color_min == 1.63);
+  // The saved session writes each line with its range, so a replay needs none of this memory.
+  const auto lines = insp.state_lines();
+  std::string all;
+  for (const auto& line : lines) all += line + "\n";
+  CHECK_THAT(all, Contains("\ncolor force 1.63:20.0\n"));
+}
+
 TEST_CASE("a window session saved as a script replays off-screen to the same snapshot bytes (Xvfb, xdotool)",
           "[ui]") {
   fs::path d = temp_dir("session");
@@ -626,8 +652,12 @@ TEST_CASE(
   const std::string text = test::slurp(log);
   INFO(text);
   CHECK_THAT(text, Contains("inspector exit 0") && Contains("inspector closed at frame 12"));
-  // Each click's latency counted to the first picture that shows what it did.
-  CHECK_THAT(text, Contains("(20 clicks that changed the picture)"));
+  // Each click's latency counted to the first picture that shows what it did (the grain's click too).
+  CHECK_THAT(text, Contains("(21 clicks that changed the picture)"));
+  // The click that closed the key overlay left the grain selected.
+  const auto last_select = text.rfind("\nselect ");
+  REQUIRE(last_select != std::string::npos);
+  CHECK(text.compare(last_select, 12, "\nselect off") != 0);
   // The scene (left of the 400-pixel panel, above the 80-pixel timeline) after each click against before it:
   // the first 12 clicks step through flowing frames, the other 8 switch the colouring, so every one changes
   // it.

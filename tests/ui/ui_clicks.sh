@@ -3,7 +3,7 @@
 # (">"), then 8 alternating between the "speed" and "species" colourings, at 1280x720 (text size 1). After
 # each click and 0.6 s of quiet, FFmpeg's x11grab takes the screen as raw RGB (shot-NN.rgb, 1280x720x3 bytes):
 # a click whose effect is not on screen then would show as two equal pictures of the scene. Prints the
-# inspector's stderr and its exit code.
+# inspector's stderr, its exit code and the session it saved at the end.
 # usage: xvfb-run -a -s '-screen 0 1280x720x24' bash tests/ui/ui_clicks.sh SILOSCOPE RECORDING OUTDIR
 set -u
 bin=$1 rec=$2 out=$3
@@ -31,9 +31,21 @@ for k in $(seq 1 20); do
   sleep 0.6
   grab "shot-$(printf %02d "$k").rgb"
 done
+# A grain of the outlet view clicked, the key overlay opened and closed by a click beside it: the grain
+# stays selected. The session saved (w) says so.
+xdotool mousemove 438 262 click 1
+sleep 0.4
+xdotool key question
+sleep 0.4
+xdotool mousemove 60 300 click 1
+sleep 0.4
+xdotool key w
+sleep 0.5
 xdotool key q
 for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
 kill "$pid" 2>/dev/null
 wait "$pid"
 echo "inspector exit $?"
 cat stderr.txt
+echo "--- session"
+cat session-*.txt
