@@ -12,16 +12,19 @@
 #include <imgui_impl_glfw.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/median.h"
 #include "render/context.h"
 #include "render/painter.h"
@@ -48,11 +51,17 @@ void* glfw_proc(const char* name) {
 // per-frame key state saw 2 of 5 quick taps). ImGui's own callback is chained after this one.
 struct KeyQueue {
   std::vector<int> keys;
-  Clock::time_point last_key, last_click;  // when the newest key press and mouse release arrived (latency)
+  std::vector<int> down_since_frame, taps;  // taps: pressed and released between two frames
+  Clock::time_point last_key, last_click;   // when the newest key press and mouse release arrived (latency)
 };
 void on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
+  auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w));
+  if (q && key >= 0 && action == GLFW_PRESS) q->down_since_frame.push_back(key);
+  if (q && action == GLFW_RELEASE &&
+      std::find(q->down_since_frame.begin(), q->down_since_frame.end(), key) != q->down_since_frame.end())
+    q->taps.push_back(key);
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-  if (auto* q = static_cast<KeyQueue*>(glfwGetWindowUserPointer(w))) {
+  if (q) {
     q->last_key = Clock::now();
     q->keys.push_back(action == GLFW_REPEAT ? -key : key);
   }
@@ -93,8 +102,21 @@ class Window {
     ImGui::StyleColorsLight();
     ImGui_ImplGlfw_InitForOpenGL(win_, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
+    // GLFW's wait resumes after a signal, so an idle window never saw Ctrl-C or SIGTERM: a watcher wakes it
+    // (glfwPostEmptyEvent may be called from any thread) and the loop ends on the interrupt flag.
+    watcher_ = std::thread([this] {
+      while (!closing_) {
+        if (core::interrupt_requested()) {
+          glfwPostEmptyEvent();
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    });
   }
   ~Window() {
+    closing_ = true;
+    if (watcher_.joinable()) watcher_.join();
     ImGui::SetCurrentContext(ctx_);
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -123,11 +145,28 @@ class Window {
       settle_ = 3;
     }
   }
+  // ImGui (1.86) reads a key's state once per frame, so a key pressed and released between two frames (a
+  // quick Return in a typed field) was never seen: such a tap is held down for one frame, released in the
+  // next.
+  void hold_taps() {
+    ImGuiIO& io = ImGui::GetIO();
+    for (int k : held_)
+      if (glfwGetKey(win_, k) != GLFW_PRESS) io.KeysDown[k] = false;
+    held_.clear();
+    for (int k : queue_.taps)
+      if (k < IM_ARRAYSIZE(io.KeysDown)) io.KeysDown[k] = true, held_.push_back(k);
+    if (!held_.empty()) settle_ = std::max(settle_, 2);  // the frame that releases it
+    queue_.taps.clear();
+    queue_.down_since_frame.clear();
+  }
   // Redraws made because the window would otherwise have slept on a picture older than the state.
   long stale_frames() const { return stale_frames_; }
 
  private:
   KeyQueue queue_;
+  std::thread watcher_;
+  std::atomic<bool> closing_{false};
+  std::vector<int> held_;  // taps held down for this frame
   int settle_ = 3;
   long stale_frames_ = 0;
   GLFWwindow* win_ = nullptr;
@@ -253,6 +292,7 @@ void imgui_frame(Window& win, int fw, int fh, Panels&& panels) {
   ImGui::SetCurrentContext(win.imgui());
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  win.hold_taps();
   ImGui::NewFrame();
   panels();
   ImGui::Render();
@@ -307,7 +347,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
   double play_acc = 0;
   bool stale = false;  // the panels changed the state after the picture was drawn
   auto last = Clock::now();
-  for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
+  for (int n = 0; !glfwWindowShouldClose(win.get()) && !core::interrupt_requested(); ++n) {
     win.wait_or_poll(ps.playing || o.frames > 0, stale);
     const auto now = Clock::now();
     // At most 0.1 s per redraw: time spent waiting for an event does not fast-forward playback.
@@ -366,6 +406,7 @@ double run_inspector_window(Inspector& insp, const WindowOptions& o) {
     // In tests, step through frames so redraw times are measured.
     if (o.frames > 0) insp.set_frame(insp.frame_index() + 1);
   }
+  if (core::interrupt_requested()) throw core::Interrupted();  // exit 130; the window closes with the Window
   std::fprintf(stderr, "siloscope: inspector closed at frame %ld\n", insp.frame_index());
   std::fprintf(stderr, "redraws for a picture older than the panels: %ld\n", win.stale_frames());
   for (const auto& [what, ms] : {std::pair{"key", &key_to_picture}, std::pair{"click", &click_to_picture}})
@@ -418,7 +459,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   st.overlay = o.overlay;
   st.overlay.place_clear = st.overlay.may_leave = true;
   auto last = Clock::now();
-  for (int n = 0; !glfwWindowShouldClose(win.get()); ++n) {
+  for (int n = 0; !glfwWindowShouldClose(win.get()) && !core::interrupt_requested(); ++n) {
     win.wait_or_poll(!st.paused || o.frames > 0);
     const auto now = Clock::now();
     const double wall = std::min(0.1, std::chrono::duration<double>(now - last).count());
@@ -466,6 +507,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     }
     glfwSwapBuffers(win.get());
   }
+  if (core::interrupt_requested()) throw core::Interrupted();
   std::fprintf(stderr, "siloscope: live window closed at t = %.3f s\n", source.frame(false).t);
 }
 

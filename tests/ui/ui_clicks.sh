@@ -41,6 +41,12 @@ xdotool mousemove 60 300 click 1
 sleep 0.4
 xdotool key w
 sleep 0.5
+# A frame typed into the "go to" field and a quick Return (pressed and released between two frames).
+xdotool mousemove 950 122 click 1
+sleep 0.4
+xdotool type --delay 30 30
+xdotool key --delay 0 Return
+sleep 0.5
 xdotool key q
 for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
 kill "$pid" 2>/dev/null
