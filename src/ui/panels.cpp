@@ -189,10 +189,16 @@ void draw_transport(Inspector& insp, PanelState& ps, long n, const core::Frame& 
     act(insp, ps, [&] { go_to(insp, ps.go_to); });
   remember(ps, "go to");
   const long here = insp.clog_at(insp.frame_index());
+  // Two lines kept for the clog's caption whatever the frame, so the panel below does not jump by a line
+  // between flowing and clogged frames.
+  const float caption_y = ImGui::GetCursorPosY();
   if (here >= 0)
     ImGui::TextWrapped("%s", insp.clog_caption(static_cast<size_t>(here)).c_str());
   else
     ImGui::TextUnformatted("flowing (no clog at this frame)");
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float short_by = 2 * ImGui::GetTextLineHeight() + spacing - (ImGui::GetCursorPosY() - caption_y);
+  if (short_by > spacing) ImGui::Dummy(ImVec2(0, short_by - spacing));
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderFloat("##speed", &ps.speed, 0.05f, 10.0f, "playback %.2fx", ImGuiSliderFlags_Logarithmic);
 }
@@ -294,9 +300,19 @@ void draw_view(Inspector& insp, PanelState& ps) {
 }
 
 void draw_grain(Inspector& insp, PanelState& ps) {
-  // The grain asked about (a click on it, or `select ID`).
+  // The grain asked about: a click on it, its id typed (the script line `select ID`), or `select ID`.
+  ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
+  if (ImGui::InputTextWithHint("##grain_id", "grain id", ps.grain_id, sizeof ps.grain_id,
+                               ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsDecimal))
+    act(insp, ps, [&] { insp.execute(std::string("select ") + ps.grain_id); });
+  remember(ps, "grain id");
+  if (!insp.style.tracked.empty()) {
+    ImGui::SameLine();
+    if (ImGui::Button("track off")) act(insp, ps, [&] { insp.execute("track off"); });
+    remember(ps, "track off");
+  }
   if (insp.selected < 0) {
-    ImGui::TextDisabled("click a grain for its details");
+    ImGui::TextDisabled("click a grain, or type its id, for its details");
     return;
   }
   for (const auto& line : insp.grain_details()) ImGui::TextWrapped("%s", line.c_str());

@@ -16,10 +16,11 @@ namespace ui {
 
 struct PanelState {
   bool playing = false;
-  long play_until = -1;  // playback stops at this frame (play to the next clog), or -1
-  float speed = 1.0f;    // video frames per display frame, scaled by the trajectory's frame rate
-  std::string message;   // the last result or error, shown in the panel
-  char go_to[32] = "";   // the "go to" field: a frame, a time ("12.5 s") or a step ("+30", "-5")
+  long play_until = -1;    // playback stops at this frame (play to the next clog), or -1
+  float speed = 1.0f;      // video frames per display frame, scaled by the trajectory's frame rate
+  std::string message;     // the last result or error, shown in the panel
+  char grain_id[16] = "";  // the "grain id" field (the script line `select ID`)
+  char go_to[32] = "";     // the "go to" field: a frame, a time ("12.5 s") or a step ("+30", "-5")
   char snapshot_path[256] = "snapshot-{frame}.png";
   int snapshot_size = 0;  // index into the size presets
   int export_from = 0, export_to = 0;

@@ -279,6 +279,28 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   CHECK(insp.zoom > 5.0);
   click("timeline", 0.999f);
   CHECK(insp.frame_index() == 4);
+  // The panel keeps its place between a clogged frame (a wrapped caption) and a flowing one.
+  frame(ImVec2(-1, -1), false);
+  const float zoom_y_flowing = ps.rects.at("zoom")[1];
+  insp.set_frame(1);
+  REQUIRE(insp.clog_at(1) >= 0);
+  frame(ImVec2(-1, -1), false);
+  CHECK(ps.rects.at("zoom")[1] == zoom_y_flowing);
+  // A grain's id typed and Return: selected, as `select ID`; "track off" shows while grains are tracked.
+  insp.execute("track 1");
+  frame(ImVec2(-1, -1), false);
+  REQUIRE(ps.rects.count("track off"));
+  click("track off");
+  CHECK(insp.style.tracked.empty());
+  io.KeyMap[ImGuiKey_Enter] = 257;  // as GLFW numbers it (no backend here)
+  click("grain id");
+  io.AddInputCharacter('1');
+  frame(ImVec2(-1, -1), false);
+  io.KeysDown[io.KeyMap[ImGuiKey_Enter]] = true;
+  frame(ImVec2(-1, -1), false);
+  io.KeysDown[io.KeyMap[ImGuiKey_Enter]] = false;
+  frame(ImVec2(-1, -1), false);
+  CHECK(insp.selected == 1);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext(ctx);
 }

@@ -24,9 +24,9 @@ for k in $(seq 1 20); do
   if [ "$k" -le 12 ]; then
     xdotool mousemove 1049 76 click 1  # ">": the next frame
   elif [ $((k % 2)) = 1 ]; then
-    xdotool mousemove 998 236 click 1  # "speed"
+    xdotool mousemove 998 249 click 1  # "speed"
   else
-    xdotool mousemove 898 236 click 1  # "species"
+    xdotool mousemove 898 249 click 1  # "species"
   fi
   sleep 0.6
   grab "shot-$(printf %02d "$k").rgb"
