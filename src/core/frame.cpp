@@ -19,6 +19,11 @@ double polygon_extent(int sides) {
   return std::sqrt(2 * 3.14159265358979323846 / (sides * sn));
 }
 
+bool within_reach(const Particle& a, const Particle& b) {
+  const double reach = 1.1 * (a.radius * polygon_extent(a.sides) + b.radius * polygon_extent(b.sides));
+  return std::hypot(static_cast<double>(a.x) - b.x, static_cast<double>(a.y) - b.y) <= reach;
+}
+
 const char* clog_end_name(ClogEnd e) {
   switch (e) {
     case ClogEnd::Spontaneous:

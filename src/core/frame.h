@@ -33,6 +33,8 @@ struct Particle {
 
 // Circumradius over equal-area radius of a regular polygon of `sides` sides (1 for a disk).
 double polygon_extent(int sides);
+// Whether two grains are close enough to touch: their circumscribed circles, 10% enlarged, overlap.
+bool within_reach(const Particle& a, const Particle& b);
 
 // A contact between two grains and its normal force, N (from the last step's impulse).
 struct Contact {

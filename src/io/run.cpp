@@ -232,24 +232,30 @@ const Trajectory& Run::trajectory() const {
 namespace {
 // Contacts that belong to the trajectory name grains that touch in its frames: a file of another recording
 // (the same scene, another seed) names pairs metres apart. Checked on a few frames spread over the file.
+// Files written before a frame left out the contacts of grains re-injected after the step list a few pairs
+// apart (a grain at the top with one below the outlet): up to a tenth of the pairs checked may be.
 void check_contacts_touch(const Contacts& c, const Trajectory& t, const std::string& name) {
   const long n = std::min(c.size(), t.size());
   if (n == 0) return;
+  long pairs = 0, apart = 0;
+  std::string first;
   for (long k : {0L, n / 2, n - 1}) {
     const core::Frame f = t.frame(k);
     for (const core::Contact& ct : c.frame(k)) {
       const auto& a = f.particles[static_cast<size_t>(ct.a)];
       const auto& b = f.particles[static_cast<size_t>(ct.b)];
-      // A polygon's corners reach out to about 1.6 times its area-equivalent radius (a triangle).
-      const double reach = (a.sides ? 1.7 : 1.1) * a.radius + (b.sides ? 1.7 : 1.1) * b.radius;
-      if (std::hypot(a.x - b.x, a.y - b.y) > reach)
-        throw core::InputError(name + ": frame " + std::to_string(k) + " lists grains " +
-                               std::to_string(ct.a) + " and " + std::to_string(ct.b) +
-                               " in contact, but they are " +
-                               std::to_string(std::hypot(a.x - b.x, a.y - b.y)) +
-                               " m apart in the trajectory: the contacts of another recording");
+      ++pairs;
+      if (core::within_reach(a, b)) continue;
+      if (apart++ == 0)
+        first = "frame " + std::to_string(k) + " lists grains " + std::to_string(ct.a) + " and " +
+                std::to_string(ct.b) + " in contact, but they are " +
+                std::to_string(std::hypot(a.x - b.x, a.y - b.y)) + " m apart in the trajectory";
     }
   }
+  if (apart > 0 && 10 * apart > pairs)
+    throw core::InputError(name + ": " + first + " (" + std::to_string(apart) + " of " +
+                           std::to_string(pairs) +
+                           " pairs checked are apart): the contacts of another recording");
 }
 }  // namespace
 

@@ -521,6 +521,9 @@ core::Frame Silo::frame(bool with_forces) const {
     for (int k = 0; k < m->pointCount; ++k) impulse += m->points[k].normalImpulse;
     float force = static_cast<float>(impulse * to_newton);
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
+    // A grain re-injected at the top after the step still has its contact with the grain it touched below
+    // the outlet: the pair no longer touches in this frame's positions, so the frame does not list it.
+    if (a >= 0 && b >= 0 && !core::within_reach(f.particles[a], f.particles[b])) continue;
     if (a >= 0) f.particles[a].force += force;
     if (b >= 0) f.particles[b].force += force;
     if (a >= 0 && b >= 0) f.contacts.push_back({a, b, force});
