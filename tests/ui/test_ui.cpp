@@ -600,7 +600,7 @@ TEST_CASE("inspector clips freeze at a clog forming or before the rule fires, an
   CHECK_THROWS_WITH(insp.execute("camera-path 0:hopper,1:grain:3"), Contains("`record` does"));
 }
 
-TEST_CASE("each colouring keeps its own colour range; a refused colour line changes nothing", "[ui]") {
+TEST_CASE("each colouring keeps its own colour range and a refused colour line changes nothing", "[ui]") {
   fs::path d = temp_dir("ranges");
   io::Trajectory t(test::synthetic_trajectory(d));
   const app::TrajectoryFrames frames(t);
