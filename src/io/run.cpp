@@ -232,8 +232,8 @@ const Trajectory& Run::trajectory() const {
 namespace {
 // Contacts that belong to the trajectory name grains that touch in its frames: a file of another recording
 // (the same scene, another seed) names pairs metres apart. Checked on a few frames spread over the file.
-// Files written before a frame left out the contacts of grains re-injected after the step list a few pairs
-// apart (a grain at the top with one below the outlet): up to a tenth of the pairs checked may be.
+// Files written before frames dropped the contacts of grains re-injected after the step hold a few pairs
+// apart (a grain at the top with one below the outlet): up to a tenth of the pairs checked may be apart.
 void check_contacts_touch(const Contacts& c, const Trajectory& t, const std::string& name) {
   const long n = std::min(c.size(), t.size());
   if (n == 0) return;

@@ -8,8 +8,6 @@ import pytest
 
 import siloscope
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-
 
 def test_contacts_of_a_recording(recording, tmp_path):
     t = siloscope.read_trajectory(str(recording))
@@ -36,12 +34,12 @@ def test_contacts_of_a_recording(recording, tmp_path):
         siloscope.read_contacts(str(other))
 
 
-def test_every_listed_contact_touches_in_its_frame(binary, tmp_path):
+def test_every_listed_contact_touches_in_its_frame(binary, root, tmp_path):
     """A grain re-injected at the top after a step kept its contact with a grain below the outlet: the run's
     last frame of 18 s of the paper's scene (seed 1) listed 7 pairs 3 m apart, which the reader then took for
     the contacts of another recording. Every pair of every frame now touches in that frame's positions."""
     out = tmp_path / "run"
-    subprocess.run([binary, "run", os.path.join(ROOT, "assets/scenes/paper.toml"), "--duration", "18",
+    subprocess.run([binary, "run", os.path.join(root, "assets/scenes/paper.toml"), "--duration", "18",
                     "--trajectory-fps", "30", "--quiet", "--out", str(out)], check=True)
     t = siloscope.read_trajectory(str(out))
     c = siloscope.read_contacts(str(out), n_particles=t.n)
