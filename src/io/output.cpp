@@ -95,6 +95,12 @@ std::string foreign_output(const fs::path& path, OutputKind kind, const std::str
       if (!file_starts_with(path, std::string("\xDF\x65\xDF\x65\xDF\x65\xDF\x65", 8)))
         return "a file that is not a GSD file (no GSD magic number)";
       return "";
+    case OutputKind::Page:
+      if (fs::is_directory(st)) return "a directory, not a shared run's page";
+      if (!fs::is_regular_file(st)) return "not a regular file";
+      if (!file_contains(path, "<!-- siloscope share ", 512))
+        return "a file that is not a page siloscope share wrote";
+      return "";
     case OutputKind::Xyz:
       if (fs::is_directory(st)) return "a directory, not an XYZ file";
       if (!fs::is_regular_file(st)) return "not a regular file";

@@ -22,6 +22,7 @@ enum class OutputKind {
   Xyz,        // an extended XYZ export: its first comment line carries siloscope="VERSION"
   Sheet,      // a figure (PDF, SVG, PNG) whose metadata names "siloscope gallery" or "siloscope timeline"
   Gsd,        // a GSD export: a GSD file (its magic number) with siloscope's record beside it
+  Page,  // a shared run (siloscope share): an HTML page or fragment that names "siloscope share" at its top
 };
 
 // Why --force may not replace `path`: empty when siloscope wrote it (as `kind`), otherwise what the path is

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The build tree installs (cmake --install) and the installed binary finds its scripts, Python package and
 # scenes relative to itself, with the build tree out of reach: figures from a committed analysis, a gallery
-# sheet of a fresh run, and the package imported from the installed share/.
+# sheet of a fresh run, a shared page of a short recording (the installed viewer), and the package imported
+# from the installed share/.
 set -euo pipefail
 build=$1 src=$2
 tmp=$(mktemp -d)
@@ -19,6 +20,9 @@ test -s figs/kicks.png
 "$bin" run "$tmp/prefix/share/siloscope/scenes/paper.toml" --duration 7 --seed 4 --quiet --out run  # a rule at 5.4 s
 "$bin" gallery run --out sheet.png > gallery.log || { cat gallery.log; exit 1; }
 test -s sheet.png
+"$bin" run "$tmp/prefix/share/siloscope/scenes/paper.toml" --duration 1 --trajectory-fps 10 --quiet --out rec
+"$bin" share rec --out rec.html > share.log || { cat share.log; exit 1; }
+grep -q "siloscope.share" rec.html
 PYTHONPATH="$tmp/prefix/share/siloscope/python" /usr/bin/python3 -c "import siloscope; print(siloscope.read_run('run'))"
 # The installed package: its in-process module (not in a sanitized build, which makes none: CMakeLists.txt), and
 # siloscope.run() finding PREFIX/bin/siloscope (not PATH).

@@ -15,6 +15,7 @@ void define_figures_command(CLI::App& cmd, Action& action);
 void define_claims_command(CLI::App& cmd, Action& action);
 void define_gallery_command(CLI::App& cmd, Action& action);
 void define_timeline_command(CLI::App& cmd, Action& action);
+void define_share_command(CLI::App& cmd, Action& action);
 void define_export_command(CLI::App& cmd, Action& action);
 void define_import_command(CLI::App& cmd, Action& action);
 void define_detect_command(CLI::App& cmd, Action& action);
@@ -52,6 +53,9 @@ const std::vector<Command>& command_table() {
       {"timeline",
        "a run's discharge as a figure: exits per species against time, clogs as bands (PDF, SVG, PNG)",
        define_timeline_command, "timeline {run} --out {out}.pdf", true},
+      {"share",
+       "a run as one self-contained HTML page to open in any browser (play, scrub, clogs, arches, grains)",
+       define_share_command, "share {recording} --out {out}.html", true},
       {"export", "a recording's trajectory as extended XYZ (OVITO, ASE), CSV, VTU (ParaView) or GSD",
        define_export_command, "export {recording} --format vtu --out {out}", true},
       {"import",
