@@ -381,7 +381,7 @@
     }
   }
   function draw() {
-    if (!D) return;
+    if (!D || !views.length) return;
     const t0 = performance.now();
     const ctx = canvas.getContext("2d");
     ctx.fillStyle = L.background;
@@ -660,8 +660,8 @@
   decode().then((d) => {
     D = d;
     status.remove();
+    resize();  // the cameras laid out (the ResizeObserver may not have run yet), then the first frame
     seek(0);
-    resize();
     api.loadMs = performance.now() - started;
     api.sinceNavigationMs = performance.now();
     api.ready = true;

@@ -149,12 +149,13 @@ def check_run(d, page, traj_path, species_colors=None):
     member = int(tr.arch(k_arch)[0])
     X, Y, R = js(d, "v.grainOnPage(arguments[1], 'outlet')", member)
     assert R > 4, f"grain {member} is {R} pixels across in the outlet view"
-    if species_colors is not None:  # above and below the centre (the arch's bonds run through it)
+    if species_colors is not None:  # eight points round the centre: most are its colour (bonds cross a few)
         img = canvas_pixels(d)
         cx, cy = d.execute_script("const b = window.siloscopeViewers[0].canvas.getBoundingClientRect(); return [b.left, b.top]")
         want = species_colors[int(tr.species[member])]
-        seen = [img[int(round(Y + dy - cy)), int(round(X - cx))] for dy in (-0.6 * R, 0.6 * R)]
-        assert any(np.abs(rgb - want).max() <= 12 for rgb in seen), (seen, want)
+        seen = [img[int(round(Y + 0.6 * R * np.sin(a) - cy)), int(round(X + 0.6 * R * np.cos(a) - cx))]
+                for a in np.arange(8) * np.pi / 4 + np.pi / 8]
+        assert sum(np.abs(rgb - want).max() <= 12 for rgb in seen) >= 5, (seen, want)
     click_at(d, X, Y)
     assert js(d, "v.picked") == member
     text = js(d, "v.pickedText()")
