@@ -11,7 +11,8 @@
   const ENDED = { rule: "#c0392b", vibration: "#2e86c1", spontaneous: "#95a5a6", run_end: "#7d3c98" };
   const ENDED_TEXT = { rule: "ended by the rule (arch removed)", vibration: "broken by the drive",
     spontaneous: "transient (resumed by itself)", run_end: "clogged at the run's end" };
-  const COLORINGS = ["species", "speed", "force", "id"];
+  const COLORINGS = ["species", "speed", "force", "displacement", "coordination", "id"];
+  const NO_VALUE = "#9a9a9a";  // a grain with no value (re-injected since the displacement's reference)
   const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4, 8];
 
   // --- the page's parts -----------------------------------------------------------------------------------
@@ -75,7 +76,7 @@
     ["shift + left / right", "one second back / forward"], ["home / end", "first / last frame"],
     ["p / n", "previous / next clog (its start: the last exit)"],
     ["a", "this clog's arch where it forms"], ["c", "play to the next clog"],
-    ["+ / -", "faster / slower"], ["k", "colour by species, speed, force, id"],
+    ["+ / -", "faster / slower"], ["k", "colour by species, speed, force, displacement, coordination, id"],
     ["v", "camera: split, whole container, outlet"], ["0", "reset zoom"],
     ["click a grain", "its id, species, position, velocity, force"], ["esc", "clear the grain"],
     ["timeline", "click or drag to seek; bands are clogs, coloured by how they ended"],
@@ -179,19 +180,77 @@
   const speciesColors = H.species.map((sp) => sp.color);
   function colorIndices(k) {
     if (!colorIdx) { colorIdx = new Int32Array(H.n); sorted = new Int32Array(H.n); }
-    const top = scaleTop(), lo = L.color_min, last = L.colormap.length - 1, o = k * H.n;
+    const o = k * H.n;
+    if (coloring === "id" || coloring === "species") {
+      for (let i = 0; i < H.n; ++i)
+        colorIdx[i] = D.x[o + i] === ABSENT ? -1 : coloring === "id" ? i : Math.min(D.species[i], speciesColors.length - 1);
+      return coloring === "id" ? D.idColor : speciesColors;
+    }
+    const values = grainValues(k), lo = scaleBottom(), top = scaleTop(), last = L.colormap.length - 1;
     for (let i = 0; i < H.n; ++i) {
-      if (D.x[o + i] === ABSENT) { colorIdx[i] = -1; continue; }
-      if (coloring === "id") colorIdx[i] = i;
-      else if (coloring === "species") colorIdx[i] = Math.min(D.species[i], speciesColors.length - 1);
-      else {
-        const v = coloring === "speed" ? Math.hypot(D.vx[o + i], D.vy[o + i]) * H.vq : force(k, i);
-        colorIdx[i] = Math.max(0, Math.min(last, Math.round((v - lo) / Math.max(1e-12, top - lo) * last)));
+      const v = values[i];
+      colorIdx[i] = D.x[o + i] === ABSENT ? -1 : Number.isNaN(v) ? last + 1
+        : Math.max(0, Math.min(last, Math.round((v - lo) / Math.max(1e-12, top - lo) * last)));
+    }
+    return rampWithNoValue;
+  }
+  const rampWithNoValue = L.colormap.concat([NO_VALUE]);
+  // The scaled colourings' values at frame k (render/grain_values.h's rules): speed, the summed contact force,
+  // the displacement since the first frame at or after the look's displacement_from (none for a grain more
+  // than two diameters higher than it was: re-injected), the coordination (pairs of grains whose equal-area
+  // disks are closer than the sum of their radii plus 2% of it).
+  let valueBuf = null, frameTop = 0;
+  function grainValues(k) {
+    if (!valueBuf) valueBuf = new Float32Array(H.n);
+    const v = valueBuf, o = k * H.n;
+    frameTop = 0;
+    if (coloring === "speed") for (let i = 0; i < H.n; ++i) v[i] = Math.hypot(D.vx[o + i], D.vy[o + i]) * H.vq;
+    else if (coloring === "force") for (let i = 0; i < H.n; ++i) v[i] = force(k, i);
+    else if (coloring === "displacement") {
+      const r = D.t.findIndex((t) => t >= L.displacement_from - 1e-9);
+      for (let i = 0; i < H.n; ++i) {
+        if (r < 0 || k < r || !present(r, i)) { v[i] = r >= 0 && k >= r ? NaN : 0; continue; }
+        const dx = px(k, i) - px(r, i), dy = py(k, i) - py(r, i);
+        v[i] = dy > 4 * D.radius[i] ? NaN : Math.hypot(dx, dy);
+        if (v[i] > frameTop) frameTop = v[i];
+      }
+    } else if (coloring === "coordination") coordination(k, v);
+    return v;
+  }
+  function coordination(k, out) {
+    let rmax = 0;
+    for (let i = 0; i < H.n; ++i) rmax = Math.max(rmax, D.radius[i]);
+    const cell = 2.04 * rmax, cells = new Map();
+    out.fill(0);
+    for (let i = 0; i < H.n; ++i) {
+      if (!present(k, i)) continue;
+      const key = Math.floor(px(k, i) / cell) * 100003 + Math.floor(py(k, i) / cell);
+      const list = cells.get(key);
+      if (list) list.push(i); else cells.set(key, [i]);
+    }
+    for (let i = 0; i < H.n; ++i) {
+      if (!present(k, i)) continue;
+      const cx = Math.floor(px(k, i) / cell), cy = Math.floor(py(k, i) / cell);
+      for (let a = -1; a <= 1; ++a) for (let b = -1; b <= 1; ++b) {
+        const list = cells.get((cx + a) * 100003 + cy + b);
+        if (!list) continue;
+        for (const j of list)
+          if (j > i && Math.hypot(px(k, i) - px(k, j), py(k, i) - py(k, j)) < 1.02 * (D.radius[i] + D.radius[j])) {
+            ++out[i];
+            ++out[j];
+          }
       }
     }
-    return coloring === "id" ? D.idColor : coloring === "species" ? speciesColors : L.colormap;
   }
-  function scaleTop() { return coloring === "speed" ? L.speed_max : coloring === "force" ? L.force_max : 0; }
+  // The colour scale: the look's own range for the look's colouring, the defaults for the others.
+  function scaleBottom() { return coloring === L.color ? L.color_min : 0; }
+  function scaleTop() {
+    if (coloring === "speed") return coloring === L.color ? L.speed_max : 0.5;
+    if (coloring === "force") return coloring === L.color ? L.force_max : 20;
+    if (coloring === "coordination") return L.coordination_max;
+    if (coloring === "displacement") return L.displacement_max > 0 ? L.displacement_max : Math.max(frameTop, 1e-9);
+    return 0;
+  }
 
   // --- cameras ------------------------------------------------------------------------------------------------
   // A camera fits a box of the container's frame into a pixel rectangle, the container turned by its tilt
@@ -369,15 +428,18 @@
     ctx.font = Math.round(12 * dpr * L.font_scale) + "px DejaVu Sans, sans-serif";
     const [value, unit] = len >= 1 ? [len, " m"] : len >= 0.01 ? [len * 100, " cm"] : [len * 1000, " mm"];
     ctx.fillText(String(Number(value.toPrecision(1))) + unit, X, Y - 7 * dpr);
-    if (coloring === "speed" || coloring === "force") {  // the colour bar
+    if (!["species", "id"].includes(coloring)) {  // the colour bar
       const bw = 120 * dpr, bh = 10 * dpr, bx = c.r.x + c.r.w - bw - 14 * dpr, by = Y - bh;
       for (let m = 0; m < bw; ++m) {
         ctx.fillStyle = rampColor(m / (bw - 1));
         ctx.fillRect(bx + m, by, 1.5, bh);
       }
       ctx.fillStyle = L.dark ? "#e6e6ea" : "#222";
-      const unit = coloring === "speed" ? " m/s" : " N";
-      ctx.fillText(coloring + " " + L.color_min + " to " + scaleTop() + unit, bx, by - 5 * dpr);
+      const unit = { speed: " m/s", force: " N", displacement: " m", coordination: "" }[coloring];
+      const top = scaleTop();
+      ctx.textAlign = "right";
+      ctx.fillText(coloring + " " + scaleBottom() + " to " + Number(top.toPrecision(3)) + unit, bx + bw, by - 5 * dpr);
+      ctx.textAlign = "left";
     }
   }
   function draw() {

@@ -176,6 +176,11 @@ def check_run(d, page, traj_path, species_colors=None):
     # Colourings by key; the right arrow steps one frame.
     press(d, "k")
     assert js(d, "v.coloring") == "speed"
+    seen = ["speed"]
+    for _ in range(6):  # every colouring drawn once (a failure shows in the console check below)
+        press(d, "k")
+        seen.append(js(d, "v.coloring"))
+    assert seen[:seen.index("species") + 1][-1] == "species" and {"displacement", "coordination", "id"} <= set(seen)
     before = js(d, "v.frame")
     press(d, Keys.ARROW_RIGHT)
     assert js(d, "v.frame") == before + 1

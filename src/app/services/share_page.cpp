@@ -324,7 +324,10 @@ std::string look_json(const Look& look, const core::Geometry& geo) {
     << ",\"picked\":" << json_string(hex(render::tracked_color(st)))
     << ",\"color\":" << json_string(render::color_mode_name(st.color))
     << ",\"speed_max\":" << json_number(st.speed_max) << ",\"force_max\":" << json_number(st.force_max)
-    << ",\"color_min\":" << json_number(st.color_min) << ",\"colormap\":[" << ramp << "]"
+    << ",\"color_min\":" << json_number(st.color_min)
+    << ",\"displacement_from\":" << json_number(st.displacement_from)
+    << ",\"displacement_max\":" << json_number(st.displacement_max)
+    << ",\"coordination_max\":" << json_number(st.coordination_max) << ",\"colormap\":[" << ramp << "]"
     << ",\"halo_m\":" << json_number(arch.halo_m * geo.grain_diameter / 0.13)
     << ",\"fade_below\":" << json_number(arch.fade_below)
     << ",\"font_scale\":" << json_number(look.overlay.font_scale) << "}";
