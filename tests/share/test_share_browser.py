@@ -268,3 +268,15 @@ def test_embedded_twice(binary, browser, tmp_path):
     assert sizes == [[640, 360], [400, 300]]
     browser.execute_script("window.siloscopeViewers[1].seek(10)")
     assert browser.execute_script("return window.siloscopeViewers.map(v => v.frame)") == [0, 10]
+
+
+def test_notebook_player_page(binary, browser, tmp_path, monkeypatch):
+    """Run.player() (what Jupyter shows) opens in the browser, as tall as asked."""
+    monkeypatch.setenv("SILOSCOPE_BINARY", binary)
+    run = tmp_path / "r"
+    sh(binary, "run", os.path.join(ROOT, "assets/scenes/paper.toml"), "--duration", "2", "--trajectory-fps", "30",
+       "--quiet", "--out", run)
+    page = siloscope.read_run(str(run)).player(height=333).save(str(tmp_path / "player.html"))
+    open_page(browser, page)
+    assert browser.execute_script("return window.siloscopeViewers[0].root.getBoundingClientRect().height") == 333
+    assert [u for u in requests(browser) if not u.startswith("file://")] == []

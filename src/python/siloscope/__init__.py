@@ -11,6 +11,7 @@ arrays, metadata as dicts. Pure Python on numpy and pandas (Debian's python3-num
     >>> r.scene["seed"], r.metadata["siloscope"]["version"]
     >>> tr = r.trajectory                                 # trajectory.sstraj, memory-mapped (None without one)
     >>> tr.t[-1], tr.x.shape                              # last time, (frames, grains)
+    >>> r.player(height=480)                              # in Jupyter: the run played in the notebook (share)
     >>> siloscope.read_contacts("recordings/demo")        # frame, a, b, force_N: the force chains of every frame
     >>> c = siloscope.read_campaign("docs/campaigns/paper")   # a sweep's results, or an analysis directory
     >>> c.points[["size_ratio", "q_tilde_per_s", "n_runs"]]
@@ -23,14 +24,14 @@ time running backwards) raises siloscope.SiloscopeError with one line naming the
 """
 from ._errors import SiloscopeError
 from ._trajectory import Trajectory, read_trajectory
-from ._run import Run, read_run, run
+from ._run import Player, Run, read_run, run
 from ._campaign import Campaign, read_campaign
 from ._simulation import Simulation
 from ._contacts import read_contacts
 from ._presets import presets, scene_file
 
-__all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "read_run", "run", "Campaign", "read_campaign",
-           "Simulation", "read_contacts", "presets", "scene_file"]
+__all__ = ["SiloscopeError", "Trajectory", "read_trajectory", "Run", "Player", "read_run", "run", "Campaign",
+           "read_campaign", "Simulation", "read_contacts", "presets", "scene_file"]
 
 
 def _version():

@@ -59,6 +59,7 @@ class Run:
 
     @property
     def trajectory(self):
+        """The run's trajectory.sstraj, memory-mapped (a Trajectory), or None when the run kept none."""
         if self._trajectory is None:
             p = os.path.join(self.path, "trajectory.sstraj")
             if not os.path.exists(p):
@@ -69,6 +70,62 @@ class Run:
     def __repr__(self):
         return (f"Run({self.path!r}: {len(self.exits)} exits, {len(self.clogs)} clogs, {len(self.arches)} "
                 f"long-lasting arches, seed {self.scene['seed']})")
+
+    def _repr_html_(self):
+        """Jupyter: the run's name, its counts and its summary row (the player is run.player())."""
+        import html
+        rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v))}</td></tr>"
+                       for k, v in (("exits", len(self.exits)), ("clogs", len(self.clogs)),
+                                    ("long-lasting arches", len(self.arches)), ("seed", self.scene.get("seed")),
+                                    ("duration, s", self.scene.get("duration")),
+                                    ("trajectory", "yes: run.player() plays it" if os.path.exists(
+                                        os.path.join(self.path, "trajectory.sstraj")) else "none")))
+        summary = self.summary.to_html(index=False) if self.summary is not None else ""
+        return f"<b>siloscope run {html.escape(str(self.path))}</b><table>{rows}</table>{summary}"
+
+    def player(self, height=480, start=None, stop=None, stride=1, look=()):
+        """The run in a notebook: `siloscope share --embed`'s viewer (docs/share.md), shown by Jupyter as HTML.
+
+        >>> siloscope.read_run("recordings/demo").player(height=520, start=5, stop=25)
+
+        height: the viewer's height in CSS pixels (its width is the cell's); start, stop: a window in s; stride:
+        every n-th frame; look: more command-line options of `share` (e.g. ["--background", "dark"]). The run
+        must have a trajectory. Raises SiloscopeError with the binary's message."""
+        import tempfile
+        with tempfile.TemporaryDirectory(prefix="siloscope-player-") as tmp:
+            out = os.path.join(tmp, "player.html")
+            args = [binary(), "share", str(self.path), "--embed", "--out", out, "--stride", str(int(stride))]
+            if start is not None:
+                args += ["--from", repr(float(start))]
+            if stop is not None:
+                args += ["--to", repr(float(stop))]
+            done = subprocess.run(args + [str(a) for a in look], capture_output=True, text=True)
+            if done.returncode != 0:
+                message = (done.stderr or done.stdout).strip().splitlines()
+                raise SiloscopeError(message[-1] if message else f"siloscope share exited with {done.returncode}")
+            with open(out, encoding="utf-8") as f:
+                return Player(f.read(), height)
+
+
+class Player:
+    """A run's viewer for a notebook (Run.player()): Jupyter shows it; save() writes it as a page."""
+
+    def __init__(self, fragment, height):
+        self.fragment = fragment
+        self.height = int(height)
+
+    def _repr_html_(self):
+        return f'<div style="width:100%;height:{self.height}px">{self.fragment}</div>'
+
+    def save(self, path):
+        """An HTML page holding the viewer (open it in any browser)."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(f"<!DOCTYPE html><html><head><meta charset='utf-8'></head><body style='margin:0'>"
+                    f"{self._repr_html_()}</body></html>")
+        return path
+
+    def __repr__(self):
+        return f"Player({len(self.fragment) / 1e6:.2f} MB: show it in Jupyter, or .save('run.html'))"
 
 
 def read_run(path):

@@ -213,6 +213,13 @@ class Trajectory:
                     refuse(k, f"{name} of particle {int(i)} is {float(v[k, i]):.7g} m, far outside the container "
                               f"(allowed: within {reach:g} m)")
 
+    def __repr__(self):
+        t = self.frames["t"] if len(self.frames) else np.zeros(0)
+        span = f"{float(t[0]):g} to {float(t[-1]):g} s" if len(t) else "no frames"
+        clogs = "" if self.clogs is None else f", {len(self.clogs)} clogs"
+        return (f"Trajectory({self.path!r}: {len(self.frames)} frames, {self.n} grains, {span}{clogs}, "
+                f"version {self.version})")
+
     def __len__(self):
         return len(self.frames)
 
