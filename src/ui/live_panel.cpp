@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/arch.h"
@@ -31,6 +32,19 @@ std::vector<render::View> live_views(const LiveState& st, const core::Geometry& 
   return views;
 }
 
+double drag_step(const std::string& key, double value) {
+  if (value != 0) return 0.005 * std::abs(value);
+  // From 0: steps of 0.5% of the key's default (kick_impulse_max: 2.5e-7 N s a pixel, not 1 N s from its
+  // range), else a millionth of a finite range, else 1e-3.
+  static const auto defaults = core::scene_values(core::Scene{});
+  const auto d = defaults.find(key);
+  const double dv = d == defaults.end() ? 0 : std::strtod(d->second.c_str(), nullptr);
+  if (std::isfinite(dv) && dv != 0) return 0.005 * std::abs(dv);
+  if (const core::Field* f = core::find_field(key))
+    if (std::isfinite(f->max - f->min) && f->max > f->min) return 1e-6 * (f->max - f->min);
+  return 1e-3;
+}
+
 bool key_drag(core::Scene& s, const std::string& key) {
   double lo = 0, hi = 1;
   const char* unit = "";
@@ -44,10 +58,7 @@ bool key_drag(core::Scene& s, const std::string& key) {
   const auto it = values.find(key);
   if (it == values.end()) return false;
   double v = std::strtod(it->second.c_str(), nullptr);
-  // Steps of 0.5% of the value per pixel: a 10-pixel drag moves it 5%, whatever its size; the field's range
-  // (finite, or the value's own decade around it) bounds it.
-  const double span = std::isfinite(hi - lo) ? hi - lo : std::max(1.0, 10 * std::abs(v));
-  const float speed = static_cast<float>(v != 0 ? 0.005 * std::abs(v) : 0.001 * span);
+  const float speed = static_cast<float>(drag_step(key, v));
   const std::string label =
       key + (unit && *unit && std::string(unit) != "1" ? " [" + std::string(unit) + "]" : "");
   ImGui::SetNextItemWidth(0.45f * ImGui::GetContentRegionAvail().x);
@@ -107,7 +118,11 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
   ImGui::SameLine();
   if (ImGui::Button("snapshot (s)")) st.snapshot = true;
   ImGui::PushID("run");
-  ImGui::SliderFloat("speed", &st.speed, 0.05f, 4.0f, "%.2fx real time", ImGuiSliderFlags_Logarithmic);
+  // The speed asked for, and the speed the simulation keeps up with (the window's loop measures it).
+  char speed_format[64] = "%.2fx real time";
+  if (st.achieved > 0 && !st.paused)
+    std::snprintf(speed_format, sizeof speed_format, "%%.2fx asked, %.2fx achieved", st.achieved);
+  ImGui::SliderFloat("speed", &st.speed, 0.05f, 4.0f, speed_format, ImGuiSliderFlags_Logarithmic);
   remember(st, "speed");
   ImGui::PopID();
   ImGui::Separator();
@@ -127,7 +142,11 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
     }
   }
   ImGui::SameLine();
+  if (!st.file_scene) st.file_scene = source.scene();  // as the window opened: the scene file's
   if (ImGui::Button("undo edits")) st.edit = source.scene();
+  ImGui::SameLine();
+  if (ImGui::Button("scene file")) st.edit = *st.file_scene;  // back from a restart that went wrong
+  remember(st, "scene file");
   ImGui::Separator();
   ImGui::PushID("camera");
   for (const char* c : {"split", "outlet", "hopper"}) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/frame.h"
@@ -25,8 +26,10 @@ struct LiveState {
   std::string message = "running";
   render::Style style;
   render::OverlayOptions overlay;
-  render::CameraSpec camera;  // split
-  core::Scene edit;           // the panel's values, applied on restart
+  render::CameraSpec camera;              // split
+  core::Scene edit;                       // the panel's values, applied on restart
+  std::optional<core::Scene> file_scene;  // the scene the window opened with ("scene file" returns to it)
+  double achieved = 0;                    // simulated seconds per wall-clock second, smoothed (0: not known)
   // Screen rectangles of named widgets from the last frame (tests).
   std::map<std::string, std::array<float, 4>> rects;
 };
@@ -45,7 +48,11 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
 void draw_live_window(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,
                       const render::Painter* painter, float x, float w, float h);
 
-// A scene key's control: dragged in steps of 0.5% of its value (of its field's range when it is 0), clamped
+// The drag step of a scene key per pixel at `value`: 0.5% of the value, or from 0 of the key's default (a
+// millionth of the field's range when the default is 0 too).
+double drag_step(const std::string& key, double value);
+
+// A scene key's control: dragged in steps of drag_step, clamped
 // to the range of its field in the scene's field table, its unit in the label; edits `s`. Returns whether it
 // changed.
 bool key_drag(core::Scene& s, const std::string& key);

@@ -462,12 +462,19 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   for (int n = 0; !glfwWindowShouldClose(win.get()) && !core::interrupt_requested(); ++n) {
     win.wait_or_poll(!st.paused || o.frames > 0);
     const auto now = Clock::now();
-    const double wall = std::min(0.1, std::chrono::duration<double>(now - last).count());
+    const double real = std::chrono::duration<double>(now - last).count();
+    const double wall = std::min(0.1, real);
     last = now;
     live_keys_pressed(win, st);
     try {
       const double advance = st.paused ? std::exchange(st.step_pending, 0.0) : st.speed * wall;
       if (advance > 0) source.advance(advance);
+      // What the loop keeps up with: the simulated time over the wall clock's (a slow step stretches `real`
+      // past the 0.1 s the advance is capped at).
+      if (st.paused)
+        st.achieved = 0;
+      else if (real > 0 && real < 1)  // (a longer gap is the window waiting, not the simulation)
+        st.achieved = st.achieved > 0 ? 0.9 * st.achieved + 0.1 * advance / real : advance / real;
     } catch (const std::exception& e) {
       st.message = e.what();
       st.paused = true;

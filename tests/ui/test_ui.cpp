@@ -228,6 +228,16 @@ TEST_CASE("snapshots and clips are named by frame and never written over and exp
   CHECK_FALSE(fs::exists(d / "late.mp4"));
 }
 
+TEST_CASE("the live panel drags a key from 0 on the scale of its default, not of its range", "[ui]") {
+  // Issue 56: a 20-pixel drag from 0 set kick_impulse_max to 4 N s (its range is 0 to 1000); its default is
+  // 5e-5 N s.
+  const double kick = ui::drag_step("kick_impulse_max", 0);
+  CHECK(20 * kick == Approx(5e-6));
+  CHECK(ui::drag_step("kick_impulse_max", 2e-4) == Approx(1e-6));  // 0.5% of the value, as before
+  CHECK(ui::drag_step("mu", 0) > 0);                               // a key whose default is 0: its range's
+  CHECK(ui::drag_step("mu", 0) < 1e-2);
+}
+
 TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a slider zooms", "[ui]") {
   gl();
   fs::path d = temp_dir("panels");
