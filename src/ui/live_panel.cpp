@@ -202,6 +202,10 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.25f, 0.25f, 0.25f, 1.0f));
   ImGui::TextWrapped("keys: space pause, right step (paused), s snapshot, q close; wheel zooms, drag pans");
   ImGui::PopStyleColor();
+  // The panel's text size (it starts at the window's height over 720 pixels); the panel widens with it.
+  ImGui::SetNextItemWidth(0.45f * ImGui::GetContentRegionAvail().x);
+  ImGui::SliderFloat("text size", &st.font_scale, 0.8f, 2.0f, "%.2fx");
+  remember(st, "text size");
 }
 
 void draw_live_window(LiveSource& source, LiveState& st, const core::Frame& f, const render::OverlayData& od,

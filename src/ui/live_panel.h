@@ -19,6 +19,7 @@ namespace ui {
 
 struct LiveState {
   float speed = 1.0f;
+  float font_scale = 1.0f;  // the panel's text (the window sets it from its height; the panel widens with it)
   double zoom = 1.0;
   core::Vec2 pan{0, 0};  // m, the view's offset from the camera's centre
   bool paused = false, snapshot = false;

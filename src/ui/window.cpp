@@ -455,6 +455,11 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
   Painter painter;
   LiveState st;
   st.edit = source.scene();
+  {
+    int fw = 0, fh = 0;  // text that reads at the window's size, as in the inspector: 1x at 720 pixels high
+    glfwGetFramebufferSize(win.get(), &fw, &fh);
+    st.font_scale = std::clamp(static_cast<float>(fh) / 720.0f, 1.0f, 2.0f);
+  }
   st.style = o.style;
   st.overlay = o.overlay;
   st.overlay.place_clear = st.overlay.may_leave = true;
@@ -483,7 +488,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     const render::OverlayData od = source.overlay_data();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);
-    const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth));
+    const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth * st.font_scale));
     auto views_for = [&](int w, int h) { return live_views(st, source.geometry(), w, h); };
     if (st.snapshot) {
       st.snapshot = false;
@@ -504,6 +509,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
     const auto views = views_for(scene_w, fh);
     painter.draw({{&f, &source.geometry(), &views, &od}}, st.style, st.overlay, fw, fh, scene_w);
     imgui_frame(win, fw, fh, [&] {
+      ImGui::GetIO().FontGlobalScale = st.font_scale;
       draw_live_window(source, st, f, od, &painter, static_cast<float>(scene_w),
                        static_cast<float>(fw - scene_w), static_cast<float>(fh));
       mouse_zoom_pan(views, st.zoom, st.pan, static_cast<float>(scene_w), static_cast<float>(fh));
