@@ -12,6 +12,7 @@
 #include "app/services/share_page.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/interrupt.h"
 #include "io/output.h"
 #include "io/run.h"
 
@@ -39,6 +40,7 @@ int share(const ShareCommand& o) {
   looks.inherit(run.metadata());
   const Look look = looks.resolve(run.model());
   const SharePage page = share_page(run, look, o.share, share_dir() / "viewer");
+  core::throw_if_interrupted();  // a Ctrl-C while the page was assembled: nothing is written
   io::write_output(out, page.html);
   std::printf("%ld frames, %.2f MB (frames %.2f MB packed, %.2f MB deflated) -> %s\n", page.frames,
               page.html.size() / 1e6, page.raw_bytes / 1e6, page.data_bytes / 1e6, out.c_str());

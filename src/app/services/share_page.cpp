@@ -382,6 +382,7 @@ SharePage share_page(const io::Run& run, const Look& look, const ShareOptions& o
   const Packing m = measure(tr, ks, model.setup.geo);
   const std::string raw = pack(tr, ks, m, std::max<size_t>(1, model.setup.species.size()));
   const std::string packed = deflate(raw);
+  core::throw_if_interrupted();
   const std::string tmpl = read_viewer_file(viewer / (o.embed ? "embed.html" : "viewer.html"));
   SharePage out;
   out.html = fill(tmpl, {{"VERSION", html_escape(io::version_string())},
