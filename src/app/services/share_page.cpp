@@ -98,10 +98,6 @@ std::string read_viewer_file(const fs::path& path) {
   return s.str();
 }
 
-std::string hex(render::Rgba c) {
-  return render::hex_rgb(c);
-}
-
 std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -316,12 +312,13 @@ std::string look_json(const Look& look, const core::Geometry& geo) {
   std::ostringstream j;
   const render::ArchStyle arch;
   std::string ramp;
-  for (int k = 0; k <= 32; ++k) ramp += (k ? "," : "") + json_string(hex(render::colormap(st, k / 32.0)));
-  j << "{\"background\":" << json_string(hex(render::background_color(st)))
+  for (int k = 0; k <= 32; ++k)
+    ramp += (k ? "," : "") + json_string(render::hex_rgb(render::colormap(st, k / 32.0)));
+  j << "{\"background\":" << json_string(render::hex_rgb(render::background_color(st)))
     << ",\"dark\":" << (st.dark ? "true" : "false")
-    << ",\"walls\":" << json_string(hex(render::wall_color(st)))
-    << ",\"arch\":" << json_string(hex(render::arch_color(st.palette)))
-    << ",\"picked\":" << json_string(hex(render::tracked_color(st)))
+    << ",\"walls\":" << json_string(render::hex_rgb(render::wall_color(st)))
+    << ",\"arch\":" << json_string(render::hex_rgb(render::arch_color(st.palette)))
+    << ",\"picked\":" << json_string(render::hex_rgb(render::tracked_color(st)))
     << ",\"color\":" << json_string(render::color_mode_name(st.color))
     << ",\"speed_max\":" << json_number(st.speed_max) << ",\"force_max\":" << json_number(st.force_max)
     << ",\"color_min\":" << json_number(st.color_min)
@@ -351,7 +348,7 @@ std::string header_json(const io::Run& run, const Look& look, const ShareOptions
     const auto sp = static_cast<core::Species>(s);
     j << (s ? "," : "") << "{\"name\":"
       << json_string(s < od.species_names.size() ? od.species_names[s] : core::species_name(sp))
-      << ",\"color\":" << json_string(hex(render::species_color(st, sp))) << "}";
+      << ",\"color\":" << json_string(render::hex_rgb(render::species_color(st, sp))) << "}";
   }
   j << "],\"extent\":[" << json_number(m.x0) << "," << json_number(m.y0) << "," << json_number(m.x1) << ","
     << json_number(m.y1) << "],\"q\":[" << json_number(m.qx) << "," << json_number(m.qy)
