@@ -146,6 +146,8 @@
         if (d.clog[k] === j + 1 && d.archCount[k] > 0 && (d.flags[k] & 5)) return k;
       return -1;
     });
+    // The displacement's reference: the first frame at or after the look's displacement_from (-1: none).
+    d.displacementRef = d.t.findIndex((t) => t >= L.displacement_from - 1e-9);
     d.idColor = [];
     for (let i = 0; i < n; ++i) d.idColor.push(idColor(i));
     return d;
@@ -207,7 +209,7 @@
     if (coloring === "speed") for (let i = 0; i < H.n; ++i) v[i] = Math.hypot(D.vx[o + i], D.vy[o + i]) * H.vq;
     else if (coloring === "force") for (let i = 0; i < H.n; ++i) v[i] = force(k, i);
     else if (coloring === "displacement") {
-      const r = D.t.findIndex((t) => t >= L.displacement_from - 1e-9);
+      const r = D.displacementRef;
       for (let i = 0; i < H.n; ++i) {
         if (r < 0 || k < r || !present(r, i)) { v[i] = r >= 0 && k >= r ? NaN : 0; continue; }
         const dx = px(k, i) - px(r, i), dy = py(k, i) - py(r, i);
