@@ -427,6 +427,10 @@ void Silo::apply_clog_rule() {
     ev.ids = ev.method == core::ArchMethod::Visible ? core::visible_from_aperture(p, radius_, range)
                                                     : current_arch();
   }
+  remove_arch(std::move(ev), p);
+}
+
+void Silo::remove_arch(core::ArchEvent ev, const std::vector<core::Vec2>& p) {
   for (int id : ev.ids) {
     ev.species.push_back(species_[id]);
     ev.x.push_back(static_cast<float>(p[id].x));
@@ -437,6 +441,32 @@ void Silo::apply_clog_rule() {
   for (int id : ev.ids) reinject(id);
   events_.arches.push_back(std::move(ev));
   clogs_.on_rule(t_, events_.arches.back(), last_);
+}
+
+const core::StepEvents& Silo::remove_by_hand(const std::vector<int>& ids) {
+  last_.clear();
+  for (int id : ids)
+    if (id < 0 || id >= static_cast<int>(radius_.size()) ||
+        (!parked_.empty() && parked_[static_cast<size_t>(id)]))
+      throw core::InputError("remove: grain " + std::to_string(id) +
+                             " is not in the container (ids run from 0 to " +
+                             std::to_string(radius_.size() - 1) + ")");
+  if (!clogs_.state().open) {
+    // Flowing: no clog to end, no arch to record; the grains go back on top of the column.
+    for (int id : ids) reinject(id);
+    return last_;
+  }
+  // An open clog ends at the removal as it would by the rule, with the removed grains as the row of
+  // arches.csv (what a "what if" branch changed: app/services/branch.h).
+  core::ArchEvent ev;
+  ev.t = t_;
+  ev.clog_duration = clogs_.since_last(t_);
+  ev.method = arch_method_;
+  ev.ids = ids;
+  remove_arch(std::move(ev), positions());
+  record_closed_clogs();
+  pending_.append(last_);
+  return last_;
 }
 
 void Silo::reinject(int id) {

@@ -187,6 +187,11 @@ class Silo {
   // as velocities (each grain its own change, direction uniform, size uniform in [0, dv], plus one shared
   // change of the same law) drawn from `seed`: the same draws scaled for every dv.
   void kick_all(double dv, bool random = false, std::uint64_t seed = 0);
+  // Grains taken out by hand ("what if"), between steps: each re-injected above the column as the clog rule
+  // does. While a clog is open it ends now as by the rule, the removed grains its row of arches.csv; while
+  // flowing nothing is recorded. Returns what it reported. Throws core::InputError for an id not in the
+  // container.
+  const core::StepEvents& remove_by_hand(const std::vector<int>& ids);
   // Close the outlet (the lid the deposition stood on, back across the aperture) or open it again, from the
   // next step; for protocols of one's own (the Python bindings). While it is closed no grain exits, so the
   // clog tracker sees a gap like any other.
@@ -211,6 +216,9 @@ class Silo {
   void integrate_step();
   void handle_exits();
   void apply_clog_rule();
+  // The arch event `ev` (time, clog duration, method, ids) completed from positions `p` and the forces, its
+  // grains re-injected, recorded, and the open clog closed by the rule.
+  void remove_arch(core::ArchEvent ev, const std::vector<core::Vec2>& p);
   void record_closed_clogs();
   // The arch Box2D's contacts hold now if it blocks the outlet (core::blocks_outlet), else empty.
   std::vector<int> blocking_arch() const;

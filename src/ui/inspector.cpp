@@ -82,6 +82,7 @@ core::Frame Inspector::reference_frame() const {
 }
 
 core::Image Inspector::render_current(Painter& p, int w, int h) const {
+  if (branch_) return render_branch(p, w, h);
   // Pictures (snapshots, clips) place the information box where it covers the fewest grains, as movies do
   // (with the discharge plot, the plot takes the free space and the box keeps the top-right corner); it
   // stays in the picture.

@@ -18,6 +18,12 @@
 //                                --annotate)
 //   print [grain|arch]           frame, time, clog timer and arch members (the selected grain's details; the
 //                                arch member by member) on standard output
+// "What if" (ui/inspector_branch.cpp): the run rebuilt at a frame, changed and continued beside the recording
+//   branch at N | branch off     rebuild the run at frame N (checked against it); shown on the right
+//   remove grain ID              take a grain out (re-injected on top); an open clog ends there
+//   kick DV                      every grain lifted by DV m/s now      set kick_impulse_max J   (N s)
+//   continue S                   the branch S seconds on, the recording moved to the same time
+//   save branch DIR              the branch as a run of its own (it ends there)
 #pragma once
 
 #include <array>
@@ -143,6 +149,18 @@ class Inspector {
   // as snapshot); never over an existing file. Returns the path.
   std::string save_session(const std::string& pattern, const std::string& trajectory_name);
 
+  // "What if" (see the script lines above). `b` (may be null: branch refuses) rebuilds the run.
+  void set_brancher(const Brancher* b) { brancher_ = b; }
+  void branch_at(long k);
+  void branch_off();
+  void branch_remove(long id);
+  void branch_kick(double dv);
+  void branch_set(const std::string& key, double value);
+  void branch_continue(double seconds);
+  std::string save_branch(const std::string& dir);
+  const Branch* branch() const { return branch_.get(); }
+  bool can_branch() const { return brancher_ != nullptr; }
+
   long frame_index() const { return frame_; }
   bool has_contacts() const { return traj_.has_contacts(); }
   void set_frame(long k);  // clamps to the trajectory
@@ -191,6 +209,9 @@ class Inspector {
   void color_command(const std::vector<std::string>& a, const std::string& line);
   void track_command(const std::vector<std::string>& a);
   void species_color_command(const std::vector<std::string>& a);
+  bool branch_command(const std::vector<std::string>& a);
+  core::Image render_branch(Painter& p, int w, int h) const;
+  Branch& need_branch(const char* what) const;
   bool look_command(const std::vector<std::string>& a, const std::string& line);
   // The "from" each colouring last had (each keeps its own; its "to" is its own in Style already).
   using ColorMins = std::array<double, 6>;
@@ -207,6 +228,8 @@ class Inspector {
   core::Geometry geo_;
   long frame_ = 0;
   std::vector<ClogSpan> clogs_;
+  const Brancher* brancher_ = nullptr;
+  std::unique_ptr<Branch> branch_;
 };
 
 // Run a script file; errors carry the file name and line number. Returns the number of commands run.

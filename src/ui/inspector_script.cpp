@@ -32,7 +32,8 @@ double to_double(const std::string& s, const char* what) {
 }
 const char* kCommands =
     "goto, step, next, prev, zoom, pan, camera-path, color, colormap, chains, palette, overlay, arch, track, "
-    "freeze, select, snapshot, export, print, clogs, background, font-scale, species-color";
+    "freeze, select, snapshot, export, print, clogs, background, font-scale, species-color, branch, remove, "
+    "kick, set, continue, save";
 
 // A script line's words, a comment cut off.
 std::vector<std::string> words_of(const std::string& line) {
@@ -119,6 +120,7 @@ void Inspector::execute(const std::string& line, Painter* painter) {
       return (void)snapshot(a[1], w, h, painter);
     }
     if (cmd == "export") return export_command(a, painter);
+    if (branch_command(a)) return;
   } catch (const core::InputError& e) {
     throw core::InputError("'" + line + "': " + e.what());
   }
@@ -257,6 +259,36 @@ void Inspector::track_command(const std::vector<std::string>& a) {
     style.tracked.push_back(static_cast<int>(v));
   }
   return;
+}
+
+// The "what if" lines (ui/inspector_branch.cpp): true when `a` was one.
+bool Inspector::branch_command(const std::vector<std::string>& a) {
+  const std::string& cmd = a[0];
+  auto need = [&](size_t n, const char* usage) {
+    if (a.size() != n + 1) throw core::InputError(std::string("usage: ") + usage);
+  };
+  if (cmd == "branch") {
+    if (a.size() == 2 && a[1] == "off") return branch_off(), true;
+    need(2, "branch at FRAME | branch off");
+    if (a[1] != "at") throw core::InputError("usage: branch at FRAME | branch off");
+    return branch_at(to_long(a[2], "frame")), true;
+  }
+  if (cmd == "remove") {
+    need(2, "remove grain ID");
+    if (a[1] != "grain") throw core::InputError("usage: remove grain ID");
+    return branch_remove(to_long(a[2], "grain id")), true;
+  }
+  if (cmd == "kick") return need(1, "kick DV (m/s)"), branch_kick(to_double(a[1], "kick")), true;
+  if (cmd == "set")
+    return need(2, "set kick_impulse_max J"), branch_set(a[1], to_double(a[2], a[1].c_str())), true;
+  if (cmd == "continue")
+    return need(1, "continue SECONDS"), branch_continue(to_double(a[1], "continue")), true;
+  if (cmd == "save") {
+    need(2, "save branch DIR");
+    if (a[1] != "branch") throw core::InputError("usage: save branch DIR");
+    return (void)save_branch(a[2]), true;
+  }
+  return false;
 }
 
 void Inspector::export_command(const std::vector<std::string>& a, Painter* painter) {

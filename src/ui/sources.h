@@ -27,6 +27,35 @@ class FrameSource {
   virtual bool has_contacts() const { return false; }  // frames carry their contacts (force chains)
 };
 
+// "What if": the run continued from one of its frames with changes, simulated by the app
+// (app/services/branch.h); the inspector shows it beside the recorded run on one clock.
+class Branch {
+ public:
+  virtual ~Branch() = default;
+  virtual long from_frame() const = 0;    // the recorded frame it branched at
+  virtual double time() const = 0;        // s, where it stands
+  virtual core::Frame frame() const = 0;  // its state now (with forces), as a trajectory's frame
+  virtual void advance_to(double t) = 0;  // s; throws core::Unstable with the health monitor's message
+  virtual void remove_grain(int id) = 0;  // re-injected above the column (sim::Silo::remove_by_hand)
+  virtual void kick(double dv) = 0;       // m/s: every grain lifted by dv at once (sim::Silo::kick_all)
+  virtual void set_key(const std::string& key, double value) = 0;  // a drive key from now on
+  virtual std::vector<std::string> changes() const = 0;            // what was changed, when, in order
+  // Ends it as a run ends (its open clog closed) and writes it as a run directory of its own: the recorded
+  // frames up to the branch, then the branch's; its metadata names the run, the frame and the changes.
+  // Throws core::InputError when `dir` exists.
+  virtual void save(const std::string& dir) = 0;
+  virtual bool saved() const = 0;
+};
+
+// Makes branches of the run the inspector shows.
+class Brancher {
+ public:
+  virtual ~Brancher() = default;
+  // The run rebuilt at frame k from its metadata (the same steps: the same state bit for bit), checked
+  // against its recorded events and frame k; throws core::InputError naming what differs.
+  virtual std::unique_ptr<Branch> branch(long k) const = 0;
+};
+
 // A movie being written: frames in order, then finish() (the file appears only then).
 class MovieSink {
  public:

@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "app/services/branch.h"
 #include "app/services/cli.h"
 #include "app/services/inspect_files.h"
 #include "app/services/live_silo.h"
@@ -68,6 +69,8 @@ int inspect(const InspectOptions& o) {
   const TrajectoryFrames frames(run);
   const RecordFiles files;
   ui::Inspector insp(frames, model, &files);
+  const RunBrancher brancher(run);  // "what if": the run re-simulated from a frame
+  if (!run.imported()) insp.set_brancher(&brancher);
   title_imported(insp, run);
   apply_look(insp, o.looks, run);
   const double open_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

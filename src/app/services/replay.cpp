@@ -32,7 +32,6 @@ void resimulate(const io::Run& run, double until, const FrameClock& clock, const
 
 void resimulate(const io::Run& run, double until, const FrameClock& clock, const SinksFor& sinks_for,
                 const std::string& label) {
-  const core::Events& recorded = run.events();
   const core::Model& model = run.model();
   Session session({model});
   // As the run itself was written: arches seen from their formation (hindsight's latency).
@@ -41,18 +40,22 @@ void resimulate(const io::Run& run, double until, const FrameClock& clock, const
   session.run(until, clock, {&hindsight}, {}, [&](double t) { progress.update(t); });
   session.finish({&hindsight});
   progress.finish();
-  const core::Events& again = session.world(0).events();
+  check_replayed_events(run, session.world(0).events(), session.world(0).time());
+}
+
+void check_replayed_events(const io::Run& run, const core::Events& again, double t_end) {
+  const core::Events& recorded = run.events();
+  const double dt = run.model().scene.dt;
   auto differs = [&](const std::string& what) {
     return core::RuntimeFault("re-simulating " + run.dir().string() + " from its metadata did not give its " +
                               what + " (a different build or physics?)");
   };
-  const double t_end = session.world(0).time();
-  for (size_t k = 0; k < recorded.exits.size() && recorded.exits[k].t <= t_end + 0.5 * model.scene.dt; ++k)
+  for (size_t k = 0; k < recorded.exits.size() && recorded.exits[k].t <= t_end + 0.5 * dt; ++k)
     if (k >= again.exits.size() || again.exits[k].id != recorded.exits[k].id ||
         std::fabs(again.exits[k].t - recorded.exits[k].t) > 1e-6)
       throw differs("exit " + std::to_string(k + 1) + " at t = " + core::format_g(recorded.exits[k].t, 6) +
                     " s");
-  for (size_t k = 0; k < recorded.arches.size() && recorded.arches[k].t <= t_end + 0.5 * model.scene.dt; ++k)
+  for (size_t k = 0; k < recorded.arches.size() && recorded.arches[k].t <= t_end + 0.5 * dt; ++k)
     if (k >= again.arches.size() || again.arches[k].ids != recorded.arches[k].ids)
       throw differs("long-lasting arch " + std::to_string(k + 1) +
                     " at t = " + core::format_g(recorded.arches[k].t, 6) + " s");

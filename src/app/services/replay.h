@@ -47,6 +47,10 @@ using SinksFor = std::function<std::vector<Sink*>(const sim::Silo&)>;
 void resimulate(const io::Run& run, double until, const FrameClock& clock, const SinksFor& sinks_for,
                 const std::string& label);
 
+// Throws core::RuntimeFault naming the first exit or long-lasting arch of the recorded run up to t_end (s)
+// that the events `again` of its re-simulation do not repeat.
+void check_replayed_events(const io::Run& run, const core::Events& again, double t_end);
+
 // Why two containers differ (an empty string: the same within a millimetre): the comparison shows one
 // geometry filmed the same way.
 std::string container_difference(const core::Geometry& a, const core::Geometry& b);
