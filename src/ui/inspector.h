@@ -159,6 +159,12 @@ class Inspector {
   void branch_continue(double seconds);
   std::string save_branch(const std::string& dir);
   const Branch* branch() const { return branch_.get(); }
+  // A picture of w x h while branched: the recording's views on the left half, the branch's on the right,
+  // each panel's overlay data titled.
+  void branch_panels(int w, int h, std::vector<render::View>& left, std::vector<render::View>& right,
+                     render::OverlayData& od, render::OverlayData& ob) const;
+  // Every view on the screen's picture of w x h (both panels while branched): where the mouse is.
+  std::vector<render::View> screen_views(int w, int h) const;
   bool can_branch() const { return brancher_ != nullptr; }
 
   long frame_index() const { return frame_; }

@@ -65,11 +65,38 @@ void Inspector::branch_continue(double seconds) {
   log("continue " + core::format_g(seconds, 17));
 }
 
-std::string Inspector::save_branch(const std::string& dir) {
-  need_branch("save branch").save(dir);
+std::string Inspector::save_branch(const std::string& pattern) {
+  Branch& b = need_branch("save branch");
+  const std::string dir = output_name(pattern, "save branch " + pattern);
+  b.save(dir);
   last_output = dir;
-  log("save branch " + dir);
+  log("save branch " + pattern);
   return dir;
+}
+
+void Inspector::branch_panels(int w, int h, std::vector<render::View>& left, std::vector<render::View>& right,
+                              render::OverlayData& od, render::OverlayData& ob) const {
+  const int half = w / 2;
+  left = views(half, h);
+  right = left;
+  for (auto& v : right) v.rect.x += half;
+  od = ob = overlay_data;
+  od.panel_x = 0, od.panel_w = half;
+  ob.panel_x = half, ob.panel_w = w - half;
+  od.title = "recorded";
+  const std::vector<std::string> changes = branch_->changes();
+  const std::string last =
+      changes.empty() ? "unchanged" : changes.back().substr(changes.back().find(": ") + 2);
+  ob.title = "what if (from frame " + std::to_string(branch_->from_frame()) + "): " + last;
+}
+
+std::vector<render::View> Inspector::screen_views(int w, int h) const {
+  if (!branch_) return views(w, h);
+  std::vector<render::View> left, right;
+  render::OverlayData od, ob;
+  branch_panels(w, h, left, right, od, ob);
+  left.insert(left.end(), right.begin(), right.end());
+  return left;
 }
 
 core::Image Inspector::render_branch(Painter& p, int w, int h) const {
@@ -77,24 +104,18 @@ core::Image Inspector::render_branch(Painter& p, int w, int h) const {
   render::OverlayOptions o = overlay;
   o.place_clear = true;
   o.may_leave = false;
-  const int half = w / 2;
+  o.events = true;  // the captions
+  std::vector<render::View> left, right;
+  render::OverlayData od, ob;
+  branch_panels(w, h, left, right, od, ob);
   const core::Frame f = current(), g = branch_->frame();
-  const auto left = views(half, h);
-  auto right = left;
-  for (auto& v : right) v.rect.x += half;
-  render::OverlayData od = overlay_data, ob = overlay_data;
-  od.panel_x = 0, od.panel_w = half;
-  ob.panel_x = half, ob.panel_w = w - half;
-  od.title = "recorded";
-  const std::vector<std::string> changes = branch_->changes();
-  ob.title = "what if (from frame " + std::to_string(branch_->from_frame()) + ")" +
-             (changes.empty() ? std::string(": unchanged")
-                              : ": " + changes.back().substr(changes.back().find(": ") + 2));
-  render::Annotations marks;
-  marks.selected = static_cast<int>(selected);
+  // Each panel's title is also its caption: the information box may not be in the picture.
+  render::Annotations marks, marks_b;
+  marks.selected = marks_b.selected = static_cast<int>(selected);
+  marks.caption = od.title, marks_b.caption = ob.title;
   const core::Frame ref = reference_frame();
   const core::Frame* r = ref.particles.empty() ? nullptr : &ref;
-  return p.paint({{&f, &geo_, &left, &od, &marks, r}, {&g, &geo_, &right, &ob, &marks, r}}, style, o, w, h);
+  return p.paint({{&f, &geo_, &left, &od, &marks, r}, {&g, &geo_, &right, &ob, &marks_b, r}}, style, o, w, h);
 }
 
 }  // namespace ui

@@ -15,6 +15,8 @@
 #include <cstdlib>
 #include <utility>
 
+#include "core/format.h"
+
 #include "core/arch.h"
 #include "core/error.h"
 #include "ui/live_panel.h"
@@ -96,6 +98,16 @@ void advance_playback(Inspector& insp, PanelState& ps, long frames) {
     ps.play_until = -1;
     ps.playing = false;
     if (k >= 0) return act(insp, ps, [&] { insp.goto_clog(k + 1); });
+  }
+  if (insp.branch() && !insp.branch()->saved() && frames > 0) {
+    // "What if" plays on one clock: the branch is simulated on as far, and the recording follows it.
+    bool went_on = false;
+    act(insp, ps, [&] {
+      insp.branch_continue(static_cast<double>(frames) * insp.trajectory().frame_interval());
+      went_on = true;
+    });
+    if (!went_on) ps.playing = false;  // refused (the message says why): playback stops
+    return;
   }
   insp.set_frame(target);
   if (insp.frame_index() == insp.trajectory().size() - 1) ps.playing = false;
@@ -324,6 +336,58 @@ void draw_grain(Inspector& insp, PanelState& ps) {
   remember(ps, "clear selection");
 }
 
+void draw_branch(Inspector& insp, PanelState& ps) {
+  // "What if": the script's branch lines as buttons (ui/inspector_branch.cpp).
+  if (!insp.can_branch()) {
+    ImGui::TextWrapped("this run cannot be re-simulated (imported from lab data, or a trajectory alone)");
+    return;
+  }
+  const Branch* b = insp.branch();
+  if (!b) {
+    ImGui::TextWrapped("re-simulate the run from this frame, change it, and watch both side by side");
+    if (ImGui::Button("branch here"))
+      act(insp, ps, [&] { insp.execute("branch at " + std::to_string(insp.frame_index())); });
+    remember(ps, "branch here");
+    return;
+  }
+  ImGui::Text("branch from frame %ld, now t = %.3f s", b->from_frame(), b->time());
+  ImGui::BeginDisabled(insp.selected < 0 || b->saved());
+  const std::string remove = insp.selected < 0 ? std::string("remove the selected grain")
+                                               : "remove grain " + std::to_string(insp.selected);
+  if (ImGui::Button(remove.c_str()))
+    act(insp, ps, [&] { insp.execute("remove grain " + std::to_string(insp.selected)); });
+  remember(ps, "remove grain");
+  ImGui::EndDisabled();
+  ImGui::BeginDisabled(b->saved());
+  ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
+  ImGui::SliderFloat("##kick", &ps.kick_dv, 0.01f, 2.0f, "%.2f m/s", ImGuiSliderFlags_Logarithmic);
+  ImGui::SameLine();
+  if (ImGui::Button("kick now"))
+    act(insp, ps, [&] { insp.execute("kick " + core::format_g(ps.kick_dv, 3)); });
+  remember(ps, "kick now");
+  if (ImGui::Button("continue 1 frame"))
+    act(insp, ps,
+        [&] { insp.execute("continue " + core::format_g(insp.trajectory().frame_interval(), 17)); });
+  ImGui::SameLine();
+  if (ImGui::Button("continue 1 s")) act(insp, ps, [&] { insp.execute("continue 1"); });
+  remember(ps, "continue 1 s");
+  ImGui::SetNextItemWidth(12 * ImGui::GetFontSize());
+  ImGui::InputText("##branch_path", ps.branch_path, sizeof ps.branch_path);
+  ImGui::SameLine();
+  if (ImGui::Button("save as a run"))
+    act(
+        insp, ps, [&] { insp.execute(std::string("save branch ") + ps.branch_path); }, true);
+  remember(ps, "save branch");
+  ImGui::EndDisabled();
+  if (ImGui::Button("branch off")) act(insp, ps, [&] { insp.execute("branch off"); });
+  remember(ps, "branch off");
+  b = insp.branch();  // the button may have ended it
+  if (!b) return;
+  // What was changed, below the buttons (they stay where they are as the list grows).
+  if (b->saved()) ImGui::TextDisabled("saved as a run (it ended there)");
+  for (const auto& c : b->changes()) ImGui::BulletText("%s", c.c_str());
+}
+
 void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
   // The arch of this frame: its summary, then member by member (left to right).
   draw_arch_summary(f, insp.overlay_data);
@@ -520,7 +584,9 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
       std::max(4 * ImGui::GetTextLineHeightWithSpacing(), ImGui::GetContentRegionAvail().y - bottom_h);
   ImGui::BeginChild("details", ImVec2(0, details_h));
   if (ImGui::BeginTabBar("tabs")) {
-    if (ImGui::BeginTabItem("arch and grain")) {
+    const bool arch_tab = ImGui::BeginTabItem("arch and grain");
+    remember(ps, "arch tab");  // the tab itself (its contents follow)
+    if (arch_tab) {
       draw_arch(insp, ps, f);
       ImGui::Separator();
       draw_grain(insp, ps);
@@ -531,12 +597,18 @@ void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, flo
       }
       ImGui::EndTabItem();
     }
-    remember(ps, "arch tab");
-    if (ImGui::BeginTabItem("outputs")) {
+    const bool branch_tab = ImGui::BeginTabItem("what if");
+    remember(ps, "what if tab");  // the tab itself (its contents follow)
+    if (branch_tab) {
+      draw_branch(insp, ps);
+      ImGui::EndTabItem();
+    }
+    const bool outputs_tab = ImGui::BeginTabItem("outputs");
+    remember(ps, "outputs tab");  // the tab itself (its contents follow)
+    if (outputs_tab) {
       draw_outputs(insp, ps, painter, w);
       ImGui::EndTabItem();
     }
-    remember(ps, "outputs tab");
     ImGui::EndTabBar();
   }
   ImGui::EndChild();

@@ -26,7 +26,9 @@ struct PanelState {
   int export_from = 0, export_to = 0;
   char export_path[256] = "clip-{frame}.mp4";
   char session_path[256] = "session-{frame}.txt";
-  std::string trajectory_name;   // named in a saved session's first line
+  char branch_path[256] = "branch-{frame}";  // "what if": where the branch is saved as a run
+  float kick_dv = 0.2f;                      // m/s, the branch's "kick now"
+  std::string trajectory_name;               // named in a saved session's first line
   float font_scale = 1.0f;       // the window's text size (io.FontGlobalScale); pictures keep their own
   bool show_keys = false;        // the key overlay ('?')
   bool swallow_release = false;  // the press that closed the key overlay: its release selects nothing

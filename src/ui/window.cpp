@@ -206,7 +206,7 @@ void mouse_view(Inspector& insp, PanelState& ps, float scene_w, float scene_h) {
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) ps.swallow_release = false;
     return;
   }
-  const auto views = insp.views(static_cast<int>(scene_w), static_cast<int>(scene_h));
+  const auto views = insp.screen_views(static_cast<int>(scene_w), static_cast<int>(scene_h));
   const render::View* under = mouse_zoom_pan(views, insp.zoom, insp.pan, scene_w, scene_h);
   if (!under) return;
   const ImGuiIO& io = ImGui::GetIO();
@@ -310,16 +310,30 @@ void draw_frame(Window& win, Painter& painter, const core::Frame& f, const Inspe
   const int scene_w = std::max(64, fw - static_cast<int>(kPanelWidth * text_scale));
   const int scene_h = std::max(64, fh - static_cast<int>(kTimelineHeight * text_scale));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  const auto views = insp.views(scene_w, scene_h);
   render::OverlayOptions overlay = insp.overlay;
   // Views are zoomed and panned at will: keep the information box off the container, or beside the picture.
   overlay.place_clear = overlay.may_leave = true;
   const core::Frame ref = insp.reference_frame();  // displacement from the trajectory's own reference frame
   render::Annotations notes;
   notes.selected = static_cast<int>(insp.selected);
-  painter.draw(
-      {{&f, &insp.geometry(), &views, &insp.overlay_data, &notes, ref.particles.empty() ? nullptr : &ref}},
-      insp.style, overlay, fw, fh, scene_w);
+  const core::Frame* r = ref.particles.empty() ? nullptr : &ref;
+  if (insp.branch()) {
+    // "What if": the recording on the left, the branch on the right, at one time.
+    std::vector<render::View> left, right;
+    render::OverlayData od, ob;
+    insp.branch_panels(scene_w, scene_h, left, right, od, ob);
+    const core::Frame g = insp.branch()->frame();
+    render::Annotations notes_b = notes;
+    notes.caption = od.title, notes_b.caption = ob.title;  // which is which, whatever the boxes do
+    overlay.events = true;
+    painter.draw(
+        {{&f, &insp.geometry(), &left, &od, &notes, r}, {&g, &insp.geometry(), &right, &ob, &notes_b, r}},
+        insp.style, overlay, fw, fh, scene_w);
+  } else {
+    const auto views = insp.views(scene_w, scene_h);
+    painter.draw({{&f, &insp.geometry(), &views, &insp.overlay_data, &notes, r}}, insp.style, overlay, fw, fh,
+                 scene_w);
+  }
   imgui_frame(win, fw, fh, [&] {
     panels(static_cast<float>(scene_w), static_cast<float>(fw), static_cast<float>(fh),
            static_cast<float>(scene_h));

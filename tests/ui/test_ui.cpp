@@ -8,6 +8,7 @@
 #define STB_IMAGE_STATIC
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "app/services/inspect_files.h"
 #include "app/services/live_silo.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "fixtures.h"
 #include "helpers.h"
 #include "io/contacts.h"
@@ -311,6 +313,105 @@ TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a sl
   io.KeysDown[io.KeyMap[ImGuiKey_Enter]] = false;
   frame(ImVec2(-1, -1), false);
   CHECK(insp.selected == 1);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext(ctx);
+}
+
+namespace {
+// A branch that only records what the panel asked of it (the app's re-simulation: tests/ui/test_branch.cpp).
+struct FakeBranch : ui::Branch {
+  core::Frame f;
+  std::vector<std::string> done;
+  double t = 0;
+  long k = 0;
+  bool was_saved = false;
+  long from_frame() const override { return k; }
+  double time() const override { return t; }
+  core::Frame frame() const override { return f; }
+  void advance_to(double to) override { t = to; }
+  void remove_grain(int id) override { done.push_back("remove " + std::to_string(id)); }
+  void kick(double dv) override { done.push_back("kick " + core::format_g(dv, 3)); }
+  void set_key(const std::string& k, double) override { done.push_back("set " + k); }
+  std::vector<std::string> changes() const override { return done; }
+  void save(const std::string& dir) override { was_saved = true, done.push_back("save " + dir); }
+  bool saved() const override { return was_saved; }
+};
+struct FakeBrancher : ui::Brancher {
+  const ui::FrameSource& frames;
+  mutable FakeBranch* last = nullptr;
+  explicit FakeBrancher(const ui::FrameSource& s) : frames(s) {}
+  std::unique_ptr<ui::Branch> branch(long k) const override {
+    auto b = std::make_unique<FakeBranch>();
+    b->f = frames.frame(k);
+    b->t = frames.time(k);
+    b->k = k;
+    last = b.get();
+    return b;
+  }
+};
+}  // namespace
+
+TEST_CASE("the what-if tab's buttons branch, remove the selected grain, kick, continue and save", "[ui]") {
+  gl();
+  fs::path d = temp_dir("branch_panel");
+  io::Trajectory t(test::synthetic_trajectory(d));
+  const app::TrajectoryFrames frames(t);
+  const app::RecordFiles files;
+  ui::Inspector insp(frames, core::compile(two_disk_scene()), &files);
+  const FakeBrancher brancher(frames);
+  insp.set_brancher(&brancher);
+  ImGuiContext* ctx = ImGui::CreateContext();
+  ImGui::SetCurrentContext(ctx);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(1280, 720);
+  REQUIRE(ImGui_ImplOpenGL3_Init("#version 330 core"));
+  ui::PanelState ps;
+  std::snprintf(ps.branch_path, sizeof ps.branch_path, "%s", (d / "b-{frame}").string().c_str());
+  auto frame = [&](ImVec2 mouse, bool down) {
+    io.DeltaTime = 1.0f / 60;
+    io.MousePos = mouse;
+    io.MouseDown[0] = down;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    ui::draw_panels(insp, ps, nullptr, 880, 400, 720, 672, 880, 48);
+    ImGui::Render();
+  };
+  auto click = [&](const std::string& name) {
+    frame(ImVec2(-1, -1), false);
+    INFO(name);
+    REQUIRE(ps.rects.count(name));
+    const auto r = ps.rects[name];
+    ImVec2 p(0.5f * (r[0] + r[2]), 0.5f * (r[1] + r[3]));
+    frame(p, false);
+    frame(p, true);
+    frame(p, false);
+  };
+  frame(ImVec2(-1, -1), false);  // a tab bar sizes its tabs from its second frame
+  insp.goto_frame(3);
+  click("what if tab");
+  click("branch here");
+  REQUIRE(insp.branch());
+  CHECK(insp.branch()->from_frame() == 3);
+  CHECK(insp.history().back() == "branch at 3");
+  insp.select_grain(1);
+  click("remove grain");
+  click("kick now");
+  const double t0 = insp.branch()->time();
+  click("continue 1 s");
+  CHECK(insp.branch()->time() == Approx(t0 + 1));
+  CHECK(insp.frame_index() == 4);  // the recording followed the branch's clock
+  click("save branch");
+  REQUIRE(brancher.last);
+  const std::vector<std::string> want = {"remove 1", "kick 0.2", "save " + (d / "b-000004").string()};
+  CHECK(brancher.last->done == want);
+  CHECK(ps.message == "wrote " + (d / "b-000004").string());
+  // The session holds the lines that make it again.
+  const std::vector<std::string>& h = insp.history();
+  CHECK(std::find(h.begin(), h.end(), "remove grain 1") != h.end());
+  CHECK(std::find(h.begin(), h.end(), "continue 1") != h.end());
+  click("branch off");
+  CHECK_FALSE(insp.branch());
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext(ctx);
 }
