@@ -192,9 +192,18 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
       dl->PopClipRect();
     }
     const View& zoom = most_zoomed(views);
-    if (!notes.caption.empty())
-      boxed_text(dl, zoom.rect.x + 0.5f * zoom.rect.w, zoom.rect.y + 0.8f * em, notes.caption.c_str(),
-                 IM_COL32(255, 255, 255, 255), IM_COL32(200, 0, 160, 235), em);
+    if (!notes.caption.empty()) {
+      // Centred over the view, moved in (not cut) where it would pass the panel's edge (its views' extent).
+      const float half = 0.5f * ImGui::CalcTextSize(notes.caption.c_str()).x + 0.4f * em;
+      float lo = static_cast<float>(zoom.rect.x), hi = static_cast<float>(zoom.rect.x + zoom.rect.w);
+      for (const auto& v : views)
+        lo = std::min(lo, static_cast<float>(v.rect.x)),
+        hi = std::max(hi, static_cast<float>(v.rect.x + v.rect.w));
+      float cx = static_cast<float>(zoom.rect.x) + 0.5f * static_cast<float>(zoom.rect.w);
+      cx = std::max(lo + half, std::min(cx, hi - half));
+      boxed_text(dl, cx, zoom.rect.y + 0.8f * em, notes.caption.c_str(), IM_COL32(255, 255, 255, 255),
+                 IM_COL32(200, 0, 160, 235), em);
+    }
     if (notes.slowdown > 1.0 + 1e-9) {
       char badge[48];
       std::snprintf(badge, sizeof badge, "slow motion %.3gx", notes.slowdown);

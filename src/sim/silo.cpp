@@ -430,6 +430,19 @@ void Silo::apply_clog_rule() {
   remove_arch(std::move(ev), p);
 }
 
+void Silo::set_dipole(int species, double moment) {
+  // Rebuilt in id order, as the fill made it; grains that left (a drain) keep none.
+  std::vector<double> per(radius_.size(), 0.0);
+  for (size_t k = 0; k < dipole_ids_.size(); ++k)
+    per[static_cast<size_t>(dipole_ids_[k])] = dipole_moment_[k];
+  for (size_t id = 0; id < per.size(); ++id)
+    if (static_cast<int>(species_[id]) == species && (parked_.empty() || !parked_[id])) per[id] = moment;
+  dipole_ids_.clear();
+  dipole_moment_.clear();
+  for (size_t id = 0; id < per.size(); ++id)
+    if (per[id] > 0) dipole_ids_.push_back(static_cast<int>(id)), dipole_moment_.push_back(per[id]);
+}
+
 void Silo::remove_arch(core::ArchEvent ev, const std::vector<core::Vec2>& p) {
   for (int id : ev.ids) {
     ev.species.push_back(species_[id]);

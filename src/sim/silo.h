@@ -192,6 +192,9 @@ class Silo {
   // flowing nothing is recorded. Returns what it reported. Throws core::InputError for an id not in the
   // container.
   const core::StepEvents& remove_by_hand(const std::vector<int>& ids);
+  // Every grain of species `species` (its index) given dipole moment `moment` (A*m^2; 0: none) from now on
+  // ("what if"; the scene keeps the moment it was written with).
+  void set_dipole(int species, double moment);
   // Close the outlet (the lid the deposition stood on, back across the aperture) or open it again, from the
   // next step; for protocols of one's own (the Python bindings). While it is closed no grain exits, so the
   // clog tracker sees a gap like any other.

@@ -87,7 +87,7 @@ void Inspector::branch_panels(int w, int h, std::vector<render::View>& left, std
   const std::vector<std::string> changes = branch_->changes();
   const std::string last =
       changes.empty() ? "unchanged" : changes.back().substr(changes.back().find(": ") + 2);
-  ob.title = "what if (from frame " + std::to_string(branch_->from_frame()) + "): " + last;
+  ob.title = "what if: " + last;
 }
 
 std::vector<render::View> Inspector::screen_views(int w, int h) const {

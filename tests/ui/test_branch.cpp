@@ -111,7 +111,8 @@ TEST_CASE("branch lines are refused with what to do: no branch yet, a saved bran
     CHECK(r.output.find(says) != std::string::npos);
   };
   refused("remove grain 3\n", "s.txt:1: 'remove grain 3': remove grain: no branch");
-  refused("branch at 10\nset mu 0.5\n", "a branch changes kick_impulse_max (N s) only");
+  refused("branch at 10\nset gravity 5\n", "a branch changes kick_impulse_max (N s) and the dipole moments");
+  refused("branch at 10\nset mu 200\n", "allowed 0 to 100 A*m^2");
   refused("branch at 10\nkick -1\n", "must be > 0");
   refused("branch at 10\nremove grain 99999\n", "ids run from 0 to");
   refused("branch at 10\ncontinue inf\n", "is not a number");

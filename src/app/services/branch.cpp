@@ -76,11 +76,26 @@ class SiloBranch : public ui::Branch {
   }
   void set_key(const std::string& key, double value) override {
     writable("set");
+    sim::Silo& w = session_.world(0);
+    const std::vector<std::string> names = w.setup().species_names();
+    // The dipole keys: `mu` (the paper's shorthand: the added disks) or species.NAME.dipole.
+    int species = -1;
+    if (key == "mu" && w.setup().shorthand) species = 1;
+    for (size_t k = 0; k < names.size(); ++k)
+      if (key == "species." + names[k] + ".dipole") species = static_cast<int>(k);
+    if (species >= 0) {
+      if (!(value >= 0 && value <= 100))
+        throw core::InputError("set " + key + " " + core::format_g(value) + ": allowed 0 to 100 A*m^2");
+      w.set_dipole(species, value);
+      return note(key + " = " + core::format_g(value, 6) + " A*m^2");
+    }
     if (key != "kick_impulse_max")
-      throw core::InputError("set " + key + ": a branch changes kick_impulse_max (N s) only");
+      throw core::InputError("set " + key +
+                             ": a branch changes kick_impulse_max (N s) and the dipole moments (" +
+                             std::string(w.setup().shorthand ? "mu, " : "") + "species.NAME.dipole, A*m^2)");
     if (!(value >= 0 && value <= 1))
       throw core::InputError("set kick_impulse_max " + core::format_g(value) + ": allowed 0 to 1 N s");
-    session_.world(0).set_kick_impulse_max(value);
+    w.set_kick_impulse_max(value);
     note("kick_impulse_max = " + core::format_g(value, 6) + " N s");
   }
   std::vector<std::string> changes() const override { return changes_; }
