@@ -74,6 +74,23 @@ bool key_drag(core::Scene& s, const std::string& key) {
   return true;
 }
 
+std::string edits_between(const core::Scene& before, const core::Scene& after) {
+  const auto a = core::scene_values(before), b = core::scene_values(after);
+  std::string out;
+  for (const auto& [key, value] : b) {
+    const auto it = a.find(key);
+    if (it != a.end() && it->second != value)
+      out += (out.empty() ? "" : ", ") + key + " " + it->second + " -> " + value;
+  }
+  return out;
+}
+
+std::string blame_edits(const LiveState& st, const std::string& what) {
+  if (st.restart_edits.empty()) return what;
+  return "the restart with " + st.restart_edits + " failed: " + what +
+         " (\"scene file\" returns to the file's values)";
+}
+
 void draw_arch_summary(const core::Frame& f, const render::OverlayData& od) {
   if (f.arch.empty()) {
     ImGui::TextUnformatted(f.clog_open ? "clogged, no arch found yet" : "flowing: no clog, no arch");
@@ -134,11 +151,13 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
                 weight > 0 ? core::dipole_contact_force(st.edit) / weight : 0.0);
   }
   if (ImGui::Button("restart (settles first)")) {
+    const std::string edits = edits_between(source.scene(), st.edit);
     try {
+      st.restart_edits = edits;
       source.restart(st.edit);
-      st.message = "restarted";
+      st.message = edits.empty() ? "restarted" : "restarted with " + edits;
     } catch (const std::exception& e) {
-      st.message = e.what();
+      st.message = blame_edits(st, e.what());
     }
   }
   ImGui::SameLine();

@@ -31,6 +31,8 @@ struct LiveState {
   core::Scene edit;                       // the panel's values, applied on restart
   std::optional<core::Scene> file_scene;  // the scene the window opened with ("scene file" returns to it)
   double achieved = 0;                    // simulated seconds per wall-clock second, smoothed (0: not known)
+  std::string
+      restart_edits;  // the keys the last restart changed ("mu 0 -> 0.001, ..."): what a failure blames
   // Screen rectangles of named widgets from the last frame (tests).
   std::map<std::string, std::array<float, 4>> rects;
 };
@@ -57,6 +59,12 @@ double drag_step(const std::string& key, double value);
 // to the range of its field in the scene's field table, its unit in the label; edits `s`. Returns whether it
 // changed.
 bool key_drag(core::Scene& s, const std::string& key);
+
+// The scene keys whose values differ from `before` to `after`, as "KEY OLD -> NEW, ..." ("" when none).
+std::string edits_between(const core::Scene& before, const core::Scene& after);
+
+// The message for a simulation that failed (`what`), blaming the last restart's edits when there were any.
+std::string blame_edits(const LiveState& st, const std::string& what);
 
 // The arch of a frame (members, species, geometry, descriptors), into the current ImGui window.
 void draw_arch_summary(const core::Frame& f, const render::OverlayData& od);

@@ -495,7 +495,7 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       else if (real > 0 && real < 1)  // (a longer gap is the window waiting, not the simulation)
         st.achieved = st.achieved > 0 ? 0.9 * st.achieved + 0.1 * advance / real : advance / real;
     } catch (const std::exception& e) {
-      st.message = e.what();
+      st.message = blame_edits(st, e.what());  // a failure after a restart names the edits it ran with
       st.paused = true;
     }
     const core::Frame f = source.frame(st.style.color == render::ColorMode::Force || st.style.chains);

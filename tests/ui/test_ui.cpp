@@ -240,6 +240,24 @@ TEST_CASE("the live panel drags a key from 0 on the scale of its default, not of
   CHECK(ui::drag_step("mu", 0) < 1e-2);
 }
 
+TEST_CASE("a live run that fails after a restart names the edits it ran with", "[ui]") {
+  // Issue 56: after a bad edit the error blamed the time step, not the edit.
+  core::Scene a, b = a;
+  core::set_field(b, "kick_impulse_max", "0.5", "test");
+  core::set_field(b, "mu", "0.001", "test");
+  const std::string edits = ui::edits_between(a, b);
+  CHECK(edits.find("kick_impulse_max 5e-05 -> 0.5") != std::string::npos);
+  INFO(edits);
+  CHECK(edits.find("mu 0.0 -> 0.001") != std::string::npos);
+  CHECK(ui::edits_between(a, a).empty());
+  ui::LiveState st;
+  CHECK(ui::blame_edits(st, "disk 3 moved 2 m in one step") == "disk 3 moved 2 m in one step");
+  st.restart_edits = edits;
+  const std::string m = ui::blame_edits(st, "disk 3 moved 2 m in one step");
+  CHECK(m.rfind("the restart with kick_impulse_max", 0) == 0);
+  CHECK(m.find("failed: disk 3 moved 2 m in one step") != std::string::npos);
+}
+
 TEST_CASE("synthetic ImGui input drives the panels: a button steps a frame, a slider zooms", "[ui]") {
   gl();
   fs::path d = temp_dir("panels");
