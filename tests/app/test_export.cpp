@@ -127,6 +127,10 @@ TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and v
   CHECK(keys == table);
   CHECK_THAT(r.output, Catch::Matchers::Contains("  kick_impulse_max      5e-05 N*s        [0, 1000]"));
   CHECK_THAT(r.output, Catch::Matchers::Contains("[container]") && Catch::Matchers::Contains("  sides "));
+  // Bounds as a reader writes them (issue 57): no binary noise, whole numbers whole, the seed's the parser's.
+  CHECK_THAT(r.output, Catch::Matchers::Contains("[1e-06, 0.02]") &&
+                           Catch::Matchers::Contains("[0, 9223372036854775807]"));
+  CHECK_THAT(r.output, !Catch::Matchers::Contains("0000000000"));
   r = cli("scene " + kScene + " --set mu=0.5");
   REQUIRE(r.code == 0);
   CHECK_THAT(r.output,

@@ -31,8 +31,17 @@ std::string range_of(const F& f) {
           return "true|false";
         else if constexpr (std::is_same_v<T, std::string>)
           return f.choices ? f.choices : "text";
-        else
-          return "[" + core::format_g(f.min, 10) + ", " + core::format_g(f.max, 20) + "]";
+        else if constexpr (std::is_integral_v<T>) {
+          // Whole numbers as whole numbers, at most TOML's largest integer (the seed's bound is 2^63 - 1, not
+          // 2^63 as the double holds it).
+          const auto whole = [](double v) {
+            constexpr long long top = std::numeric_limits<long long>::max();
+            return v >= static_cast<double>(top) ? top : static_cast<long long>(v);
+          };
+          return "[" + std::to_string(whole(f.min)) + ", " + std::to_string(whole(f.max)) + "]";
+        } else
+          return "[" + core::format_g(f.min, 15) + ", " + core::format_g(f.max, 15) +
+                 "]";  // 0.02, not 0.0200...04
       },
       f.ptr);
 }
