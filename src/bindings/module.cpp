@@ -23,6 +23,11 @@
 #include "io/manifest.h"
 #include "io/metadata.h"
 #include "io/run.h"
+#include "render/camera.h"
+#include "render/context.h"
+#include "render/overlay.h"
+#include "render/painter.h"
+#include "render/palette.h"
 #include "sim/silo.h"
 
 namespace py = pybind11;
@@ -51,6 +56,18 @@ class Busy {
  private:
   std::atomic<bool>& flag_;
 };
+
+// Pictures in process: record's renderer on an off-screen context of the calling thread (OSMesa: one per
+// thread that draws, made at its first picture and current on it from then on).
+struct Pictures {
+  render::OffscreenContext context;
+  render::Painter painter;
+};
+Pictures& pictures() {
+  thread_local std::unique_ptr<Pictures> p;
+  if (!p) p = std::make_unique<Pictures>();
+  return *p;
+}
 
 class Simulation {
  public:
@@ -206,6 +223,40 @@ class Simulation {
     }
   }
   bool outlet_open() const { return silo_->outlet_open(); }
+
+  // The simulation now as record draws it: an (height, width, 3) RGB array, `camera` and `overlay` as
+  // record's
+  // --camera and --overlay, `color` as its --color, the dark background if asked. Each picture stands alone
+  // (no trails or layout carried over from the last).
+  py::array_t<std::uint8_t> picture(int width, int height, const std::string& camera,
+                                    const std::string& overlay, const std::string& color, bool dark) const {
+    if (width < 16 || height < 16 || width > 8192 || height > 8192)
+      throw core::InputError("render(width=" + std::to_string(width) + ", height=" + std::to_string(height) +
+                             "): each side 16 to 8192 pixels");
+    render::Style style;
+    style.dark = dark;
+    style.color = render::parse_color_mode(color);
+    const render::OverlayOptions o = render::parse_overlay(overlay);
+    const core::Frame f = silo_->frame(style.color == render::ColorMode::Force);
+    const auto views = render::layout_views(render::parse_camera(camera), silo_->geometry(), width, height);
+    const render::OverlayData od = render::overlay_data_for(silo_->model());
+    core::Image img;
+    {
+      py::gil_scoped_release free;
+      Pictures& p = pictures();
+      p.painter.start_afresh();
+      img = p.painter.paint(f, silo_->geometry(), views, style, o, od, width, height);
+    }
+    py::array_t<std::uint8_t> out(
+        {static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
+    auto a = out.mutable_unchecked<3>();
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::uint8_t* px = img.pixel(x, y);
+        a(y, x, 0) = px[0], a(y, x, 1) = px[1], a(y, x, 2) = px[2];
+      }
+    return out;
+  }
   std::string scene_toml() const { return core::scene_toml(silo_->scene()); }
   std::uint64_t seed() const { return silo_->scene().seed; }
 
@@ -302,5 +353,6 @@ PYBIND11_MODULE(_siloscope, m) {
       .def("last_events", guarded(&Simulation::last_events, "last_events"))
       .def("set", guarded(&Simulation::set, "set"))
       .def_property_readonly("outlet_open", &Simulation::outlet_open)
+      .def("render", guarded(&Simulation::picture, "render"))
       .def("scene_toml", guarded(&Simulation::scene_toml, "scene_toml"));
 }

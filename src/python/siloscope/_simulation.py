@@ -248,5 +248,24 @@ class Simulation:
         """The scene as a scene file (TOML), seed included: what reproduces this simulation."""
         return self._s.scene_toml()
 
+    def render(self, width=1280, height=720, camera="split", overlay="all", color="species", dark=False):
+        """The simulation now as `record` draws it (the same renderer, off-screen): an (height, width, 3) uint8
+        RGB array. camera: hopper, outlet, split or window:X0,Y0,X1,Y1 (record's --camera); overlay: all, none
+        or a list such as "time,counts,arch" (--overlay); color: species, speed or force (--color); dark: the
+        dark background. Each picture stands alone (no trails or box layout carried over)."""
+        for name, side in (("width", width), ("height", height)):
+            if isinstance(side, bool) or not isinstance(side, numbers.Integral):
+                raise SiloscopeError(f"render({name}={side!r}): expected a whole number of pixels")
+        return self._call(self._s.render, int(width), int(height), str(camera), str(overlay), str(color),
+                          bool(dark))
+
+    def _repr_png_(self):
+        """Jupyter shows a Simulation as its picture now (640x360, split camera)."""
+        import io as _io
+        import matplotlib.image as mpimg
+        buf = _io.BytesIO()
+        mpimg.imsave(buf, self.render(640, 360), format="png")
+        return buf.getvalue()
+
     def __repr__(self):
         return f"Simulation({self.n} grains, t = {self.time:.3f} s, seed {self.seed})"
