@@ -108,7 +108,12 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
     }
     if (style.color == ColorMode::Id) ImGui::TextUnformatted("colour: grain id");
     colour_bar(style, em);
-    swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
+    // What the picture marks: the arch's halo (unless it is off), the tracked grains' ring.
+    if (style.show_arch) swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
+    if (!style.tracked.empty()) {
+      if (style.show_arch) ImGui::SameLine();
+      swatch({0.85f, 0.85f, 0.85f, 1}, tracked_color(style), "tracked");
+    }
   }
 }
 

@@ -41,3 +41,21 @@ def test_render_options_and_refusals(root):
         with pytest.raises(siloscope.SiloscopeError, match=says):
             s.render(**bad)
     assert s.time == pytest.approx(1.0, abs=1e-9)  # pictures do not step
+
+
+def test_no_arch_ring_in_the_legend_when_the_halo_is_off(binary, root, tmp_path):
+    # Issue 57: --arch-halo off kept the legend's gold ring; now no pixel of the picture is the arch's gold.
+    scene = os.path.join(root, "assets/scenes/paper.toml")
+    subprocess.run([binary, "run", scene, "--seed", "3", "--duration", "2.5", "--trajectory-fps", "30", "--quiet",
+                    "--out", str(tmp_path / "run")], check=True)
+    gold = np.array([255, 194, 0])
+
+    def gold_pixels(halo):
+        png = tmp_path / f"halo-{halo}.png"
+        subprocess.run([binary, "frame", str(tmp_path / "run"), "--at", "frame:60", "--size", "960x540",
+                        "--arch-halo", halo, "--out", str(png)], check=True, capture_output=True)
+        px = (mpimg.imread(png)[:, :, :3] * 255).round().astype(int)
+        return int((np.abs(px - gold).max(axis=2) <= 12).sum())
+
+    assert gold_pixels("on") > 500  # the halo on three disks, and the legend's ring
+    assert gold_pixels("off") == 0
