@@ -36,13 +36,16 @@ def main(run_dir, out, t0, t1, version, command, species_colors="", look_spec=""
     look = Look(look_spec)
     plt.rcParams.update({"svg.fonttype": "none", "pdf.fonttype": 42, "font.size": 9})
     look.apply(plt)
+    ended = dict(ENDED)
+    if r.metadata.get("run", {}).get("drain_outcome") == "jammed":  # the movie's words for the drain's last clog
+        ended["run_end"] = ("#7d3c98", "jammed (the clog that ended the drain)")
     fig, ax = plt.subplots(figsize=(8 + 2.2 * look.font_scale, 3.6 + 0.6 * (look.font_scale - 1)))
     seen = set()
     for _, c in r.clogs.iterrows():
         a, b = max(float(c["start_s"]), t0), min(float(c["end_s"]), t1)
         if b <= a:
             continue
-        color, _ = ENDED.get(c["ended_by"], ("#cccccc", c["ended_by"]))
+        color, _ = ended.get(c["ended_by"], ("#cccccc", c["ended_by"]))
         ax.axvspan(a, b, color=color, alpha=0.25, lw=0)
         seen.add(c["ended_by"])
     given = [c for c in species_colors.split(",") if c]
@@ -63,7 +66,7 @@ def main(run_dir, out, t0, t1, version, command, species_colors="", look_spec=""
     ax.set_ylabel("cumulative exits")
     ax.grid(alpha=0.3)
     handles, _labels = ax.get_legend_handles_labels()
-    handles += [Patch(color=ENDED[e][0], alpha=0.25, label=ENDED[e][1]) for e in ENDED if e in seen]
+    handles += [Patch(color=ended[e][0], alpha=0.25, label=ended[e][1]) for e in ended if e in seen]
     # Beside the axes, never on the data.
     ax.legend(handles=handles, fontsize=look.size(7), loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)

@@ -142,6 +142,7 @@ OverlayData overlay_data_for(const core::Model& model) {
   d.clog_timeout = scene.clog_timeout;
   d.clog_min_gap = scene.clog_min_gap;
   d.clog_rule = st.clog_rule;
+  d.drain = scene.drain;
   d.diameter = 2 * st.reference_radius;
   d.species_names = st.species_names();
   for (const auto& sp : st.species)

@@ -105,6 +105,7 @@ struct OverlayData {
   std::vector<std::string> species_names = {"original", "added"};
   std::vector<Rgba> species_colors;
   bool clog_rule = true;  // false: the clog timer has no limit to count towards
+  bool drain = false;     // the drain protocol: a clog of clog_timeout is the jam that ends it (no rule)
 };
 
 // The information box's lines (title, time, exits, Q~, clog timer, arch, legend or colour bar as `o` asks)

@@ -66,6 +66,10 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       std::snprintf(label, sizeof label, "no exit for %.1f s", f.since_last_exit);
     else if (!clogged)
       std::snprintf(label, sizeof label, "flowing");
+    else if (d.drain && f.since_last_exit >= d.clog_timeout)  // a drain's jam: what the timeline calls it
+      std::snprintf(label, sizeof label, "jammed (clogged %.1f s)", f.since_last_exit);
+    else if (d.drain)
+      std::snprintf(label, sizeof label, "clogged %.1f s / %.3g s: jam", f.since_last_exit, d.clog_timeout);
     else if (d.clog_rule)
       std::snprintf(label, sizeof label, "clogged %.1f s / %.0f s", f.since_last_exit, d.clog_timeout);
     else
