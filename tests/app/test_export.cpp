@@ -321,6 +321,17 @@ TEST_CASE("filmstrip: one clog at several times in one row, vector with its text
   CHECK(cli("filmstrip " + rec.string() + " --times=0 --out " + (d / "strip.svg").string()).code == 2);
 }
 
+TEST_CASE("a drain's jam is named as the movie names it in the timeline's legend", "[export][app]") {
+  fs::path d = temp_dir("timeline_drain");
+  const std::string scene = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/hopper-drain.toml";
+  REQUIRE(cli("run " + scene + " --duration 5 --quiet --out " + (d / "r").string()).code == 0);
+  REQUIRE(slurp(d / "r" / "metadata.toml").find("drain_outcome = \"jammed\"") != std::string::npos);
+  REQUIRE(cli("timeline " + (d / "r").string() + " --out " + (d / "t.svg").string()).code == 0);
+  const std::string body = slurp(d / "t.svg");
+  CHECK_THAT(body, Catch::Matchers::Contains("jammed (the clog that ended the drain)"));
+  CHECK_THAT(body, !Catch::Matchers::Contains("clogged at the run"));
+}
+
 TEST_CASE("gallery and timeline refuse a run whose metadata.toml was cut or edited, naming the file",
           "[export][app]") {
   fs::path d = temp_dir("gallery_cut");
