@@ -72,6 +72,25 @@ core::Vec2 SubjectTrack::at(double time) const {
   return {x[k - 1] + u * (x[k] - x[k - 1]), y[k - 1] + u * (y[k] - y[k - 1])};
 }
 
+int hold_through_jumps(SubjectTrack& track, double jump, double hold, double glide) {
+  const SubjectTrack seen = track;  // where the grain was: the glides aim at it
+  int jumps = 0;
+  for (size_t j = 1; j < seen.t.size(); ++j) {
+    if (std::hypot(seen.x[j] - seen.x[j - 1], seen.y[j] - seen.y[j - 1]) <= jump) continue;
+    ++jumps;
+    const double t0 = seen.t[j - 1], x0 = seen.x[j - 1], y0 = seen.y[j - 1];
+    size_t k = j;
+    for (; k < seen.t.size() && seen.t[k] <= t0 + hold + glide; ++k) {
+      const double u = std::clamp((seen.t[k] - t0 - hold) / glide, 0.0, 1.0);
+      const double w = u * u * (3 - 2 * u);
+      track.x[k] = x0 + w * (seen.x[k] - x0);
+      track.y[k] = y0 + w * (seen.y[k] - y0);
+    }
+    j = k - 1;  // a jump within the hold or glide is part of this one; the next pair is (k - 1, k)
+  }
+  return jumps;
+}
+
 namespace {
 const char* kCameraForms = "hopper, outlet, split or window:X0,Y0,X1,Y1 (metres, X1 > X0, Y1 > Y0)";
 const char* kSubjectForms =

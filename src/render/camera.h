@@ -50,6 +50,12 @@ struct SubjectTrack {
   core::Vec2 at(double time) const;
 };
 
+// A followed grain that vanishes in one sample (taken out by the clog rule and re-injected on top, or gone
+// through the outlet) would take the camera with it in one frame, and the event would happen off screen: the
+// track holds where the grain was for `hold` s after any jump longer than `jump` (m), then glides to it over
+// `glide` s (smoothstep). Returns the number of jumps held.
+int hold_through_jumps(SubjectTrack& track, double jump, double hold = 1.0, double glide = 1.0);
+
 // What a camera shows, parsed once from its text:
 //   hopper          the whole container
 //   outlet          the outlet region, ten original diameters tall (from 1.9 diameters below the aperture),

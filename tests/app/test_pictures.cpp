@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/commands/record_plan.h"
+#include "app/services/recording.h"
 #include "render/context.h"
 #include "render/painter.h"
 #include "sim/silo.h"
@@ -262,4 +263,30 @@ TEST_CASE(
   const render::CameraSpec& a = plan.path.keys[1].camera;
   CHECK(a.y1 - a.y0 >= 6 * geo.grain_diameter - 1e-9);
   for (const auto& m : arch) CHECK((m.x > a.x0 && m.x < a.x1 && m.y > a.y0 && m.y < a.y1));
+}
+
+TEST_CASE("a camera following an arch member holds through the rule's removal, so the removal is in view",
+          "[app][pictures]") {
+  // The paper's hopper, seed 3: its first clog's arch is removed by the rule; follow one of its members.
+  core::Scene s;
+  core::apply_overrides(s, {"seed=3", "duration=8"});
+  const core::Model model = core::compile(s);
+  sim::Silo h(model);
+  while (h.events().arches.empty() && h.time() < 8) h.step();
+  REQUIRE(!h.events().arches.empty());
+  const core::ArchEvent& removal = h.events().arches.front();
+  const int member = removal.ids.front();
+  const core::Vec2 there{removal.x.front(), removal.y.front()};
+  render::CameraPath path = render::parse_camera_path("0:grain:" + std::to_string(member), true);
+  app::resolve_camera_subjects(model, path, "--camera", false);
+  REQUIRE(path.keys.front().camera.track);
+  const render::SubjectTrack& track = *path.keys.front().camera.track;
+  // Through the removal and half a second after it, the view is centred where the member stood (within a
+  // diameter); two seconds later it has glided to the grain again, far up the column.
+  for (double dt : {0.0, 0.2, 0.5}) {
+    const core::Vec2 c = track.at(removal.t + dt);
+    INFO("t = removal + " << dt << " s: centre (" << c.x << ", " << c.y << ")");
+    CHECK(std::hypot(c.x - there.x, c.y - there.y) < model.setup.geo.grain_diameter);
+  }
+  CHECK(track.at(removal.t + 2.5).y > there.y + 0.5);
 }

@@ -143,6 +143,36 @@ TEST_CASE("camera keys naming an arch or a grain: parsed for record only, framed
   }
 }
 
+TEST_CASE("a followed grain that vanishes holds the camera where it was, then glides (issue 57)",
+          "[render]") {
+  // A grain resting in an arch at (0.1, 0.05), taken out at t = 2 s and re-injected at (0.2, 3.0), then
+  // falling.
+  render::SubjectTrack tr;
+  for (int k = 0; k <= 600; ++k) {
+    const double t = 0.01 * k;
+    tr.t.push_back(t);
+    tr.x.push_back(t < 2.0 ? 0.1 : 0.2);
+    tr.y.push_back(t < 2.0 ? 0.05 : 3.0 - 0.1 * (t - 2.0));
+  }
+  const render::SubjectTrack seen = tr;
+  CHECK(render::hold_through_jumps(tr, 0.65) == 1);
+  // Before: unchanged. Through the removal and a second after it: where it was.
+  CHECK(tr.at(1.5).y == Approx(0.05));
+  for (double t : {2.0, 2.3, 2.99}) CHECK(tr.at(t).y == Approx(0.05));
+  // Then a glide (no frame jumps more than a smooth step's slope allows), arriving after 1 s.
+  double worst = 0;
+  for (double t = 2.99; t < 4.0; t += 0.01)
+    worst = std::max(worst, std::fabs(tr.at(t + 0.01).y - tr.at(t).y));
+  CHECK(worst < 0.1);  // a 2.9 m glide in 1 s: at most 1.5 x 2.9 m/s x 0.01 s per sample (smoothstep)
+  CHECK(tr.at(4.2).y == Approx(seen.at(4.2).y));
+  CHECK(tr.at(5.5).x == Approx(0.2));
+  // A grain that moves as grains do is left alone.
+  render::SubjectTrack calm = seen;
+  calm.y = std::vector<double>(seen.y.size(), 1.0);
+  calm.x = std::vector<double>(seen.x.size(), 0.0);
+  CHECK(render::hold_through_jumps(calm, 0.65) == 0);
+}
+
 TEST_CASE("a view widened to show disks whole keeps its rectangle and angle and grows no more than needed",
           "[render]") {
   render::View v{render::fit(0.5, 1, 1.5, 2, 640, 360, 0.3), {40, 0, 640, 360}, "window"};

@@ -239,6 +239,9 @@ void resolve_camera_subjects(const core::Model& model, render::CameraPath& path,
     if (fo.track->t.empty())  // shown only past the end of the run: where it was last seen
       throw core::InputError(key_text(fo.key) + ": shown only after the run's end (" +
                              core::format_g(scene.duration, 6) + " s)");
+    // Through a removal or an exit the camera holds, then glides: the event is seen (five diameters in one
+    // 0.01 s sample is no grain's motion).
+    render::hold_through_jumps(*fo.track, 5 * model.setup.geo.grain_diameter);
     keys[fo.key].camera.track = fo.track;
   }
 }
