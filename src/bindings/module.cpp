@@ -25,6 +25,7 @@
 #include "io/run.h"
 #include "render/camera.h"
 #include "render/context.h"
+#include "render/free_space.h"
 #include "render/overlay.h"
 #include "render/painter.h"
 #include "render/palette.h"
@@ -227,7 +228,8 @@ class Simulation {
   // The simulation now as record draws it: an (height, width, 3) RGB array, `camera` and `overlay` as
   // record's
   // --camera and --overlay, `color` as its --color, the dark background if asked. Each picture stands alone
-  // (no trails or layout carried over from the last).
+  // (no trails or layout carried over from the last); the boxes go where they cover the fewest grains, as the
+  // inspector's snapshots place them (a picture has no margin beside the container).
   py::array_t<std::uint8_t> picture(int width, int height, const std::string& camera,
                                     const std::string& overlay, const std::string& color, bool dark) const {
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
@@ -236,16 +238,28 @@ class Simulation {
     render::Style style;
     style.dark = dark;
     style.color = render::parse_color_mode(color);
-    const render::OverlayOptions o = render::parse_overlay(overlay);
+    render::OverlayOptions o = render::parse_overlay(overlay);
+    o.place_clear = !o.plot;  // the information box where it covers the fewest grains, as snapshots place it
     const core::Frame f = silo_->frame(style.color == render::ColorMode::Force);
-    const auto views = render::layout_views(render::parse_camera(camera), silo_->geometry(), width, height);
-    const render::OverlayData od = render::overlay_data_for(silo_->model());
+    const render::CameraSpec cam = render::parse_camera(camera);
+    const core::Geometry& geo = silo_->geometry();
+    render::OverlayData od = render::overlay_data_for(silo_->model());
+    // Where the container leaves the boxes no clear space, a margin on the right holds them (as frame's and
+    // the inspector's snapshots keep one).
+    if (o.any())
+      od.margin_w = render::overlay_margin(
+          [&](int w) {
+            return std::vector<std::vector<render::View>>{render::layout_views(cam, geo, w, height)};
+          },
+          geo, o, 0, width, height, od.species_names, od.title,
+          !render::color_scale_label(style).empty() || style.chains);
+    const auto views = render::layout_views(cam, geo, width - od.margin_w, height);
     core::Image img;
     {
       py::gil_scoped_release free;
       Pictures& p = pictures();
       p.painter.start_afresh();
-      img = p.painter.paint(f, silo_->geometry(), views, style, o, od, width, height);
+      img = p.painter.paint(f, geo, views, style, o, od, width, height);
     }
     py::array_t<std::uint8_t> out(
         {static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});

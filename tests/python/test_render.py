@@ -1,4 +1,5 @@
-"""Simulation.render: pictures in process, drawn by the renderer `record` and `frame` use."""
+"""Simulation.render: pictures in process, drawn by the renderer `record` and `frame` use (the information box
+placed as frame places it)."""
 import os
 import subprocess
 
@@ -14,17 +15,17 @@ def test_render_equals_the_frame_command_pixel_for_pixel(binary, root, tmp_path)
     scene = os.path.join(root, "assets/scenes/paper.toml")
     subprocess.run([binary, "run", scene, "--seed", "3", "--duration", "2.5", "--trajectory-fps", "30", "--quiet",
                     "--out", str(tmp_path / "run")], check=True)
-    for camera in ("split", "outlet"):
-        png = tmp_path / f"{camera}.png"
+    s = siloscope.Simulation(scene, seed=3)
+    s.advance_to(1.98)
+    for camera, overlay in (("split", "none"), ("outlet", "none"), ("split", "all")):
+        png = tmp_path / f"{camera}-{overlay}.png"
         subprocess.run([binary, "frame", str(tmp_path / "run"), "--at", "frame:60", "--size", "640x360",
-                        "--camera", camera, "--overlay", "none", "--out", str(png)], check=True,
+                        "--camera", camera, "--overlay", overlay, "--out", str(png)], check=True,
                        capture_output=True)
-        s = siloscope.Simulation(scene, seed=3)
-        s.advance_to(1.98)
-        a = s.render(640, 360, camera=camera, overlay="none")
+        a = s.render(640, 360, camera=camera, overlay=overlay)
         b = (mpimg.imread(png)[:, :, :3] * 255).round().astype(np.uint8)
         assert a.shape == (360, 640, 3) and a.dtype == np.uint8
-        assert np.array_equal(a, b), f"{camera}: {(a != b).any(axis=2).sum()} pixels differ"
+        assert np.array_equal(a, b), f"{camera}, overlay {overlay}: {(a != b).any(axis=2).sum()} pixels differ"
 
 
 def test_render_options_and_refusals(root):
