@@ -196,3 +196,41 @@ def test_import_does_not_load_pandas():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env=dict(os.environ, PYTHONPATH=pkg)).stdout.strip()
     assert out == "False"
+
+
+def test_a_protocol_written_from_python_is_a_run_the_commands_take(binary, root, tmp_path):
+    # Issue 55: kicks switched on and off by Python; the run written gives the simulation's own events, byte
+    # for byte, and inspect and analyze take it.
+    s = siloscope.Simulation("paper", seed=7, clog_timeout=0.0, kick_impulse_max=0.0)
+    s.advance_to(3.0)
+    s.set("kick_impulse_max", 5e-3)
+    s.step(2500)
+    s.set("kick_impulse_max", 0.0)
+    s.advance_to(6.0)
+    r = s.write_run(tmp_path / "run", trajectory_fps=30)
+    assert s.time == pytest.approx(6.0, abs=1e-9)  # the simulation itself goes on as it was
+    s.finish()
+    files = s.event_files()
+    for name in ("exits.csv", "clogs.csv", "arches.csv"):
+        assert (tmp_path / "run" / name).read_text() == files[name], name
+    assert len(r.exits) > 0
+    assert 0 < 6.0 - float(r.trajectory.t[-1]) <= r.trajectory.frame_interval  # frames to the protocol's end
+    assert "set kick_impulse_max 0.005" in r.metadata["run"]["protocol"]
+    script = tmp_path / "s.txt"
+    script.write_text("goto end\nprint\n")
+    shown = subprocess.run([binary, "inspect", str(tmp_path / "run"), "--quiet", "--script", str(script)],
+                           capture_output=True, text=True)
+    assert shown.returncode == 0, shown.stderr
+    analysed = subprocess.run([binary, "analyze", str(tmp_path / "run"), "--out", str(tmp_path / "an")],
+                              capture_output=True, text=True)
+    assert analysed.returncode == 0, analysed.stderr
+    assert (tmp_path / "an" / "points.csv").exists()
+    # Nothing simulated yet: nothing to write; a protocol file with a bad line is refused naming it.
+    with pytest.raises(siloscope.SiloscopeError, match="nothing was simulated"):
+        siloscope.Simulation("paper", seed=7).write_run(tmp_path / "none")
+    bad = tmp_path / "bad.txt"
+    bad.write_text("to 1\nset mu 3\n")
+    done = subprocess.run([binary, "run", os.path.join(root, "assets/scenes/paper.toml"), "--protocol", str(bad),
+                           "--out", str(tmp_path / "bad")], capture_output=True, text=True)
+    assert done.returncode == 2 and "bad.txt:2: 'set mu 3'" in done.stderr
+    assert not (tmp_path / "bad").exists()

@@ -1,5 +1,9 @@
 // siloscope run SCENE --out DIR: a headless run that writes events, measurements and metadata.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
@@ -26,22 +30,94 @@ namespace {
 struct RunOptions {
   SceneOptions scene;
   std::string out;
+  std::string protocol;  // a protocol file (siloscope.Simulation's, written by Simulation.write_run), or ""
   double trajectory_fps = 0;
   bool force = false;
   bool quiet = false;
   bool record_refusal = false;
 };
 
-int simulate(const RunOptions& o, const core::Model& model);
+// A protocol: what a Python Simulation did, replayed here exactly (the same steps, the changes between the
+// same two steps). One line each: `to T` (step until t >= T - dt/2, as advance_to does), `set
+// kick_impulse_max J`, `set outlet_open true|false`, `finish` (the last line, if any); # starts a comment.
+struct Protocol {
+  struct Entry {
+    double t = -1;  // a `to` line's time; < 0: a `set` line
+    std::string key, value;
+    double number = 0;  // kick_impulse_max's value
+  };
+  std::vector<Entry> entries;
+  double end = 0;  // s: the last `to`
+  std::string text;
+};
+
+Protocol read_protocol(const std::string& path) {
+  core::check_text_file(path, "--protocol", "");
+  std::ifstream in(path);
+  if (!in) throw core::InputError("--protocol " + path + ": cannot open it");
+  Protocol p;
+  int n = 0;
+  bool finished = false;
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    const std::string where = path + ":" + std::to_string(n) + ": ";
+    std::stringstream ss(line.substr(0, line.find('#')));
+    std::string word, a, b, extra;
+    if (!(ss >> word)) continue;
+    ss >> a >> b >> extra;
+    if (finished) throw core::InputError(where + "'" + line + "' after `finish` (it ends the protocol)");
+    if (word == "to" && !a.empty() && b.empty()) {
+      char* end = nullptr;
+      const double t = std::strtod(a.c_str(), &end);
+      if (*end || !std::isfinite(t) || t < p.end)
+        throw core::InputError(where + "to " + a + ": expected a finite time (s) not before the last (" +
+                               core::format_g(p.end, 9) + ")");
+      p.entries.push_back({t, "", "", 0});
+      p.end = t;
+    } else if (word == "set" && !b.empty() && extra.empty() &&
+               (a == "kick_impulse_max" || (a == "outlet_open" && (b == "true" || b == "false")))) {
+      double v = 0;
+      if (a == "kick_impulse_max") {
+        char* end = nullptr;
+        v = std::strtod(b.c_str(), &end);
+        if (*end || !std::isfinite(v) || v < 0)
+          throw core::InputError(where + "set kick_impulse_max " + b +
+                                 ": expected a finite impulse >= 0 N*s");
+      }
+      p.entries.push_back({-1, a, b, v});
+    } else if (word == "finish" && a.empty()) {
+      finished = true;
+    } else {
+      throw core::InputError(where + "'" + line +
+                             "': expected `to T`, `set kick_impulse_max J`, `set outlet_open " +
+                             "true|false` or `finish`");
+    }
+    p.text += line + "\n";
+  }
+  if (p.end <= 0)
+    throw core::InputError("--protocol " + path + ": no `to T` line with T > 0 (nothing to run)");
+  return p;
+}
+
+int simulate(const RunOptions& o, const core::Model& model, const Protocol& protocol);
 
 // A run the health monitor stops is refused for good (the same scene, seed and numerics stop again). With
 // --record-refusal (campaign jobs) that outcome is written as OUT.refused.toml: the scene with its seed and
 // the reason, which `sweep` reads to leave the realization settled and `analyze` counts as n_refused.
-int run(const RunOptions& o) {
+int run(const RunOptions& given) {
+  RunOptions o = given;
+  Protocol protocol;
+  if (!o.protocol.empty()) {
+    if (o.scene.duration)
+      throw core::InputError(
+          "--duration and --protocol: the protocol's last `to` line is the run's end; give one");
+    protocol = read_protocol(o.protocol);
+    o.scene.duration = protocol.end;
+  }
   const core::Model model = o.scene.compile();
   const core::Scene& scene = model.scene;
   try {
-    return simulate(o, model);
+    return simulate(o, model, protocol);
   } catch (const core::Unstable& e) {
     if (o.record_refusal)
       io::write_file_atomic(
@@ -56,7 +132,7 @@ int run(const RunOptions& o) {
   }
 }
 
-int simulate(const RunOptions& o, const core::Model& model) {
+int simulate(const RunOptions& o, const core::Model& model, const Protocol& protocol) {
   const core::Scene& scene = model.scene;
   if (o.trajectory_fps < 0)
     throw core::InputError("--trajectory-fps " + core::format_g(o.trajectory_fps) + ": must be > 0");
@@ -89,7 +165,19 @@ int simulate(const RunOptions& o, const core::Model& model) {
   };
   // The trajectory sees each arch from its formation: its frames reach it clog_min_gap late.
   HindsightSink hindsight(sinks, scene.clog_min_gap + clock.frame_interval);
-  if (!session.run(scene.duration, clock, {&hindsight}, interrupted, report)) {
+  // The protocol's segments (or the whole duration), its changes between them.
+  bool whole = true;
+  for (const auto& e : protocol.entries) {
+    if (e.t < 0) {
+      if (e.key == "kick_impulse_max")
+        hopper.set_kick_impulse_max(e.number);
+      else
+        hopper.set_outlet_open(e.value == "true");
+    } else if (!(whole = session.run(e.t, clock, {&hindsight}, interrupted, report))) {
+      break;
+    }
+  }
+  if (!whole || !session.run(scene.duration, clock, {&hindsight}, interrupted, report)) {
     progress.finish();
     std::fprintf(stderr, "siloscope: interrupted at t = %.1f s; nothing written\n", hopper.time());
     return 130;
@@ -110,6 +198,7 @@ int simulate(const RunOptions& o, const core::Model& model) {
                 {"wall_time_discharge_s", run_wall},
                 {"speed_vs_real_time", scene.duration / std::max(run_wall, 1e-9)}};
   if (clock.steps > 0) info.facts.push_back({"trajectory_steps_per_frame", clock.steps});
+  if (!protocol.text.empty()) info.facts.push_back({"protocol", protocol.text});  // what was done, timed
   const analysis::Measurements m = write_run_outputs(dir.file(""), hopper, scene.duration, info);
   dir.commit();
 
@@ -132,6 +221,10 @@ void define_run_command(CLI::App& command, Action& action) {
   cmd->add_option("--out", opts->out, "output directory (created whole when the run completes)")->required();
   cmd->add_option("--trajectory-fps", opts->trajectory_fps,
                   "also write trajectory.sstraj with this many frames per simulated second (for inspect)");
+  cmd->add_option(
+      "--protocol", opts->protocol,
+      "replay a Python Simulation's protocol (lines `to T`, `set KEY VALUE`, `finish`): its steps and "
+      "changes, exactly; the last `to` is the run's end");
   cmd->add_flag("--force", opts->force, "replace an existing output directory");
   cmd->add_flag("--quiet", opts->quiet, "print nothing but errors");
   cmd->add_flag("--record-refusal", opts->record_refusal,

@@ -112,6 +112,34 @@ class Simulation:
                 raise SiloscopeError(f"from_state: unknown protocol entry {entry!r}")
         return sim
 
+    def write_run(self, out, trajectory_fps=None, force=False):
+        """Write what this simulation did as a run directory, the one `siloscope run` writes (events, summary,
+        metadata with the protocol's timed changes under [run] protocol, manifest; a trajectory at
+        trajectory_fps frames per simulated second if given), which analyze, inspect, frame, gallery, share and
+        export accept. The binary replays this simulation's scene and protocol (runs are deterministic: the same
+        steps and changes give the same events byte for byte) and ends it as a run ends (an open clog closed,
+        censored). Returns the Run. This simulation is not changed."""
+        steps = [p for p in self._protocol if p[0] != "finish"]
+        if not any(p[0] == "to" and p[1] > 0 for p in steps):
+            raise SiloscopeError("write_run: nothing was simulated yet (step or advance_to first)")
+        lines = []
+        for p in steps:
+            if p[0] == "to":
+                lines.append(f"to {p[1]!r}")
+            elif p[1] == "outlet_open":
+                lines.append(f"set outlet_open {'true' if p[2] else 'false'}")
+            else:
+                lines.append(f"set {p[1]} {float(p[2])!r}")
+        from ._run import run as _run
+        with tempfile.TemporaryDirectory(prefix="siloscope-run-") as tmp:
+            scene = os.path.join(tmp, "scene.toml")
+            protocol = os.path.join(tmp, "protocol.txt")
+            with open(scene, "w") as f:
+                f.write(self.scene_toml())
+            with open(protocol, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            return _run(scene, out, trajectory_fps=trajectory_fps, force=force, extra=("--protocol", protocol))
+
     def __reduce__(self):
         return (Simulation.from_state, (self.state(),))
 
