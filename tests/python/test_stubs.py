@@ -93,3 +93,19 @@ def test_stub_names_nothing_the_package_lacks():
                 if isinstance(m, ast.FunctionDef) and not m.name.startswith("__"):
                     assert hasattr(cls, m.name), f"the stub names {node.name}.{m.name}, which does not exist"
     assert os.path.exists(os.path.join(os.path.dirname(STUB), "py.typed"))
+
+
+def test_every_public_name_has_a_docstring():
+    missing = []
+    for name in siloscope.__all__:
+        obj = getattr(siloscope, name)
+        if not inspect.getdoc(obj):
+            missing.append(name)
+        if inspect.isclass(obj):
+            for attr, value in vars(obj).items():
+                if attr.startswith("_"):
+                    continue
+                f = value.fget if isinstance(value, property) else getattr(value, "__func__", value)
+                if (callable(f) or isinstance(value, property)) and not (f.__doc__ or "").strip():
+                    missing.append(f"{name}.{attr}")
+    assert not missing, f"no docstring: {missing}"

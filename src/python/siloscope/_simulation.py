@@ -189,14 +189,17 @@ class Simulation:
 
     @property
     def dt(self):
+        """The time step, s (the scene's dt)."""
         return self._s.dt
 
     @property
     def n(self):
+        """The number of grains."""
         return self._s.n
 
     @property
     def seed(self):
+        """The random seed (the scene's, or the one given)."""
         return self._s.seed
 
     @property
@@ -211,18 +214,22 @@ class Simulation:
 
     @property
     def velocities(self):
+        """(n, 2) array of the grains' velocities, m/s."""
         return self._s.grains()["velocity"]
 
     @property
     def angles(self):
+        """The grains' orientations, rad (polygons turn; a disk's angle is its own spin)."""
         return self._s.grains()["angle"]
 
     @property
     def radii(self):
+        """The grains' radii, m (a polygon's: of the disk of equal area)."""
         return self._s.grains()["radius"]
 
     @property
     def species(self):
+        """Each grain's species, as an index into species_names."""
         return self._s.grains()["species"]
 
     @property
@@ -270,6 +277,7 @@ class Simulation:
 
     @property
     def outlet_open(self):
+        """Whether the outlet is open (set("outlet_open", False) puts the lid back across it)."""
         return self._s.outlet_open
 
     def scene_toml(self):
