@@ -26,6 +26,13 @@ def test_render_equals_the_frame_command_pixel_for_pixel(binary, root, tmp_path)
         b = (mpimg.imread(png)[:, :, :3] * 255).round().astype(np.uint8)
         assert a.shape == (360, 640, 3) and a.dtype == np.uint8
         assert np.array_equal(a, b), f"{camera}, overlay {overlay}: {(a != b).any(axis=2).sum()} pixels differ"
+    # And record's own frame 60 (a 30 frames/s movie's PNG frames, no overlay: the movie's layout keeps none).
+    subprocess.run([binary, "record", scene, "--seed", "3", "--duration", "2.5", "--size", "640x360", "--overlay",
+                    "none", "--png-every", "1", "--no-movie", "--quiet", "--out", str(tmp_path / "movie")],
+                   check=True)
+    b = (mpimg.imread(tmp_path / "movie" / "frames" / "frame_000060.png")[:, :, :3] * 255).round().astype(np.uint8)
+    a = s.render(640, 360, overlay="none")
+    assert np.array_equal(a, b), f"record's frame 60: {(a != b).any(axis=2).sum()} pixels differ"
 
 
 def test_render_options_and_refusals(root):
