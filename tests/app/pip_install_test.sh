@@ -2,7 +2,8 @@
 # pip installs the package with the binary and the in-process module into a fresh virtual environment, with
 # Debian's build tools and no network (pip install --no-build-isolation --no-index), from a copy of the clone;
 # from another directory the installed package steps a scene and its exits equal the installed command's run,
-# byte for byte. The two targets come from the suite's own build (SILOSCOPE_BUILD_DIR): a plain `pip install ./`
+# byte for byte; a preset is named by name, a picture drawn in process, the type stubs are installed. The two
+# targets come from the suite's own build (SILOSCOPE_BUILD_DIR): a plain `pip install ./`
 # builds them itself (build-pip/), which the README's set-up was tried with by hand.
 set -euo pipefail
 build=$1 src=$2
@@ -22,7 +23,15 @@ s = siloscope.Simulation('$scene', seed=7)
 s.step(20000)
 s.finish()
 open('py-exits.csv', 'w').write(s.event_files()['exits.csv'])
+# A preset by name, a picture in process, the type stubs installed beside the package.
+import os
+here = os.path.dirname(siloscope.__file__)
+assert os.path.exists(os.path.join(here, '__init__.pyi')) and os.path.exists(os.path.join(here, 'py.typed'))
+p = siloscope.Simulation('paper')
+p.step(1000)
+assert p.render(320, 180).shape == (180, 320, 3)
 "
+env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run paper --duration 1 --quiet --out preset
 env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run "$scene" --seed 7 --duration 20 --quiet --out run
 cmp py-exits.csv run/exits.csv
 echo "pip-installed siloscope: Simulation and the siloscope command agree ($(wc -l < run/exits.csv) lines)"
