@@ -119,7 +119,8 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
            history_[last + 1].clog_start == history_[k].clog_start)
       ++last;
     dl->AddRectFilled(ImVec2(X(std::max(0.0, history_[k].clog_start)), y0),
-                      ImVec2(X(history_[last].t) + 0.5f, y1), IM_COL32(200, 200, 200, 255));
+                      ImVec2(X(history_[last].t) + 0.5f, y1),
+                      style.dark ? IM_COL32(80, 80, 92, 255) : IM_COL32(200, 200, 200, 255));  // dim on dark
     k = last;
   }
   auto exits_at = [&](size_t k, size_t sp) {
@@ -143,10 +144,23 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
   const ImU32 axis = style.dark ? IM_COL32(220, 220, 220, 255) : IM_COL32(40, 40, 40, 255);
   dl->AddLine(ImVec2(x0, y1), ImVec2(x1, y1), axis);
   dl->AddLine(ImVec2(x0, y0), ImVec2(x0, y1), axis);
+  // Ticks at a round step (1, 2 or 5 times a power of ten) giving at most six on each axis.
+  auto step_for = [](double span) {
+    const double raw = span / 6, p = std::pow(10.0, std::floor(std::log10(raw)));
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+      if (m * p >= raw) return m * p;
+    return 10 * p;
+  };
+  const float tick = 0.3f * em;
+  for (double t = step_for(tmax); t <= tmax + 1e-9; t += step_for(tmax))
+    dl->AddLine(ImVec2(X(t), y1), ImVec2(X(t), y1 + tick), axis);
+  for (double c = step_for(static_cast<double>(nmax)); c <= static_cast<double>(nmax) + 1e-9;
+       c += step_for(static_cast<double>(nmax)))
+    dl->AddLine(ImVec2(x0 - tick, Y(c)), ImVec2(x0, Y(c)), axis);
   char text[64];
   std::snprintf(text, sizeof text, "%ld", nmax);
   dl->AddText(ImVec2(x0 - 2.3f * em, y0 - 0.5f * em), axis, text);
-  std::snprintf(text, sizeof text, "exits vs t (0-%.0f s), clogs grey", tmax);
+  std::snprintf(text, sizeof text, "exits vs t (0-%.0f s, ticks %g s), clogs shaded", tmax, step_for(tmax));
   if (ImGui::CalcTextSize(text).x > spot->x1 - x0)
     std::snprintf(text, sizeof text, "exits, 0-%.0f s", tmax);  // a narrow plot (in a margin)
   dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
