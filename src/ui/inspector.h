@@ -22,7 +22,8 @@
 //   branch at N | branch off     rebuild the run at frame N (checked against it); shown on the right
 //   remove grain ID              take a grain out (re-injected on top); an open clog ends there
 //   kick DV                      every grain lifted by DV m/s now
-//   set kick_impulse_max J | set mu M | set species.NAME.dipole M     the drive's kick (N s), a dipole (A m^2)
+//   set kick_impulse_max J | set mu M | set species.NAME.dipole M
+//                                the drive's kick (N s), a species' dipole moment (A m^2), from now on
 //   continue S                   the branch S seconds on, the recording moved to the same time
 //   save branch DIR              the branch as a run of its own (it ends there)
 #pragma once
