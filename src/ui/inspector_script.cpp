@@ -280,7 +280,8 @@ bool Inspector::branch_command(const std::vector<std::string>& a) {
   }
   if (cmd == "kick") return need(1, "kick DV (m/s)"), branch_kick(to_double(a[1], "kick")), true;
   if (cmd == "set")
-    return need(2, "set kick_impulse_max J | set mu M | set species.NAME.dipole M"), branch_set(a[1], to_double(a[2], a[1].c_str())), true;
+    return need(2, "set kick_impulse_max J | set mu M | set species.NAME.dipole M"),
+           branch_set(a[1], to_double(a[2], a[1].c_str())), true;
   if (cmd == "continue")
     return need(1, "continue SECONDS"), branch_continue(to_double(a[1], "continue")), true;
   if (cmd == "save") {
