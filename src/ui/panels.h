@@ -42,6 +42,12 @@ struct PanelState {
 void draw_panels(Inspector& insp, PanelState& ps, Painter* painter, float x, float w, float h,
                  float timeline_y, float timeline_w, float timeline_h);
 
+// The last widget's screen rectangle under `name` (ps.rects: tests click by name).
+void remember(PanelState& ps, const char* name);
+
+// The "what if" tab (ui/branch_panel.cpp): the script's branch lines as buttons.
+void draw_branch(Inspector& insp, PanelState& ps);
+
 // Run a command and put its outcome (or error) in ps.message instead of throwing.
 // Run a typed inspector action from a button or key; the panel's message says what it did (the script line
 // that repeats it, or the file it wrote) or why it could not.

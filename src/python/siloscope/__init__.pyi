@@ -1,5 +1,5 @@
-# Type stubs of siloscope's public API (PEP 561; py.typed beside it). tests/python/test_stubs.py holds them
-# to the package: every public name, every parameter's name and default, every property.
+# The types of siloscope's public API (PEP 561 interface file; py.typed beside it), held by
+# tests/python/test_typing.py to the package: every public name, every parameter's name and default, every property.
 import os
 from typing import Any, Iterable, Mapping, Optional, Sequence, Union
 
