@@ -152,15 +152,15 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
     return 10 * p;
   };
   const float tick = 0.3f * em;
-  for (double t = step_for(tmax); t <= tmax + 1e-9; t += step_for(tmax))
+  const double t_step = step_for(tmax), n_step = step_for(static_cast<double>(nmax));
+  for (double t = t_step; t <= tmax + 1e-9; t += t_step)
     dl->AddLine(ImVec2(X(t), y1), ImVec2(X(t), y1 + tick), axis);
-  for (double c = step_for(static_cast<double>(nmax)); c <= static_cast<double>(nmax) + 1e-9;
-       c += step_for(static_cast<double>(nmax)))
+  for (double c = n_step; c <= static_cast<double>(nmax) + 1e-9; c += n_step)
     dl->AddLine(ImVec2(x0 - tick, Y(c)), ImVec2(x0, Y(c)), axis);
   char text[64];
   std::snprintf(text, sizeof text, "%ld", nmax);
   dl->AddText(ImVec2(x0 - 2.3f * em, y0 - 0.5f * em), axis, text);
-  std::snprintf(text, sizeof text, "exits vs t (0-%.0f s, ticks %g s), clogs shaded", tmax, step_for(tmax));
+  std::snprintf(text, sizeof text, "exits vs t (0-%.0f s, ticks %g s), clogs shaded", tmax, t_step);
   if (ImGui::CalcTextSize(text).x > spot->x1 - x0)
     std::snprintf(text, sizeof text, "exits, 0-%.0f s", tmax);  // a narrow plot (in a margin)
   dl->AddText(ImVec2(x0, y1 + 0.1f * em), axis, text);
