@@ -42,16 +42,6 @@ def median_break(t):
     return float(np.median(v))
 
 
-def by_runs(t, stat, rng, k=2000):
-    """95% interval of stat, resampling runs (seeds) with replacement."""
-    groups = [g for _, g in t.groupby("seed")]
-    out = []
-    for _ in range(k):
-        pick = rng.integers(0, len(groups), len(groups))
-        out.append(stat(pd.concat([groups[i] for i in pick])))
-    return tuple(np.nanquantile(np.asarray(out, float), [0.025, 0.975]))
-
-
 def spearman(t):
     v = np.where(t.outcome == "held", np.inf, (t.dv_held_m_s + t.dv_broke_m_s) / 2)
     a = pd.Series(t.theta_max_deg.values).rank().values
@@ -70,14 +60,14 @@ def main(results, out):
         if len(b) == 0:
             continue
         m = median_break(b)
-        ci = by_runs(b, median_break, rng) if len(b) >= 5 else (np.nan, np.nan)
+        ci = stats.bootstrap_groups(median_break, b, "seed", rng) if len(b) >= 5 else (np.nan, np.nan)
         rows.append(dict(theta_lo_deg=lo, theta_hi_deg=hi, theta_median_deg=float(b.theta_max_deg.median()),
                          n_arches=len(b), n_runs=b.seed.nunique(),
                          n_held=int((b.outcome == "held").sum()), median_dv_break_m_s=m,
                          ci95_lo=ci[0], ci95_hi=ci[1]))
     bins = pd.DataFrame(rows)
     rho = spearman(t)
-    rho_ci = by_runs(t, spearman, rng)
+    rho_ci = stats.bootstrap_groups(spearman, t, "seed", rng)
     bins.to_csv(os.path.join(out, "by_angle.csv"), index=False, float_format="%.4g")
     summary = (f"{len(t)} arches from {t.seed.nunique()} runs ({(t.outcome == 'held').sum()} held at the "
                f"strongest kick); Spearman rho(theta_max, dv_break) = {rho:.3f} "

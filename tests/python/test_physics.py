@@ -43,3 +43,17 @@ def test_kaplan_meier_without_censoring_is_the_empirical_survival(physics):
     # One censored at 2: the survivors at risk shrink, the step at 3 is taken over 2 at risk.
     times, surv = physics.kaplan_meier(t, np.array([1, 1, 1, 0, 1]))
     assert np.allclose(surv, [0.8, 0.6, 0.3, 0.0])
+
+
+def test_the_group_bootstrap_resamples_whole_groups():
+    """Rows of one group move together: with every row of a group alike, the interval over groups is that of the
+    group means' own bootstrap with the same draws, not the narrower one over rows as if independent."""
+    import pandas as pd
+    from siloscope import stats
+    values = np.arange(8.0)
+    table = pd.DataFrame({"run": np.repeat(np.arange(8), 10), "v": np.repeat(values, 10)})
+    grouped = stats.bootstrap_groups(lambda t: t.v.mean(), table, "run", np.random.default_rng(3), k=500)
+    means = stats.bootstrap(lambda s: s.mean(), pd.Series(values), np.random.default_rng(3), k=500)
+    assert grouped == pytest.approx(means)
+    rows = stats.bootstrap(lambda s: s.mean(), table.v, np.random.default_rng(3), k=500)
+    assert rows[1] - rows[0] < 0.6 * (grouped[1] - grouped[0])

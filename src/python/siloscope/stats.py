@@ -1,6 +1,6 @@
 """The statistics of results, in one place for Python (the binary's are in src/analysis/stats.h, and these follow
 them): the mean of independent realizations with its Student-t 95% interval, a proportion's Wilson interval, a
-percentile bootstrap over realizations, the Kaplan-Meier survival of censored durations, and the maximum-likelihood
+percentile bootstrap over realizations (or over groups of rows), the Kaplan-Meier survival of censored durations, and the maximum-likelihood
 fit of a power-law tail against an exponential one. Numpy only.
 
     >>> from siloscope.stats import mean_ci95, wilson
@@ -86,6 +86,19 @@ def bootstrap(stat, samples, rng, k=2000):
     is NaN is left out."""
     out = [stat(samples.iloc[rng.integers(0, len(samples), len(samples))]) for _ in range(k)]
     return tuple(np.nanquantile(out, [0.025, 0.975]))
+
+
+def bootstrap_groups(stat, table, by, rng, k=2000):
+    """The 95% percentile interval (lo, hi) of stat over a pandas DataFrame whose rows come in groups that are not
+    independent (the arches of one run share its packing): whole groups, named by column `by`, are resampled with
+    replacement k times with `rng`; a resample whose stat is NaN is left out."""
+    import pandas as pd
+    groups = [g for _, g in table.groupby(by)]
+    out = []
+    for _ in range(k):
+        pick = rng.integers(0, len(groups), len(groups))
+        out.append(stat(pd.concat([groups[i] for i in pick])))
+    return tuple(np.nanquantile(np.asarray(out, float), [0.025, 0.975]))
 
 
 def bootstrap_ratio(stat, a, b, rng, k=2000):
