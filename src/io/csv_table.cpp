@@ -12,14 +12,55 @@
 namespace io {
 
 namespace {
-std::vector<std::string> split(const std::string& line) {
+
+// The separator the header uses: the most frequent of ',', ';' and tab outside quotes (',' when none).
+char separator_of(const std::string& header) {
+  long comma = 0, semicolon = 0, tab = 0;
+  bool quoted = false;
+  for (char c : header) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    comma += c == ',';
+    semicolon += c == ';';
+    tab += c == '\t';
+  }
+  if (semicolon > comma && semicolon >= tab) return ';';
+  if (tab > comma && tab > semicolon) return '\t';
+  return ',';
+}
+
+// One line's fields; a quoted field may hold the separator and doubled quotes. Throws core::InputError
+// (`where`) for a quote left open.
+std::vector<std::string> split(const std::string& line, char sep, const std::string& where) {
   std::vector<std::string> out;
   std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) out.push_back(field);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  size_t k = 0;
+  while (true) {
+    field.clear();
+    if (k < line.size() && line[k] == '"') {
+      for (++k;; ++k) {
+        if (k >= line.size()) throw core::InputError(where + ": a quoted field is not closed on its line");
+        if (line[k] == '"' && k + 1 < line.size() && line[k + 1] == '"') {
+          field += '"';
+          ++k;
+        } else if (line[k] == '"') {
+          ++k;
+          break;
+        } else {
+          field += line[k];
+        }
+      }
+      while (k < line.size() && line[k] != sep) field += line[k++];  // text after the closing quote
+    } else {
+      while (k < line.size() && line[k] != sep) field += line[k++];
+    }
+    out.push_back(field);
+    if (k >= line.size()) break;
+    ++k;  // the separator
+  }
   return out;
 }
+
 }  // namespace
 
 CsvTable CsvTable::read(const std::string& path, const std::string& what) {
@@ -37,17 +78,20 @@ CsvTable CsvTable::read(const std::string& path, const std::string& what) {
   std::string line;
   if (!std::getline(in, line) || line.empty())
     throw core::InputError(path + ": empty; expected " + what + " with a header line");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  t.header_ = split(line);
+  t.separator_ = separator_of(line);
+  t.header_ = split(line, t.separator_, path + ":1");
   for (long n = 2; std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
-    auto row = split(line);
+    auto row = split(line, t.separator_, path + ":" + std::to_string(n));
     if (row.size() != t.header_.size())
       throw core::InputError(path + ":" + std::to_string(n) + ": " + std::to_string(row.size()) +
                              " fields where the header has " + std::to_string(t.header_.size()) +
                              " (a truncated or hand-edited " + what + "?)");
     t.cells_.push_back(std::move(row));
+    t.lines_.push_back(n);
   }
   return t;
 }
@@ -69,14 +113,18 @@ const std::string& CsvTable::text(std::size_t row, const std::string& name) cons
 }
 
 double CsvTable::num(std::size_t row, const std::string& name) const {
-  const std::string& s = text(row, name);
+  std::string s = text(row, name);
   if (s.empty() || s == "nan" || s == "-nan") return NAN;
+  // With ';' between fields, a spreadsheet of a comma-decimal locale writes 0,5 for 0.5.
+  if (separator_ == ';' && s.find(',') != std::string::npos && s.find('.') == std::string::npos &&
+      s.find(',') == s.rfind(','))
+    s[s.find(',')] = '.';
   errno = 0;
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (end == s.c_str() || *end != '\0' || errno == ERANGE)
-    throw core::InputError(path_ + ":" + std::to_string(row + 2) + ": column " + name + " is '" + s +
-                           "', not a number");
+    throw core::InputError(path_ + ":" + std::to_string(line(row)) + ": column " + name + " is '" +
+                           text(row, name) + "', not a number");
   return v;
 }
 

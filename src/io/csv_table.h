@@ -1,6 +1,8 @@
-// A CSV table as siloscope's analysis writes it (points.csv, realizations.csv): one header line of column
-// names, then rows of comma-separated fields without quoting. Read whole, checked as it is read, so a reader
-// of results (the claims) gets numbers or an error that names the file, the line and the column.
+// A CSV table: one header line of column names, then rows of fields, as siloscope's analysis writes them
+// (points.csv, realizations.csv) and as labs' tools and spreadsheets write them: a UTF-8 byte-order mark is
+// skipped, the separator is the header's (',', ';' or a tab), fields may be quoted ("a ""b""", within a
+// line), and with ';' a decimal comma reads as a point. Read whole, checked as it is read, so a reader gets
+// numbers or an error that names the file, the line and the column.
 #pragma once
 
 #include <cstddef>
@@ -19,6 +21,8 @@ class CsvTable {
 
   const std::string& path() const { return path_; }
   std::size_t rows() const { return cells_.size(); }
+  long line(std::size_t row) const { return lines_.at(row); }  // the file's line of a row (1: the header)
+  char separator() const { return separator_; }
   bool has(const std::string& column) const;
   // The field as written. Throws core::InputError for a column the table lacks.
   const std::string& text(std::size_t row, const std::string& column) const;
@@ -31,6 +35,8 @@ class CsvTable {
   std::string path_, what_;
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> cells_;
+  std::vector<long> lines_;
+  char separator_ = ',';
 };
 
 }  // namespace io

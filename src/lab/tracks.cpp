@@ -22,15 +22,16 @@ struct Role {
 
 const std::vector<Role>& roles() {
   static const std::vector<Role> r = {
-      {"time", &ColumnMap::time, {"t", "time", "t_s"}},
-      {"frame", &ColumnMap::frame, {"frame"}},
-      {"id", &ColumnMap::id, {"particle", "id", "track", "track_id"}},
-      {"x", &ColumnMap::x, {"x"}},
-      {"y", &ColumnMap::y, {"y"}},
-      {"radius", &ColumnMap::radius, {"r", "radius"}},
+      {"time", &ColumnMap::time, {"t", "time", "t_s", "POSITION_T"}},
+      {"frame", &ColumnMap::frame, {"frame", "FRAME"}},
+      {"id", &ColumnMap::id, {"particle", "id", "track", "track_id", "TRACK_ID"}},
+      {"x", &ColumnMap::x, {"x", "POSITION_X"}},
+      {"y", &ColumnMap::y, {"y", "POSITION_Y"}},
+      {"radius", &ColumnMap::radius, {"r", "radius", "RADIUS"}},
       {"diameter", &ColumnMap::diameter, {"diameter", "d"}},
       {"angle", &ColumnMap::angle, {"angle"}},
       {"species", &ColumnMap::species, {"species"}},
+      {"size", &ColumnMap::size, {"size"}},
   };
   return r;
 }
@@ -108,12 +109,16 @@ namespace {
 class RowReader {
  public:
   RowReader(const io::CsvTable& t, const std::string& path, const ColumnMap& map, const Units& units,
-            const core::Setup& setup, const core::Geometry& geo, Tracks& out)
+            const core::Setup& setup, const core::Geometry& geo, size_t first_row, Tracks& out)
       : t_(t), path_(path), units_(units), setup_(setup), geo_(geo), names_(setup.species_names()) {
-    for (const Role& r : roles()) {
-      col_[r.key] = find_column(t, map, r);
-      if (!col_[r.key].empty()) out.columns_used.push_back(std::string(r.key) + "=" + col_[r.key]);
+    for (const Role& r : roles()) col_[r.key] = find_column(t, map, r);
+    // TrackMate's time is in the image's unit: seconds, or frames when the image has no frame interval.
+    if (col_["time"] == "POSITION_T" && map.time.empty() && first_row > 0) {
+      const std::string unit = t.text(first_row - 1, "POSITION_T");
+      if (unit != "(sec)" && unit != "(s)") col_["time"].clear();
     }
+    for (const Role& r : roles())
+      if (!col_[r.key].empty()) out.columns_used.push_back(std::string(r.key) + "=" + col_[r.key]);
     need("id");
     need("x");
     need("y");
@@ -132,10 +137,13 @@ class RowReader {
     ysign_ = units.scale > 0 && !units.y_up ? -1.0 : 1.0;
   }
 
-  // Row `row`: the detection, its time and its frame number (-1 without one).
-  Detection read(size_t row, double& time, long& number) {
-    Detection d{};
-    d.line = static_cast<long>(row + 2);
+  // Row `row`: the detection, its time and its frame number (-1 without one); false for a spot without a
+  // track id (a tracker's spot it linked to no track), which is skipped.
+  bool read(size_t row, Detection& d, double& time, long& number) {
+    d = Detection{};
+    d.line = t_.line(row);
+    const std::string& id_text = t_.text(row, col_["id"]);
+    if (id_text.empty() || id_text == "None" || id_text == "NaN" || id_text == "nan") return false;
     const double idv = finite(row, col_["id"]);
     if (idv != std::floor(idv) || std::fabs(idv) > 9e15)
       throw core::InputError(line_of(row) + ": column " + col_["id"] + " is '" + t_.text(row, col_["id"]) +
@@ -156,7 +164,20 @@ class RowReader {
     size(row, d);
     d.angle = has_angle_ ? finite(row, col_["angle"]) : 0.0;
     check_inside(row, d);
-    return d;
+    return true;
+  }
+
+  // The size column (trackpy's radius of gyration, px) when it is what tells species apart: no radius,
+  // diameter or species column, and a scene of several species. Empty otherwise.
+  std::string size_column() const {
+    return has_radius_ || has_species_ || setup_.species.size() <= 1 ? "" : col_.at("size");
+  }
+  double size_of(size_t row) const {
+    const double v = finite(row, col_.at("size"));
+    if (!(v > 0))
+      throw core::InputError(line_of(row) + ": column " + col_.at("size") + " is '" +
+                             t_.text(row, col_.at("size")) + "': a grain's size must be > 0");
+    return v;
   }
 
  private:
@@ -177,7 +198,7 @@ class RowReader {
         throw core::InputError(path_ + ": no column for " + key + " (looked for " + looked_for(r) +
                                "; name it with --columns " + key + "=COLUMN)");
   }
-  std::string line_of(size_t row) const { return path_ + ":" + std::to_string(row + 2); }
+  std::string line_of(size_t row) const { return path_ + ":" + std::to_string(t_.line(row)); }
   double finite(size_t row, const std::string& c) const {
     const double v = t_.num(row, c);
     if (!std::isfinite(v))
@@ -246,22 +267,116 @@ class RowReader {
 
 }  // namespace
 
+namespace {
+
+// TrackMate writes three lines under its header (the features' names, short names and units): the rows at the
+// top whose x is not a number, when the header is TrackMate's.
+size_t description_rows(const io::CsvTable& t) {
+  if (!t.has("POSITION_X") || !t.has("TRACK_ID")) return 0;
+  size_t k = 0;
+  while (k < 3 && k < t.rows()) {
+    const std::string& x = t.text(k, "POSITION_X");
+    char* end = nullptr;
+    std::strtod(x.c_str(), &end);
+    if (!x.empty() && *end == '\0') break;
+    ++k;
+  }
+  return k;
+}
+
+// Species from sizes alone (trackpy's `size` is a radius of gyration in pixels, not a radius): the sizes fall
+// into as many groups as the scene has species (k-means on log size), matched to the species in the order of
+// their radii. Throws core::InputError when the groups are not apart as the species' radii are.
+std::vector<int> species_by_size(const std::vector<double>& sizes, const core::Setup& setup,
+                                 const std::string& path, const std::string& column) {
+  const size_t k = setup.species.size();
+  std::vector<size_t> by_radius(k);
+  for (size_t i = 0; i < k; ++i) by_radius[i] = i;
+  std::sort(by_radius.begin(), by_radius.end(),
+            [&](size_t a, size_t b) { return setup.species[a].radius < setup.species[b].radius; });
+  std::vector<double> logs(sizes.size());
+  for (size_t i = 0; i < sizes.size(); ++i) logs[i] = std::log(sizes[i]);
+  std::vector<double> sorted = logs;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<double> centre(k);
+  for (size_t c = 0; c < k; ++c) centre[c] = sorted[(2 * c + 1) * (sorted.size() - 1) / (2 * k)];
+  std::vector<int> group(logs.size(), 0);
+  for (int pass = 0; pass < 100; ++pass) {
+    std::vector<double> sum(k, 0.0);
+    std::vector<long> n(k, 0);
+    for (size_t i = 0; i < logs.size(); ++i) {
+      size_t best = 0;
+      for (size_t c = 1; c < k; ++c)
+        if (std::fabs(logs[i] - centre[c]) < std::fabs(logs[i] - centre[best])) best = c;
+      group[i] = static_cast<int>(best);
+      sum[best] += logs[i];
+      ++n[best];
+    }
+    bool moved = false;
+    for (size_t c = 0; c < k; ++c)
+      if (n[c] > 0 && std::fabs(sum[c] / n[c] - centre[c]) > 1e-12) centre[c] = sum[c] / n[c], moved = true;
+    if (!moved) break;
+  }
+  // Groups apart as the radii are: each pair of neighbouring groups at least half as far apart (in log size)
+  // as their species' radii.
+  for (size_t c = 1; c < k; ++c) {
+    const double want = std::log(setup.species[by_radius[c]].radius / setup.species[by_radius[c - 1]].radius);
+    if (!(centre[c] - centre[c - 1] >= 0.5 * want) || want <= 0)
+      throw core::InputError(
+          path + ": the sizes in column " + column + " do not fall into the scene's " + std::to_string(k) +
+          " species (their groups differ by a factor " +
+          core::format_g(std::exp(centre[c] - centre[c - 1]), 3) + " where the radii of " +
+          setup.species[by_radius[c - 1]].name + " and " + setup.species[by_radius[c]].name + " differ by " +
+          core::format_g(std::exp(want), 3) +
+          "): give each grain's species or radius (--columns species=COLUMN or radius=COLUMN)");
+  }
+  std::vector<int> out(logs.size());
+  for (size_t i = 0; i < logs.size(); ++i)
+    out[i] = static_cast<int>(by_radius[static_cast<size_t>(group[i])]);
+  return out;
+}
+
+}  // namespace
+
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo) {
   const io::CsvTable t = io::CsvTable::read(path, "tracked particles");
   Tracks out;
   out.source = path;
-  out.rows = static_cast<long>(t.rows());
-  RowReader reader(t, path, map, units, setup, geo, out);
-  std::map<double, TrackFrame> frames;  // by time
-  for (size_t row = 0; row < t.rows(); ++row) {
+  const size_t first = description_rows(t);
+  out.rows = static_cast<long>(t.rows() - first);
+  RowReader reader(t, path, map, units, setup, geo, first, out);
+  const std::string size_column = reader.size_column();
+  std::vector<Detection> read;
+  std::vector<double> times, sizes;
+  std::vector<long> numbers;
+  for (size_t row = first; row < t.rows(); ++row) {
     double time = 0;
     long number = -1;
-    const Detection d = reader.read(row, time, number);
-    TrackFrame& f = frames[time];
-    f.t = time;
-    f.number = number;
-    f.found.push_back(d);
+    Detection d;
+    if (!reader.read(row, d, time, number)) {
+      ++out.untracked;
+      continue;
+    }
+    if (!size_column.empty()) sizes.push_back(reader.size_of(row));
+    read.push_back(d);
+    times.push_back(time);
+    numbers.push_back(number);
+  }
+  if (!size_column.empty() && !read.empty()) {
+    const std::vector<int> species = species_by_size(sizes, setup, path, size_column);
+    for (size_t i = 0; i < read.size(); ++i) {
+      read[i].species = species[i];
+      read[i].r = setup.species[static_cast<size_t>(species[i])].radius;
+    }
+    out.species_by_size = true;
+  }
+  std::map<double, TrackFrame> frames;  // by time
+  for (size_t i = 0; i < read.size(); ++i) {
+    TrackFrame& f = frames[times[i]];
+    f.t = times[i];
+    f.number = numbers[i];
+    f.found.push_back(read[i]);
   }
   if (frames.empty()) throw core::InputError(path + ": no rows (a header and no particle)");
   for (auto& [time, f] : frames) {

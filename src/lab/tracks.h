@@ -4,8 +4,11 @@
 // Columns are found by name: the time (t, time, t_s) or the frame number (frame, with --fps), the particle's
 // id (particle, id, track, track_id), x and y, and optionally the radius (r, radius) or diameter (diameter,
 // d), the angle (angle, rad) and the species (species: a name of the geometry scene's species or its index).
-// trackpy's columns (frame, particle, x, y, and its own others) work without a map; any other naming is given
-// with a column map "id=TrackID,x=X_px,...". Pixel units are converted by a scale (m per pixel) and the pixel
+// trackpy's columns (frame, particle, x, y, and its own others) work without a map, its `size` telling the
+// species of a mixture apart; so do TrackMate's spots (TRACK_ID, POSITION_X, POSITION_Y, POSITION_T in
+// seconds or FRAME, RADIUS, and its three lines of names and units under the header). Spots without a track
+// id are skipped and counted. Any other naming is given with a column map "id=TrackID,x=X_px,...". The file
+// may be any CSV dialect io::CsvTable reads. Pixel units are converted by a scale (m per pixel) and the pixel
 // where the outlet's centre is (the origin); image rows grow downwards, so y is flipped unless y_up.
 #pragma once
 
@@ -18,7 +21,7 @@ namespace lab {
 
 // Which column holds what (empty: look for the default names).
 struct ColumnMap {
-  std::string time, frame, id, x, y, radius, diameter, angle, species;
+  std::string time, frame, id, x, y, radius, diameter, angle, species, size;
 };
 // "id=TrackID,x=X" into a map; throws core::InputError naming `option`, the entry and the allowed names.
 ColumnMap parse_column_map(const std::string& text, const std::string& option);
@@ -51,6 +54,8 @@ struct Tracks {
   bool has_radius = false, has_angle = false, has_species = false;
   std::vector<std::string> columns_used;  // "time=t", "id=particle", ... (for the metadata)
   long rows = 0;
+  long untracked = 0;            // rows without a track id (a tracker's spots it linked to no track), skipped
+  bool species_by_size = false;  // species told apart by a size column (trackpy's), each row by itself
 };
 
 // --origin "X,Y" (the outlet centre, in the file's or the picture's units). Throws core::InputError.

@@ -130,7 +130,8 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
   const std::string tracks = (d / "t.csv").string(),
                     geo = " --geometry " + kScene + " --out " + (d / "out").string();
   std::ofstream(tracks) << "frame,particle,x\n0,1,0.1\n";
-  refused("import " + tracks + geo, "no column for y (looked for y; name it with --columns y=COLUMN)");
+  refused("import " + tracks + geo,
+          "no column for y (looked for y, POSITION_Y; name it with --columns y=COLUMN)");
   std::ofstream(tracks) << "t,particle,x,y\n0,1,0.1,0.5\n0,1,0.2,0.5\n0.1,1,0.1,0.5\n";
   refused("import " + tracks + geo, "particle 1 appears twice at t = 0 s");
   std::ofstream(tracks) << "t,particle,x,y\n0,1,5,0.5\n0.1,1,5,0.5\n";

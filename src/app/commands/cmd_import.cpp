@@ -73,6 +73,8 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"imported_from", o.tracks},
           {"imported_hash", io::file_hash(o.tracks)},
           {"columns", tracks.columns_used},
+          {"untracked_spots_skipped", tracks.untracked},
+          {"species_by_size", tracks.species_by_size},
           {"calibration", calibration},
           {"scale_m_per_px", units.scale},
           {"origin_x", units.origin_x},
@@ -100,7 +102,8 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
 }
 
 // What the import did, on the terminal.
-void print_import(const lab::Imported& im, const ImportCliOptions& o, const fs::path& out) {
+void print_import(const lab::Imported& im, const lab::Tracks& tracks, const ImportCliOptions& o,
+                  const fs::path& out) {
   const lab::ImportReport& r = im.report;
   std::printf("read        %ld rows, %ld frames (%s s apart", r.rows, r.frames,
               core::format_g(r.interval_median, 4).c_str());
@@ -108,6 +111,10 @@ void print_import(const lab::Imported& im, const ImportCliOptions& o, const fs::
     std::printf("; %ld intervals differ by > 1%%: %s to %s s", r.interval_changes,
                 core::format_g(r.interval_min, 4).c_str(), core::format_g(r.interval_max, 4).c_str());
   std::printf("), %ld tracks\n", r.tracks);
+  if (tracks.untracked)
+    std::printf("skipped     %ld spots without a track id (the tracker linked them to no track)\n",
+                tracks.untracked);
+  if (tracks.species_by_size) std::printf("species     told apart by the sizes in the file's size column\n");
   std::printf(
       "grains      %ld (%ld ids joined where a track broke off; %ld positions filled in gaps of <= %d "
       "frames; %ld longer gaps left empty)\n",
@@ -230,7 +237,7 @@ int import_run(ImportCliOptions o) {
   io::write_file_atomic(dir.file(io::run_file::kMetadata), metadata);
   dir.commit();
 
-  if (!o.quiet) print_import(im, o, out);
+  if (!o.quiet) print_import(im, tracks, o, out);
   return 0;
 }
 }  // namespace

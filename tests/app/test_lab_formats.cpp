@@ -1,0 +1,163 @@
+// Issue 54 (lab data, formats and mixtures): one recording's tracks written as labs' tools write them
+// (trackpy without a diameter column, a spreadsheet's semicolons with a byte-order mark, quotes and decimal
+// commas, TrackMate's spots with their description lines and untracked spots) import to the same run as
+// trackpy's own layout with a diameter: the same exits, species included, byte for byte.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "helpers.h"
+#include "io/trajectory.h"
+
+namespace fs = std::filesystem;
+using test::cli;
+using test::kScene;
+using test::slurp;
+
+namespace {
+
+constexpr double kScale = 0.004;                  // m per pixel
+constexpr double kOriginX = 400, kOriginY = 600;  // the outlet's centre, px
+
+struct Spot {
+  long frame, id;
+  double x_px, y_px, radius_px;
+};
+
+// Every grain of every frame in pixels (y down), a new id whenever a grain jumps (an exit or a re-injection):
+// what a lab's tracker sees.
+std::vector<Spot> spots_of(const fs::path& traj) {
+  io::Trajectory t(traj);
+  std::vector<Spot> out;
+  std::map<size_t, long> id_of;
+  std::map<size_t, float> last_y;
+  long next = 0;
+  for (long k = 0; k < t.size(); ++k) {
+    const core::Frame f = t.frame(k);
+    for (size_t i = 0; i < f.particles.size(); ++i) {
+      const core::Particle& p = f.particles[i];
+      if (!id_of.count(i) || std::fabs(p.y - last_y[i]) > 0.5f) id_of[i] = next++;
+      last_y[i] = p.y;
+      out.push_back({k, id_of[i], kOriginX + p.x / kScale, kOriginY - p.y / kScale, p.radius / kScale});
+    }
+  }
+  return out;
+}
+
+// Numbers as a comma-decimal spreadsheet writes them.
+std::string decimal_comma(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  std::string t = s.str();
+  for (char& c : t)
+    if (c == '.') c = ',';
+  return t;
+}
+
+void write(const fs::path& p, const std::string& header, const std::vector<Spot>& spots,
+           const std::function<std::string(const Spot&, long)>& row, const std::string& extra = "") {
+  std::ofstream out(p, std::ios::binary);
+  out << header << extra;
+  long n = 0;
+  for (const Spot& s : spots) out << row(s, n++);
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate's spots give the same run",
+          "[lab][app]") {
+  const fs::path d = test::temp_dir("lab_formats");
+  REQUIRE(
+      cli("run " + kScene + " --seed 3 --duration 6 --trajectory-fps 30 --quiet --out " + (d / "r").string())
+          .code == 0);
+  const std::vector<Spot> spots = spots_of(d / "r" / "trajectory.sstraj");
+  const std::string args = " --geometry " + kScene + " --scale 0.004 --origin 400,600 --fps 30.303030303";
+  auto import = [&](const std::string& file, const std::string& out, const std::string& more = "") {
+    const auto r = cli("import " + (d / file).string() + args + more + " --out " + (d / out).string());
+    INFO(file << ": " << r.output);
+    REQUIRE(r.code == 0);
+    return r.output;
+  };
+  // trackpy's layout with a diameter: the reference.
+  write(d / "diameter.csv", ",y,x,mass,size,ecc,signal,raw_mass,ep,frame,particle,diameter\n", spots,
+        [](const Spot& s, long n) {
+          return std::to_string(n) + "," + num(s.y_px) + "," + num(s.x_px) + ",100," +
+                 num(s.radius_px / std::sqrt(2.0)) + ",0.1,10,120,0.1," + std::to_string(s.frame) + "," +
+                 std::to_string(s.id) + "," + num(2 * s.radius_px) + "\n";
+        });
+  import("diameter.csv", "ref");
+  const std::string exits = slurp(d / "ref" / "exits.csv");
+  REQUIRE(test::count_of(exits, ",added") > 5);  // both species leave
+  REQUIRE(test::count_of(exits, ",original") > 5);
+
+  // trackpy's own columns: no diameter, `size` (a radius of gyration) a little noisy: the species by size.
+  write(d / "size.csv", ",y,x,mass,size,ecc,signal,raw_mass,ep,frame,particle\n", spots,
+        [](const Spot& s, long n) {
+          const double noise = 1 + 0.04 * std::sin(0.7 * static_cast<double>(n));
+          return std::to_string(n) + "," + num(s.y_px) + "," + num(s.x_px) + ",100," +
+                 num(noise * s.radius_px / std::sqrt(2.0)) + ",0.1,10,120,0.1," + std::to_string(s.frame) +
+                 "," + std::to_string(s.id) + "\n";
+        });
+  const std::string by_size = import("size.csv", "size");
+  CHECK_THAT(by_size, Catch::Matchers::Contains("told apart by the sizes"));
+  CHECK(slurp(d / "size" / "exits.csv") == exits);
+  CHECK(slurp(d / "size" / "metadata.toml").find("species_by_size = true") != std::string::npos);
+
+  // A spreadsheet's export: byte-order mark, quoted header, semicolons, decimal commas, CRLF.
+  write(d / "excel.csv", "\xEF\xBB\xBF\"frame\";\"particle\";\"x\";\"y\";\"diameter\"\r\n", spots,
+        [](const Spot& s, long) {
+          return std::to_string(s.frame) + ";" + std::to_string(s.id) + ";" + decimal_comma(s.x_px) + ";" +
+                 decimal_comma(s.y_px) + ";" + decimal_comma(2 * s.radius_px) + "\r\n";
+        });
+  import("excel.csv", "excel");
+  CHECK(slurp(d / "excel" / "exits.csv") == exits);
+
+  // TrackMate's spots: its header, three lines of names and units, frames as time (an image without a frame
+  // interval), and spots it linked to no track (skipped and counted).
+  const std::string header =
+      "LABEL,ID,TRACK_ID,QUALITY,POSITION_X,POSITION_Y,POSITION_Z,POSITION_T,FRAME,RADIUS,VISIBILITY\n"
+      "Label,Spot ID,Track ID,Quality,X,Y,Z,T,Frame,Radius,Visibility\n"
+      "Label,Spot ID,Track ID,Quality,X,Y,Z,T,Frame,R,Visibility\n"
+      ",,,(quality),(pixel),(pixel),(pixel),(frame),,(pixel),\n";
+  const std::string untracked =
+      "ID900001,900001,,3.0,400,300,0,2,2,16,1\nID900002,900002,,3.0,410,320,0,5,5,6,1\n";
+  write(
+      d / "trackmate.csv", header, spots,
+      [](const Spot& s, long n) {
+        return "ID" + std::to_string(n) + "," + std::to_string(n) + "," + std::to_string(s.id) + ",20," +
+               num(s.x_px) + "," + num(s.y_px) + ",0," + std::to_string(s.frame) + "," +
+               std::to_string(s.frame) + "," + num(s.radius_px) + ",1\n";
+      },
+      untracked);
+  const std::string tm = import("trackmate.csv", "trackmate");
+  CHECK_THAT(tm, Catch::Matchers::Contains("skipped     2 spots without a track id"));
+  CHECK(slurp(d / "trackmate" / "exits.csv") == exits);
+  CHECK(slurp(d / "trackmate" / "metadata.toml").find("untracked_spots_skipped = 2") != std::string::npos);
+
+  // A scene's species the sizes cannot tell apart (one species filmed): refused, naming what to give.
+  std::vector<Spot> big;
+  for (const Spot& s : spots)
+    if (s.radius_px > 10) big.push_back(s);
+  write(d / "one.csv", "frame,particle,x,y,size\n", big, [](const Spot& s, long n) {
+    return std::to_string(s.frame) + "," + std::to_string(s.id) + "," + num(s.x_px) + "," + num(s.y_px) +
+           "," + num((1 + 0.05 * std::sin(static_cast<double>(n))) * s.radius_px / std::sqrt(2.0)) + "\n";
+  });
+  const auto one = cli("import " + (d / "one.csv").string() + args + " --out " + (d / "one").string());
+  CHECK(one.code == 2);
+  CHECK_THAT(one.output, Catch::Matchers::Contains("do not fall into the scene's 2 species") &&
+                             Catch::Matchers::Contains("--columns species=COLUMN or radius=COLUMN"));
+  CHECK_FALSE(fs::exists(d / "one"));
+}
