@@ -149,7 +149,7 @@ class Importer {
         tr.points.push_back({k, d});
       }
     std::vector<Track> all;
-    for (auto& [id, tr] : by_id) all.push_back(std::move(tr));
+    for (auto& [id, tr] : by_id) split_at_jumps(std::move(tr), all);
     rep_.tracks = static_cast<long>(all.size());
     std::vector<std::vector<int>> starting(static_cast<size_t>(nf_));
     for (int i = 0; i < static_cast<int>(all.size()); ++i)
@@ -172,6 +172,27 @@ class Importer {
       if (!tr.joined) grains_.push_back(std::move(tr));
     n_ = static_cast<int>(grains_.size());
     rep_.grains = n_;
+  }
+
+  // A track that jumps farther than a grain can move between two of its frames is two grains' (an id kept
+  // across an exit and the re-injection at the top, or an id used again elsewhere): split there. A grain
+  // moves at most four of its diameters, or twice the speed of a fall from the container's top, between them.
+  void split_at_jumps(Track tr, std::vector<Track>& out) {
+    const double fastest = 2 * std::sqrt(2 * core::length(model_.setup.gravity) * geo_.total_height);
+    Track piece{tr.id, {}, false};
+    for (const Point& p : tr.points) {
+      if (!piece.points.empty()) {
+        const Point& q = piece.points.back();
+        const double reach = std::max(8 * p.d.r, fastest * (t_[p.frame] - t_[q.frame]));
+        if (std::hypot(p.d.x - q.d.x, p.d.y - q.d.y) > reach) {
+          out.push_back(std::move(piece));
+          piece = Track{tr.id, {}, false};
+          ++rep_.split;
+        }
+      }
+      piece.points.push_back(p);
+    }
+    out.push_back(std::move(piece));
   }
 
   // The nearest track of the same species starting within max_gap frames after track ia ends, within

@@ -40,6 +40,7 @@ struct ImportOptions {
 struct ImportReport {
   long frames = 0, rows = 0, tracks = 0, grains = 0;
   long joined = 0;            // tracks joined to an earlier one (ids that changed)
+  long split = 0;             // tracks split where they jumped farther than a grain moves (ids used again)
   long interpolated = 0;      // positions filled inside short gaps
   long long_gaps = 0;         // gaps longer than max_gap (the grain parked meanwhile)
   long exits_below = 0;       // exits seen below the outlet line

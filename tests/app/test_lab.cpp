@@ -131,7 +131,7 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
                     geo = " --geometry " + kScene + " --out " + (d / "out").string();
   std::ofstream(tracks) << "frame,particle,x\n0,1,0.1\n";
   refused("import " + tracks + geo,
-          "no column for y (looked for y, POSITION_Y; name it with --columns y=COLUMN)");
+          "no column for y (looked for y, y_m, POSITION_Y; name it with --columns y=COLUMN)");
   std::ofstream(tracks) << "t,particle,x,y\n0,1,0.1,0.5\n0,1,0.2,0.5\n0.1,1,0.1,0.5\n";
   refused("import " + tracks + geo, "particle 1 appears twice at t = 0 s");
   std::ofstream(tracks) << "t,particle,x,y\n0,1,5,0.5\n0.1,1,5,0.5\n";

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "helpers.h"
@@ -30,8 +31,9 @@ struct Spot {
 };
 
 // Every grain of every frame in pixels (y down), a new id whenever a grain jumps (an exit or a re-injection):
-// what a lab's tracker sees.
-std::vector<Spot> spots_of(const fs::path& traj) {
+// what a lab's tracker sees; with keep_ids, the grain's own index throughout (what a tracker that keeps ids
+// across re-injection gives, and siloscope's own export).
+std::vector<Spot> spots_of(const fs::path& traj, bool keep_ids = false) {
   io::Trajectory t(traj);
   std::vector<Spot> out;
   std::map<size_t, long> id_of;
@@ -43,7 +45,8 @@ std::vector<Spot> spots_of(const fs::path& traj) {
       const core::Particle& p = f.particles[i];
       if (!id_of.count(i) || std::fabs(p.y - last_y[i]) > 0.5f) id_of[i] = next++;
       last_y[i] = p.y;
-      out.push_back({k, id_of[i], kOriginX + p.x / kScale, kOriginY - p.y / kScale, p.radius / kScale});
+      out.push_back({k, keep_ids ? static_cast<long>(i) : id_of[i], kOriginX + p.x / kScale,
+                     kOriginY - p.y / kScale, p.radius / kScale});
     }
   }
   return out;
@@ -146,6 +149,25 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
   CHECK_THAT(tm, Catch::Matchers::Contains("skipped     2 spots without a track id"));
   CHECK(slurp(d / "trackmate" / "exits.csv") == exits);
   CHECK(slurp(d / "trackmate" / "metadata.toml").find("untracked_spots_skipped = 2") != std::string::npos);
+
+  // Ids kept across the exit and the re-injection at the top (a jump of metres in one frame): each track is
+  // split where it jumps, so the exits and clogs are the reference's (grain numbers aside).
+  write(d / "kept.csv", "frame,particle,x,y,diameter\n", spots_of(d / "r" / "trajectory.sstraj", true),
+        [](const Spot& s, long) {
+          return std::to_string(s.frame) + "," + std::to_string(s.id) + "," + num(s.x_px) + "," +
+                 num(s.y_px) + "," + num(2 * s.radius_px) + "\n";
+        });
+  const std::string kept = import("kept.csv", "kept");
+  CHECK_THAT(kept, !Catch::Matchers::Contains(" 0 split where one jumped"));
+  auto times_and_species = [](const std::string& csv) {
+    std::multiset<std::string> out;
+    std::istringstream in(csv);
+    std::string line;
+    while (std::getline(in, line)) out.insert(line.substr(0, line.find(',')) + line.substr(line.rfind(',')));
+    return out;
+  };
+  CHECK(times_and_species(slurp(d / "kept" / "exits.csv")) == times_and_species(exits));
+  CHECK(slurp(d / "kept" / "clogs.csv") == slurp(d / "ref" / "clogs.csv"));
 
   // A scene's species the sizes cannot tell apart (one species filmed): refused, naming what to give.
   std::vector<Spot> big;

@@ -87,6 +87,7 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"tracks", r.tracks},
           {"grains", r.grains},
           {"ids_joined", r.joined},
+          {"ids_split_at_jumps", r.split},
           {"positions_interpolated", r.interpolated},
           {"gaps_too_long", r.long_gaps},
           {"exits_seen_below_outlet", r.exits_below},
@@ -116,9 +117,9 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
                 tracks.untracked);
   if (tracks.species_by_size) std::printf("species     told apart by the sizes in the file's size column\n");
   std::printf(
-      "grains      %ld (%ld ids joined where a track broke off; %ld positions filled in gaps of <= %d "
-      "frames; %ld longer gaps left empty)\n",
-      r.grains, r.joined, r.interpolated, o.import.max_gap, r.long_gaps);
+      "grains      %ld (%ld ids joined where a track broke off, %ld split where one jumped; %ld positions "
+      "filled in gaps of <= %d frames; %ld longer gaps left empty)\n",
+      r.grains, r.joined, r.split, r.interpolated, o.import.max_gap, r.long_gaps);
   std::printf("field       %ld tracks entered after the first frame, %ld left it away from the outlet\n",
               r.entered, r.left_view);
   std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
