@@ -359,6 +359,7 @@ class Importer {
     for (int j = k - 1; j >= 0 && t_[j] >= st.formed - 1e-9; --j) {
       core::Frame& f = out_.frames[static_cast<size_t>(j)];
       if (f.clog_open) break;
+      if (!std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return present_[j][g]; })) continue;
       f.arch = st.arch;
       f.arch_forming = true;
       f.clog_number = st.number;
@@ -411,7 +412,10 @@ class Importer {
       } else {
         rep_.frames_flowing_with_arch += !arch.empty();
       }
-      if (st.open && !st.arch.empty()) held_arch = st.arch, held_frame = k;
+      // An arch is of grains in the frame: one whose member is not seen (its track ended without an exit,
+      // or a gap) is neither drawn nor recorded at that frame; the clog keeps the arch as last seen whole.
+      const bool whole = std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return present_[k][g]; });
+      if (st.open && !st.arch.empty() && whole) held_arch = st.arch, held_frame = k;
       if (!ev.clogs_opened.empty()) show_forming(k, st);
       core::Frame& f = out_.frames[k];
       f.t = t_[k];
@@ -421,7 +425,7 @@ class Importer {
       f.clog_number = st.number;
       f.clog_start = st.start;
       f.clog_arrested = st.arrested;
-      if (st.open) f.arch = st.arch;
+      if (st.open && whole) f.arch = st.arch;
       f.rule_due_in = INFINITY;
       f.since_last_exit = tracker.since_last(t_[k]);
       f.exits = exits;

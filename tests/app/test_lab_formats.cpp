@@ -169,6 +169,47 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
   CHECK(times_and_species(slurp(d / "kept" / "exits.csv")) == times_and_species(exits));
   CHECK(slurp(d / "kept" / "clogs.csv") == slurp(d / "ref" / "clogs.csv"));
 
+  // An arch member unseen for a third of a second inside a clog (occluded: a gap longer than --max-gap): no
+  // frame's arch has a member that is not in the frame, and the clog's arch is the one last seen whole.
+  {
+    std::istringstream arches(slurp(d / "ref" / "clog_arches.csv"));
+    std::string line;
+    std::getline(arches, line);
+    REQUIRE(std::getline(arches, line));
+    std::vector<std::string> f;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+    const long member = std::stol(f[4]);                            // the first of its track ids
+    const long seen = std::lround(std::stod(f[1]) * 30.303030303);  // the frame the arch was last seen whole
+    write(d / "occluded.csv", ",y,x,mass,size,ecc,signal,raw_mass,ep,frame,particle,diameter\n", spots,
+          [&](const Spot& s, long n) {
+            if (s.id == member && s.frame > seen - 15 && s.frame <= seen - 5) return std::string();
+            return std::to_string(n) + "," + num(s.y_px) + "," + num(s.x_px) + ",100,3,0.1,10,120,0.1," +
+                   std::to_string(s.frame) + "," + std::to_string(s.id) + "," + num(2 * s.radius_px) + "\n";
+          });
+    import("occluded.csv", "occluded");
+    io::Trajectory t(d / "occluded" / "trajectory.sstraj");
+    long with_arch = 0;
+    for (long k = 0; k < t.size(); ++k) {
+      const core::Frame fr = t.frame(k);
+      with_arch += !fr.arch.empty();
+      for (int g : fr.arch) {
+        INFO("frame " << k << ", arch member " << g);
+        CHECK(fr.particles[static_cast<size_t>(g)].y > -0.5f);
+      }
+    }
+    CHECK(with_arch > 30);
+    std::istringstream out(slurp(d / "occluded" / "clog_arches.csv"));
+    std::getline(out, line);
+    while (std::getline(out, line)) {
+      std::vector<std::string> c;
+      std::istringstream cs(line);
+      for (std::string cell; std::getline(cs, cell, ',');) c.push_back(cell);
+      INFO(line);
+      CHECK(std::stod(c[6]) < 1.0);  // span_m: across the outlet, not to a grain parked out of view
+    }
+  }
+
   // A scene's species the sizes cannot tell apart (one species filmed): refused, naming what to give.
   std::vector<Spot> big;
   for (const Spot& s : spots)
