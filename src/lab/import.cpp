@@ -10,6 +10,7 @@
 
 #include "core/clog.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/interrupt.h"
 #include "core/median.h"
 
@@ -99,6 +100,7 @@ class Importer {
     grain_paths();
     park_unseen();
     find_exits();
+    check_calibration();
     clogs_and_arches();
     return std::move(out_);
   }
@@ -307,6 +309,56 @@ class Importer {
       }
       if (exit_frame >= 0) exits_at_[static_cast<size_t>(exit_frame)].push_back(g);
     }
+  }
+
+  // A calibration that cannot be the experiment's is refused rather than imported: most grains leaving in one
+  // frame (a wrong --y-up or --origin puts them below the outlet), or grains overlapping or floating apart (a
+  // wrong --scale): in a clogging hopper neighbours touch, so each grain's nearest neighbour stands about the
+  // sum of their radii away (the median over the first frames, between half and three times it).
+  void check_calibration() const {
+    const std::string fix =
+        ": check --scale, --origin and --y-up (or the calibration detect wrote beside the tracks)";
+    for (int k = 0; k < nf_; ++k) {
+      long seen = 0;
+      for (int g = 0; g < n_; ++g) seen += present_[k][g];
+      const long leaving = static_cast<long>(exits_at_[k].size());
+      if (leaving > 10 && leaving > seen / 4)
+        throw core::InputError(
+            tracks_.source + ": " + std::to_string(leaving) + " of " + std::to_string(seen) +
+            " grains leave through the outlet at once (at t = " + core::format_g(t_[k], 4) +
+            " s); a discharge lets a few through a frame" + fix);
+    }
+    if (tracks_.has_radius && n_ > 0) {
+      std::vector<double> size;
+      for (int g = 0; g < n_; ++g)
+        size.push_back(
+            out_.radius[g] /
+            model_.setup.species[static_cast<size_t>(core::species_index(out_.species[g]))].radius);
+      const double m = core::median(size);
+      if (m < 0.5 || m > 2)
+        throw core::InputError(tracks_.source + ": the grains measure " + core::format_g(m, 3) +
+                               " times their species' radius in the geometry scene (the median)" + fix);
+    }
+    std::vector<double> ratio;
+    for (int k = 0; k < std::min(nf_, 5); ++k)
+      for (int g = 0; g < n_; ++g) {
+        if (!present_[k][g]) continue;
+        double nearest = INFINITY;
+        for (int h = 0; h < n_; ++h)
+          if (h != g && present_[k][h])
+            nearest =
+                std::min(nearest, core::length(pos_[k][g] - pos_[k][h]) / (out_.radius[g] + out_.radius[h]));
+        if (std::isfinite(nearest)) ratio.push_back(nearest);
+      }
+    if (ratio.size() < 10) return;
+    const double m = core::median(ratio);
+    if (m < 0.5 || m > 3)
+      throw core::InputError(
+          tracks_.source + ": grains " + (m < 0.5 ? "overlap" : "float apart") +
+          ": a grain's nearest neighbour stands " + core::format_g(m, 3) +
+          " times the sum of their radii away (median over the first frames; touching grains "
+          "give about 1)" +
+          fix);
   }
 
   // At rest at frame k: the arch and the grains no farther from the outlet's centre held still over

@@ -210,6 +210,27 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
     }
   }
 
+  // Calibrations that cannot be the experiment's: y the wrong way up (every grain below the outlet), a scale
+  // ten times too small with sizes (grains a tenth of the scene's) and without (grains overlapping).
+  auto refused = [&](const std::string& file, const std::string& more, const std::string& says) {
+    const auto r = cli("import " + (d / file).string() + args + more + " --out " + (d / "bad").string());
+    INFO(file << more << ": " << r.output);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output,
+               Catch::Matchers::Contains(says) && Catch::Matchers::Contains("check --scale, --origin"));
+    CHECK_FALSE(fs::exists(d / "bad"));
+  };
+  refused("diameter.csv", " --y-up", "grains leave through the outlet at once");
+  const std::string small = " --geometry " + kScene + " --scale 0.0004 --origin 400,600 --fps 30.303030303";
+  for (const char* file : {"diameter.csv", "size.csv"}) {
+    const auto r = cli("import " + (d / file).string() + small + " --out " + (d / "bad").string());
+    INFO(file << ": " << r.output);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Matchers::Contains(std::string(file) == "diameter.csv"
+                                                       ? "times their species' radius in the geometry scene"
+                                                       : "grains overlap"));
+  }
+
   // A scene's species the sizes cannot tell apart (one species filmed): refused, naming what to give.
   std::vector<Spot> big;
   for (const Spot& s : spots)
