@@ -98,6 +98,7 @@ class Importer {
     join_tracks();
     grain_sizes();
     grain_paths();
+    measure_noise();
     park_unseen();
     find_exits();
     check_calibration();
@@ -250,6 +251,25 @@ class Importer {
     }
   }
 
+  // The positions' noise, m: from the second differences across the grains' detections in three frames in a
+  // row, x alone (gravity accelerates along y). For noise sigma and grains at rest or moving steadily they
+  // are normal with deviation sqrt(6) sigma; the median of their size is robust to the collisions and falls
+  // of the rest. Unless arrest_shift was given, the arrest check then asks no grain to hold stiller than 6
+  // sigma (two positions' difference is normal with deviation sqrt(2) sigma per axis, and each of some
+  // hundred grains near the outlet must pass: 6 sigma is its 1 - 1e-4 quantile).
+  void measure_noise() {
+    std::vector<double> dd;
+    for (const Track& tr : grains_)
+      for (size_t k = 1; k + 1 < tr.points.size(); ++k) {
+        const Point &a = tr.points[k - 1], &b = tr.points[k], &c = tr.points[k + 1];
+        if (b.frame - a.frame == 1 && c.frame - b.frame == 1)
+          dd.push_back(std::fabs(a.d.x - 2 * b.d.x + c.d.x));
+      }
+    if (dd.empty()) return;
+    rep_.noise = core::median(dd) / (0.6745 * std::sqrt(6.0));
+    if (!opt_.arrest_shift_given) rep_.arrest_floor = 6 * rep_.noise;
+  }
+
   void fill_gap(int g, const Point& p, const Point& q) {
     const int missing = q.frame - p.frame - 1;
     if (missing > opt_.max_gap) {
@@ -374,7 +394,7 @@ class Importer {
       if (!present_[k][g] || core::length(pos_[k][g]) > reach) continue;
       if (!present_[j][g]) return false;
       const core::Vec2 d = pos_[k][g] - pos_[j][g];
-      const double limit = scene.arrest_shift * out_.radius[g];
+      const double limit = std::max(scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
       if (core::dot(d, d) > limit * limit) return false;
     }
     return true;

@@ -34,19 +34,24 @@ struct ImportOptions {
   double contact_tolerance = 0.1;  // gap, as a fraction of the smaller diameter, that still counts as contact
   int max_gap = 3;                 // frames
   double join_distance = 0.5;      // diameters
+  // The scene's arrest_shift as given (--set arrest_shift=...): taken as it is. Otherwise the tracks' own
+  // noise sets a floor under it (ImportReport::arrest_floor).
+  bool arrest_shift_given = false;
 };
 
 // What the import did with the file, for the metadata and the terminal.
 struct ImportReport {
   long frames = 0, rows = 0, tracks = 0, grains = 0;
-  long joined = 0;            // tracks joined to an earlier one (ids that changed)
-  long split = 0;             // tracks split where they jumped farther than a grain moves (ids used again)
-  long interpolated = 0;      // positions filled inside short gaps
-  long long_gaps = 0;         // gaps longer than max_gap (the grain parked meanwhile)
-  long exits_below = 0;       // exits seen below the outlet line
-  long exits_lost = 0;        // exits inferred from a track ending inside the outlet
-  long left_view = 0;         // tracks ending elsewhere before the last frame (left the field of view)
-  long entered = 0;           // tracks starting after the first frame (entered the field of view)
+  long joined = 0;          // tracks joined to an earlier one (ids that changed)
+  double noise = 0;         // m: the positions' noise, measured from the tracks (see Importer::measure_noise)
+  double arrest_floor = 0;  // m: the smallest shift the arrest check asks of every grain (6 x noise)
+  long split = 0;           // tracks split where they jumped farther than a grain moves (ids used again)
+  long interpolated = 0;    // positions filled inside short gaps
+  long long_gaps = 0;       // gaps longer than max_gap (the grain parked meanwhile)
+  long exits_below = 0;     // exits seen below the outlet line
+  long exits_lost = 0;      // exits inferred from a track ending inside the outlet
+  long left_view = 0;       // tracks ending elsewhere before the last frame (left the field of view)
+  long entered = 0;         // tracks starting after the first frame (entered the field of view)
   long interval_changes = 0;  // frame intervals more than 1% from the median (a changed frame rate)
   double interval_median = 0, interval_min = 0, interval_max = 0;  // s
   double time_offset = 0;             // s: the file's time of the first frame (the run starts there at t = 0)

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -208,6 +209,47 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
       INFO(line);
       CHECK(std::stod(c[6]) < 1.0);  // span_m: across the outlet, not to a grain parked out of view
     }
+  }
+
+  // Positions with noise of 0.05 of the large grains' diameter (a lab's detection): the noise is measured
+  // from the tracks and sets the arrest check's floor, so the clogs are marked arrested as the exact tracks'
+  // are.
+  {
+    std::mt19937_64 rng(11);
+    auto normal = [&] {  // Box-Muller: the same numbers with any standard library
+      const double u = (static_cast<double>(rng() >> 11) + 0.5) / 9007199254740992.0;
+      const double v = static_cast<double>(rng() >> 11) / 9007199254740992.0;
+      return std::sqrt(-2 * std::log(u)) * std::cos(2 * M_PI * v);
+    };
+    const double sigma_px = 0.05 * 0.13 / kScale;  // 0.05 of the original grains' 0.13 m
+    std::vector<Spot> noisy = spots;
+    for (Spot& s : noisy) s.x_px += sigma_px * normal(), s.y_px += sigma_px * normal();
+    write(d / "noisy.csv", "frame,particle,x,y,diameter\n", noisy, [](const Spot& s, long) {
+      return std::to_string(s.frame) + "," + std::to_string(s.id) + "," + num(s.x_px) + "," + num(s.y_px) +
+             "," + num(2 * s.radius_px) + "\n";
+    });
+    import("noisy.csv", "noisy");
+    const std::string meta = slurp(d / "noisy" / "metadata.toml");
+    const size_t at = meta.find("position_noise_m = ");
+    REQUIRE(at != std::string::npos);
+    const double noise = std::stod(meta.substr(at + 19));
+    CHECK(noise > 0.8 * 0.05 * 0.13);
+    CHECK(noise < 1.25 * 0.05 * 0.13);
+    auto arrested = [](const std::string& csv) {
+      std::string flags;
+      std::istringstream in(csv);
+      std::string line;
+      while (std::getline(in, line)) flags += line.substr(line.rfind(',') + 1) + " ";
+      return flags;
+    };
+    const std::string truth = arrested(slurp(d / "ref" / "clogs.csv"));
+    INFO("arrested flags, exact tracks: " << truth);
+    CHECK(truth.find(" 1 ") != std::string::npos);
+    CHECK(arrested(slurp(d / "noisy" / "clogs.csv")) == truth);
+    // arrest_shift given is taken as it is: without the floor the noise hides the arrest.
+    import("noisy.csv", "noisy-given", " --set arrest_shift=0.1");
+    CHECK(slurp(d / "noisy-given" / "metadata.toml").find("arrest_floor_m = 0.0\n") != std::string::npos);
+    CHECK(arrested(slurp(d / "noisy-given" / "clogs.csv")) != truth);
   }
 
   // Calibrations that cannot be the experiment's: y the wrong way up (every grain below the outlet), a scale

@@ -2,6 +2,7 @@
 // run directory like a recording's (trajectory, exits, clogs, the clogs' arches with their descriptors,
 // summary, metadata, manifest), its clogs and arches found by the simulation's own rules from positions alone
 // (lab/import.h). Every command that reads a recording reads it: inspect, export, gallery, analyze, timeline.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -86,6 +87,8 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"rows", r.rows},
           {"tracks", r.tracks},
           {"grains", r.grains},
+          {"position_noise_m", r.noise},
+          {"arrest_floor_m", r.arrest_floor},
           {"ids_joined", r.joined},
           {"ids_split_at_jumps", r.split},
           {"positions_interpolated", r.interpolated},
@@ -124,6 +127,14 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
               r.entered, r.left_view);
   std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
               im.events.exits.size(), r.exits_below, r.exits_lost);
+  std::printf(
+      "noise       %s m in the positions (%s of the largest grain's diameter)",
+      core::format_g(r.noise, 3).c_str(),
+      core::format_g(r.noise / (2 * *std::max_element(im.radius.begin(), im.radius.end())), 3).c_str());
+  if (r.arrest_floor > 0)
+    std::printf("; arrested where no grain near the outlet moves %s m or more",
+                core::format_g(r.arrest_floor, 3).c_str());
+  std::printf("\n");
   std::printf(
       "clogs       %zu (%zu with an arch; arches in %ld of %ld frames, contact gap <= %s of a diameter)\n",
       im.events.clogs.size(), im.clog_arches.size(), r.frames_with_arch, r.frames,
@@ -193,7 +204,11 @@ int import_run(ImportCliOptions o) {
                                               geometry.setup, geometry.setup.geo);
   if (tracks.frames.size() < 2)
     throw core::InputError(o.tracks + ": one frame only; a run needs at least two");
-  lab::Imported im = lab::import_tracks(tracks, geometry, o.import);
+  lab::ImportOptions how = o.import;
+  how.arrest_shift_given = std::any_of(o.overrides.begin(), o.overrides.end(), [](const std::string& kv) {
+    return kv.rfind("arrest_shift=", 0) == 0;
+  });
+  lab::Imported im = lab::import_tracks(tracks, geometry, how);
   const lab::ImportReport& r = im.report;
   // The run's scene: the geometry's, lasting as long as the film (what every reader of the run takes as its
   // duration) and without the clog rule (nothing removes an arch in a lab).
