@@ -93,7 +93,7 @@ Facts derived_facts(const core::Model& model) {
 
 std::string metadata_toml(const core::Model& model, const RunInfo& info) {
   const core::Scene& scene = model.scene;
-  std::string s = "# siloscope run metadata: `siloscope run THIS_FILE` repeats the run.\n[siloscope]\n";
+  std::string s = std::string(kMetadataFirstLine) + "\n[siloscope]\n";
   s += "version = " + quoted(SILOSCOPE_VERSION) + "\n";
   s += "git = " + quoted(SILOSCOPE_GIT) + "\n";
   s += "build_type = " + quoted(SILOSCOPE_BUILD_TYPE) + "\n";

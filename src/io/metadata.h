@@ -59,6 +59,9 @@ RunRecord run_record_of(const std::string& text, const std::string& path);
 
 std::string version_string();  // "0.1.0 (git abc1234, Release)"
 std::string metadata_toml(const core::Model& model, const RunInfo& info);
+// The first line of every metadata_toml text (how a file siloscope wrote is told from another).
+inline constexpr const char* kMetadataFirstLine =
+    "# siloscope run metadata: `siloscope run THIS_FILE` repeats the run.";
 
 // Facts derived from the scene (counts, angles, the dipole's safe time step, ...), as [derived].
 Facts derived_facts(const core::Model& model);

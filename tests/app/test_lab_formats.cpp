@@ -287,3 +287,64 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
                              Catch::Matchers::Contains("--columns species=COLUMN or radius=COLUMN"));
   CHECK_FALSE(fs::exists(d / "one"));
 }
+
+TEST_CASE(
+    "detect: the obstacle is no grain, a dark background is found by itself, --force replaces its own files",
+    "[lab][app]") {
+  const fs::path d = test::temp_dir("detect_films");
+  const std::string film =
+      " --seed 3 --duration 1 --camera window:-1.4,-0.4,1.4,1.6 --size 960x540 --overlay none "
+      "--arch-halo off --quiet --out ";
+  const std::string obstacle = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/silo-obstacle.toml";
+  REQUIRE(cli("record " + obstacle + film + (d / "ob").string()).code == 0);
+  const auto ob = cli("detect " + (d / "ob.mp4").string() + " --out " + (d / "ob.csv").string());
+  INFO(ob.output);
+  REQUIRE(ob.code == 0);
+  CHECK_THAT(ob.output, Catch::Matchers::Contains("dark on a light background"));
+  // No detection's centre inside the obstacle (a disk of 0.35 m, its centre 0.525 m above the outlet's).
+  const std::string meta = slurp(d / "ob.meta.toml");
+  auto value = [&](const std::string& key) {
+    return std::stod(meta.substr(meta.find(key + " = ") + key.size() + 3));
+  };
+  const double scale = value("scale_m_per_px"), ox = value("origin_x_px"), oy = value("origin_y_px");
+  std::istringstream rows(slurp(d / "ob.csv"));
+  std::string line;
+  std::getline(rows, line);
+  long n = 0, inside = 0;
+  while (std::getline(rows, line)) {
+    std::vector<std::string> c;
+    std::istringstream cs(line);
+    for (std::string cell; std::getline(cs, cell, ',');) c.push_back(cell);
+    const double x = (std::stod(c[2]) - ox) * scale, y = (oy - std::stod(c[3])) * scale;
+    inside += std::hypot(x, y - 0.525) < 0.175;
+    ++n;
+  }
+  CHECK(n > 30 * 150);  // about 180 grains in view in each of 31 frames
+  CHECK(inside == 0);
+  // Its own tracks and their metadata are replaced with --force (the metadata's first line was mistaken for a
+  // user's); a file of the user's in the metadata's place is not.
+  CHECK(cli("detect " + (d / "ob.mp4").string() + " --out " + (d / "ob.csv").string()).code == 2);
+  CHECK(cli("detect " + (d / "ob.mp4").string() + " --force --out " + (d / "ob.csv").string()).code == 0);
+  std::ofstream(d / "mine.meta.toml") << "# my notes\n";
+  const auto mine = cli("detect " + (d / "ob.mp4").string() + " --force --out " + (d / "mine.csv").string());
+  CHECK(mine.code == 2);
+  CHECK(slurp(d / "mine.meta.toml") == "# my notes\n");
+  CHECK_FALSE(fs::exists(d / "mine.csv"));
+
+  // The same film on a dark background: bright disks, found without --bright, as many as on white.
+  REQUIRE(cli("record " + kScene + film + (d / "light").string()).code == 0);
+  REQUIRE(cli("record " + kScene + film + (d / "dark").string() + " --background dark").code == 0);
+  auto disks = [&](const std::string& name, const std::string& says) {
+    const auto r =
+        cli("detect " + (d / (name + ".mp4")).string() + " --out " + (d / (name + ".csv")).string());
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.output, Catch::Matchers::Contains(says));
+    return test::count_of(slurp(d / (name + ".csv")), "\n") - 1;
+  };
+  const long light = disks("light", "dark on a light background");
+  const long dark = disks("dark", "bright on a dark background");
+  INFO("disks found: light " << light << ", dark " << dark);
+  CHECK(light > 30 * 80);
+  CHECK(std::abs(dark - light) < 0.05 * light);
+}

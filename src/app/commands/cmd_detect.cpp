@@ -89,7 +89,7 @@ int detect(const DetectCliOptions& o) {
   job.detect.edge_threshold = o.edge;
   job.max_step = o.max_step;
   job.memory = o.memory;
-  job.bright = o.bright;
+  job.bright = job.bright_given = o.bright;
   if (!o.frames.empty()) {
     const size_t colon = o.frames.find(':');
     char* e = nullptr;
@@ -107,7 +107,7 @@ int detect(const DetectCliOptions& o) {
   io::OutputLock lock(out);
   io::check_destination(out, o.force, "tracks", io::OutputKind::Csv, kHeader);
   // The sidecar is an output too: never over a file of the user's, replaced by --force only as written.
-  io::check_destination(meta_out, o.force, "tracks' metadata", io::OutputKind::Csv, "# siloscope");
+  io::check_destination(meta_out, o.force, "tracks' metadata", io::OutputKind::Csv, io::kMetadataFirstLine);
 
   Progress progress("detect", source.count() > 0 ? static_cast<double>(source.count()) : 1.0, !o.quiet);
   job.progress = [&](long k) { progress.update(static_cast<double>(k + 1)); };
@@ -130,7 +130,8 @@ int detect(const DetectCliOptions& o) {
                 {"edge_threshold", o.edge},
                 {"max_step_radii", o.max_step},
                 {"memory_frames", static_cast<long>(o.memory)},
-                {"bright", o.bright}};
+                {"bright", st.bright},
+                {"bright_found_from_first_frame", !o.bright}};
   std::string meta = io::metadata_toml(model, info);
   meta += "\n[calibration]\nfrom = \"" + job.cal.from +
           "\"\nscale_m_per_px = " + core::format_toml_float(job.cal.scale, 12) +
@@ -139,9 +140,14 @@ int detect(const DetectCliOptions& o) {
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
+  if (!o.quiet && !o.bright)
+    std::printf(
+        "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
+        st.bright ? "bright" : "dark", st.bright ? "dark" : "light", st.first_as_dark, st.first_as_bright);
   if (!o.quiet)
     std::printf(
-        "%ld frames, %ld disks (%.1f a frame; %ld outside the container dropped), %ld tracks, %.3f s a frame "
+        "%ld frames, %ld disks (%.1f a frame; %ld outside the container or inside the obstacle dropped), %ld "
+        "tracks, %.3f s a frame "
         "-> %s\n",
         st.frames, st.detections, static_cast<double>(st.detections) / std::max(1L, st.frames),
         st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
@@ -174,7 +180,9 @@ void define_detect_command(CLI::App& command, Action& action) {
                   "largest move between frames beyond the predicted one, in radii of the largest grains, for "
                   "linking (default 0.8)");
   cmd->add_option("--memory", o->memory, "frames a disk may go unseen and keep its id (default 2)");
-  cmd->add_flag("--bright", o->bright, "bright disks on a dark background");
+  cmd->add_flag("--bright", o->bright,
+                "bright disks on a dark background (default: found from the first frame, by which way round "
+                "clearly more disks are found)");
   cmd->add_flag("--force", o->force, "replace tracks siloscope wrote");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &action] { action = [o] { return detect(*o); }; });

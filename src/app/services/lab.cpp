@@ -126,22 +126,34 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
          {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
       cv::line(detect.ignore, px(geo.walls[static_cast<size_t>(w)].a),
                px(geo.walls[static_cast<size_t>(w)].b), 255, thick);
-    if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
-      cv::circle(detect.ignore, px(geo.obstacle.centre),
-                 static_cast<int>(std::lround(0.5 * geo.obstacle.width / job.cal.scale)), 255, thick);
-    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
-      cv::rectangle(detect.ignore,
-                    px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
-                        geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
-                    px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
-                        geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
-                    255, thick);
+    // The obstacle whole, its rim and inside: no grain is there, and its own shading is no disk's.
+    for (int fill : {thick, -1})
+      if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
+        cv::circle(detect.ignore, px(geo.obstacle.centre),
+                   static_cast<int>(std::lround(0.5 * geo.obstacle.width / job.cal.scale)), 255, fill);
+      else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
+        cv::rectangle(detect.ignore,
+                      px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
+                          geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
+                      px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
+                          geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
+                      255, fill);
   }
+  bool bright = job.bright;
+  bool polarity_known = job.bright_given;
   for (long k = 0; source.next(frame); ++k) {
     if (k < job.first) continue;
     if (job.last >= 0 && k > job.last) break;
     cv::Mat picture = job.camera ? job.camera(frame, k) : frame;
-    if (job.bright) cv::bitwise_not(picture, picture);
+    if (!polarity_known) {
+      cv::Mat inverted;
+      cv::bitwise_not(picture, inverted);
+      stats.first_as_dark = static_cast<long>(vision::detect_disks(picture, detect).size());
+      stats.first_as_bright = static_cast<long>(vision::detect_disks(inverted, detect).size());
+      bright = stats.first_as_bright >= 10 && 10 * stats.first_as_bright > 11 * stats.first_as_dark;
+      polarity_known = true;
+    }
+    if (bright) cv::bitwise_not(picture, picture);
     const auto t0 = Clock::now();
     std::vector<vision::Circle> found = vision::detect_disks(picture, detect);
     std::vector<vision::Circle> kept;
@@ -149,8 +161,10 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
       if (job.drop > 0 && u(rng) < job.drop) continue;
       const core::Vec2 p{(c.x - job.cal.origin_x) * job.cal.scale, (job.cal.origin_y - c.y) * job.cal.scale};
       const double slack = 2 * c.r * job.cal.scale;
+      // A centre inside the obstacle (by more than half a radius) is its own shading, not a grain.
+      const bool in_obstacle = geo.obstacle.present() && geo.obstacle.gap(p) < -0.5 * c.r * job.cal.scale;
       if (p.y > geo.total_height + slack || p.x < geo.x_left - slack || p.x > geo.x_right + slack ||
-          (p.y >= slack && geo.side_clearance(p, 0) < -slack)) {
+          (p.y >= slack && geo.side_clearance(p, 0) < -slack) || in_obstacle) {
         ++stats.dropped_outside;
         continue;
       }
@@ -170,6 +184,7 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
     if (job.progress) job.progress(k);
   }
   stats.tracks = linker.tracks();
+  stats.bright = bright;
   return csv;
 }
 

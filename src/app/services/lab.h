@@ -35,7 +35,10 @@ Calibration two_point_calibration(const std::string& text, const std::string& op
 
 struct DetectStats {
   long frames = 0, detections = 0, dropped_outside = 0, tracks = 0;
-  double seconds = 0;  // wall time of detection and linking (not decoding, not the camera's effects)
+  bool bright = false;  // the disks were bright on a dark background (given or found)
+  long first_as_dark = 0,
+       first_as_bright = 0;  // the first frame's disks either way, when the polarity was found
+  double seconds = 0;        // wall time of detection and linking (not decoding, not the camera's effects)
 };
 
 struct DetectJob {
@@ -45,6 +48,8 @@ struct DetectJob {
   double max_step = 0.8;      // radii
   int memory = 2;             // frames
   bool bright = false;        // bright disks on a dark background (inverted before detection)
+  bool bright_given = false;  // `bright` as given; else found from the first frame (the polarity with clearly
+                              // more disks: at least 10, and a tenth more)
   // For the round trip: what a camera adds to each frame (null: nothing), and detections dropped at random.
   std::function<cv::Mat(const cv::Mat&, long)> camera;
   double drop = 0;
@@ -53,7 +58,7 @@ struct DetectJob {
 };
 
 // Every frame of `source` detected and linked; the CSV's text. Disks whose centre lies outside the container
-// (by more than a diameter; below the outlet is inside) are dropped and counted.
+// (by more than a diameter; below the outlet is inside) or inside the obstacle are dropped and counted.
 std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,
                           DetectStats& stats);
 
