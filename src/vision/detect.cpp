@@ -247,7 +247,19 @@ struct FrameSource::Impl {
   std::vector<std::filesystem::path> files;
   size_t next = 0;
   std::string path;
+  // A multi-page TIFF: its pages read a few at a time (a stack can be larger than memory).
+  size_t pages = 0;
+  std::vector<cv::Mat> chunk;
+  size_t chunk_start = 0;
 };
+
+namespace {
+bool tiff_name(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext == ".tif" || ext == ".tiff";
+}
+}  // namespace
 
 FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
   namespace fs = std::filesystem;
@@ -271,6 +283,7 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
       throw core::InputError(path + ": a directory with no frames (PNG, JPEG, BMP or TIFF files)");
     }
     count_ = static_cast<long>(impl_->files.size());
+    is_stack_or_directory_ = true;
     const cv::Mat first = cv::imread(impl_->files.front().string(), cv::IMREAD_COLOR);
     if (first.empty()) {
       const std::string f = impl_->files.front().string();
@@ -278,6 +291,20 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
       throw core::InputError(f + ": cannot be decoded as an image");
     }
     width_ = first.cols, height_ = first.rows;
+    return;
+  }
+  if (tiff_name(path)) {  // a stack of frames in one TIFF, or a single picture
+    impl_->pages = cv::imcount(path, cv::IMREAD_COLOR);
+    cv::Mat first;
+    if (impl_->pages == 0 || !cv::imreadmulti(path, impl_->chunk, 0, 1, cv::IMREAD_COLOR) ||
+        impl_->chunk.empty()) {
+      delete impl_;
+      throw core::InputError(path + ": cannot be decoded as a TIFF image or stack");
+    }
+    count_ = static_cast<long>(impl_->pages);
+    is_stack_or_directory_ = true;
+    width_ = impl_->chunk.front().cols, height_ = impl_->chunk.front().rows;
+    impl_->chunk.clear();
     return;
   }
   // FFmpeg and OpenCV would print their own lines about a file they cannot read; the error below says it
@@ -317,7 +344,31 @@ bool FrameSource::next(cv::Mat& frame) {
                              std::to_string(height_));
     return true;
   }
-  return impl_->video.read(frame) && !frame.empty();
+  if (impl_->pages > 0) {
+    if (impl_->next >= impl_->pages) return false;
+    if (impl_->next >= impl_->chunk_start + impl_->chunk.size()) {
+      impl_->chunk.clear();
+      impl_->chunk_start = impl_->next;
+      const int n = static_cast<int>(std::min<size_t>(32, impl_->pages - impl_->next));
+      if (!cv::imreadmulti(impl_->path, impl_->chunk, static_cast<int>(impl_->next), n, cv::IMREAD_COLOR) ||
+          impl_->chunk.empty())
+        throw core::InputError(impl_->path + ": page " + std::to_string(impl_->next) + " of " +
+                               std::to_string(impl_->pages) + " cannot be decoded");
+    }
+    frame = impl_->chunk[impl_->next - impl_->chunk_start];
+    ++impl_->next;
+    if (frame.cols != width_ || frame.rows != height_)
+      throw core::InputError(impl_->path + ": page " + std::to_string(impl_->next - 1) + " is " +
+                             std::to_string(frame.cols) + "x" + std::to_string(frame.rows) +
+                             " where the first is " + std::to_string(width_) + "x" + std::to_string(height_));
+    return true;
+  }
+  if (impl_->video.read(frame) && !frame.empty()) {
+    ++read_;
+    return true;
+  }
+  exhausted_ = true;
+  return false;
 }
 
 }  // namespace vision

@@ -71,6 +71,10 @@ class FrameSource {
   bool next(cv::Mat& frame);             // false after the last frame
   double fps() const { return fps_; }    // the video's frame rate (0: unknown, a directory)
   long count() const { return count_; }  // frames, when known (-1: unknown)
+  // A video that ended before the frames its header announces (cut short: a copy or a recording interrupted);
+  // call after next() returned false.
+  bool ended_early() const { return exhausted_ && !video_frames_unknown() && read_ + 1 < count_; }
+  long frames_read() const { return read_; }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -80,6 +84,10 @@ class FrameSource {
   double fps_ = 0;
   long count_ = -1;
   int width_ = 0, height_ = 0;
+  long read_ = 0;           // video frames read
+  bool exhausted_ = false;  // the video gave no further frame
+  bool video_frames_unknown() const { return count_ <= 0 || is_stack_or_directory_; }
+  bool is_stack_or_directory_ = false;
 };
 
 }  // namespace vision

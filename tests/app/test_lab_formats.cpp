@@ -4,6 +4,8 @@
 // trackpy's own layout with a diameter: the same exits, species included, byte for byte.
 #include <catch2/catch.hpp>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +17,7 @@
 
 #include "helpers.h"
 #include "io/trajectory.h"
+#include "vision/detect.h"
 
 namespace fs = std::filesystem;
 using test::cli;
@@ -77,6 +80,17 @@ std::string num(double v) {
   s.precision(10);
   s << v;
   return s.str();
+}
+
+// The calibration detect wrote in a tracks' metadata: metres per pixel, and the outlet's pixel as "X,Y".
+double toml_number(const std::string& meta, const std::string& key) {
+  return std::stod(meta.substr(meta.find(key + " = ") + key.size() + 3));
+}
+double scale_of(const std::string& meta) {
+  return toml_number(meta, "scale_m_per_px");
+}
+std::string origin_of(const std::string& meta) {
+  return num(toml_number(meta, "origin_x_px")) + "," + num(toml_number(meta, "origin_y_px"));
 }
 
 }  // namespace
@@ -303,10 +317,8 @@ TEST_CASE(
   CHECK_THAT(ob.output, Catch::Matchers::Contains("dark on a light background"));
   // No detection's centre inside the obstacle (a disk of 0.35 m, its centre 0.525 m above the outlet's).
   const std::string meta = slurp(d / "ob.meta.toml");
-  auto value = [&](const std::string& key) {
-    return std::stod(meta.substr(meta.find(key + " = ") + key.size() + 3));
-  };
-  const double scale = value("scale_m_per_px"), ox = value("origin_x_px"), oy = value("origin_y_px");
+  const double scale = scale_of(meta), ox = toml_number(meta, "origin_x_px"),
+               oy = toml_number(meta, "origin_y_px");
   std::istringstream rows(slurp(d / "ob.csv"));
   std::string line;
   std::getline(rows, line);
@@ -347,4 +359,32 @@ TEST_CASE(
   INFO("disks found: light " << light << ", dark " << dark);
   CHECK(light > 30 * 80);
   CHECK(std::abs(dark - light) < 0.05 * light);
+
+  // The light film as a multi-page TIFF stack (a lab camera's format): every page a frame, the same tracks as
+  // the video's; the video cut short: a warning, and the metadata says so.
+  {
+    vision::FrameSource video((d / "light.mp4").string());
+    std::vector<cv::Mat> pages;
+    for (cv::Mat f; video.next(f);) pages.push_back(f.clone());
+    REQUIRE(pages.size() == 30);
+    REQUIRE(cv::imwritemulti((d / "stack.tif").string(), pages));
+  }
+  const std::string light_meta = slurp(d / "light.meta.toml");
+  const std::string calibrated = " --geometry " + kScene + " --scale " + num(scale_of(light_meta)) +
+                                 " --origin " + origin_of(light_meta);
+  const auto stack = cli("detect " + (d / "stack.tif").string() + " --fps 30.303030303 --out " +
+                         (d / "stack.csv").string() + calibrated);
+  INFO(stack.output);
+  REQUIRE(stack.code == 0);
+  CHECK_THAT(stack.output, Catch::Matchers::Contains("30 frames"));
+  CHECK(test::count_of(slurp(d / "stack.csv"), "\n") - 1 == light);
+  const std::string whole = slurp(d / "light.mp4");
+  std::ofstream(d / "cut.mp4", std::ios::binary) << whole.substr(0, whole.size() * 2 / 3);
+  const auto cut =
+      cli("detect " + (d / "cut.mp4").string() + " --out " + (d / "cut.csv").string() + calibrated);
+  INFO(cut.output);
+  REQUIRE(cut.code == 0);
+  CHECK_THAT(cut.output, Catch::Matchers::Contains("of the 30 frames its header announces (cut short?)"));
+  CHECK(slurp(d / "cut.meta.toml").find("ended_early = true") != std::string::npos);
+  CHECK(light_meta.find("ended_early = false") != std::string::npos);
 }

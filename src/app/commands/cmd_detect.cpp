@@ -121,6 +121,8 @@ int detect(const DetectCliOptions& o) {
   info.command = command_line();
   info.facts = {{"input", o.input},
                 {"frames", st.frames},
+                {"frames_announced", source.count()},
+                {"ended_early", source.ended_early()},
                 {"detections", st.detections},
                 {"dropped_outside_container", st.dropped_outside},
                 {"tracks", st.tracks},
@@ -140,6 +142,12 @@ int detect(const DetectCliOptions& o) {
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
+  if (source.ended_early())
+    std::fprintf(
+        stderr,
+        "siloscope: warning: %s ended after %ld of the %ld frames its header announces (cut short?); "
+        "the tracks stop there\n",
+        o.input.c_str(), source.frames_read(), source.count());
   if (!o.quiet && !o.bright)
     std::printf(
         "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
@@ -158,8 +166,9 @@ int detect(const DetectCliOptions& o) {
 void define_detect_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<DetectCliOptions>();
   CLI::App* cmd = &command;
-  cmd->add_option("input", o->input,
-                  "a video (MP4, AVI, ...) or a directory of frames (PNG, JPEG, BMP, TIFF)")
+  cmd->add_option(
+         "input", o->input,
+         "a video (MP4, AVI, ...), a multi-page TIFF stack, or a directory of frames (PNG, JPEG, BMP, TIFF)")
       ->required();
   cmd->add_option("--out", o->out, "the tracks CSV to write (TRACKS.meta.toml beside it)")->required();
   cmd->add_option(
