@@ -30,7 +30,8 @@ struct DetectCliOptions {
 
 constexpr const char* kHeader = "frame,particle,x,y,r,t,species";
 
-int detect(const DetectCliOptions& o) {
+// The numeric options in their ranges (before any work).
+void check_options(const DetectCliOptions& o) {
   if (!(o.band > 0 && o.band < 0.6))
     throw core::InputError("--radius-band " + core::format_g(o.band) + ": expected 0 to 0.6");
   if (!(o.edge > 0 && o.edge < 1000))
@@ -43,6 +44,32 @@ int detect(const DetectCliOptions& o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
+}
+
+// What detect found, on the terminal; a warning when the video ended early.
+void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, const DetectStats& st,
+                  const fs::path& out) {
+  if (source.ended_early())
+    std::fprintf(
+        stderr,
+        "siloscope: warning: %s ended after %ld of the %ld frames its header announces (cut short?); "
+        "the tracks stop there\n",
+        o.input.c_str(), source.frames_read(), source.count());
+  if (o.quiet) return;
+  if (!o.bright)
+    std::printf(
+        "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
+        st.bright ? "bright" : "dark", st.bright ? "dark" : "light", st.first_as_dark, st.first_as_bright);
+  std::printf(
+      "%ld frames, %ld disks (%.1f a frame; %ld outside the container or inside the obstacle dropped), %ld "
+      "tracks, "
+      "%.3f s a frame -> %s\n",
+      st.frames, st.detections, static_cast<double>(st.detections) / std::max(1L, st.frames),
+      st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
+}
+
+int detect(const DetectCliOptions& o) {
+  check_options(o);
   const fs::path out = io::output_path(o.out);
   if (out.extension() != ".csv") throw core::InputError("--out " + o.out + ": expected a .csv file");
   fs::path meta_out = out;
@@ -142,23 +169,7 @@ int detect(const DetectCliOptions& o) {
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
-  if (source.ended_early())
-    std::fprintf(
-        stderr,
-        "siloscope: warning: %s ended after %ld of the %ld frames its header announces (cut short?); "
-        "the tracks stop there\n",
-        o.input.c_str(), source.frames_read(), source.count());
-  if (!o.quiet && !o.bright)
-    std::printf(
-        "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
-        st.bright ? "bright" : "dark", st.bright ? "dark" : "light", st.first_as_dark, st.first_as_bright);
-  if (!o.quiet)
-    std::printf(
-        "%ld frames, %ld disks (%.1f a frame; %ld outside the container or inside the obstacle dropped), %ld "
-        "tracks, %.3f s a frame "
-        "-> %s\n",
-        st.frames, st.detections, static_cast<double>(st.detections) / std::max(1L, st.frames),
-        st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
+  print_detect(o, source, st, out);
   return 0;
 }
 }  // namespace
