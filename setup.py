@@ -71,7 +71,8 @@ if sys.version_info < (3, 11):
 try:
     import wheel  # noqa: F401  pip builds a wheel with it
 except ImportError:
-    if any(a.startswith("bdist_wheel") for a in sys.argv):
+    # pip asks for the metadata first (dist_info), which setuptools makes through bdist_wheel too.
+    if any(a.startswith(("bdist_wheel", "dist_info", "editable_wheel")) for a in sys.argv):
         sys.exit(f"siloscope: building a wheel needs the wheel package for {sys.executable} (Debian: "
                  "python3-wheel; another Python: pip install wheel, or use /usr/bin/python3 -m pip)")
 

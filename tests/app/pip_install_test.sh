@@ -35,3 +35,23 @@ env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run paper --duration 1 --quiet 
 env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run "$scene" --seed 7 --duration 20 --quiet --out run
 cmp py-exits.csv run/exits.csv
 echo "pip-installed siloscope: Simulation and the siloscope command agree ($(wc -l < run/exits.csv) lines)"
+
+# Another Python than Debian's (pyenv's, a conda's), where one is installed: without the wheel package pip stops
+# with siloscope's one line naming that Python and what to do, not setuptools' "invalid command 'bdist_wheel'".
+for other in $(type -ap python3 python3.11 python3.12 python3.13 2>/dev/null | sort -u); do
+  [ "$(readlink -f "$other")" = "$(readlink -f /usr/bin/python3)" ] && continue
+  "$other" -c 'import venv' 2>/dev/null || continue
+  "$other" -m venv "$tmp/other" 2>/dev/null || continue
+  "$tmp/other/bin/python3" -c 'import wheel' 2>/dev/null && { rm -rf "$tmp/other"; continue; }
+  status=0
+  "$tmp/other/bin/pip" install -q --no-build-isolation --no-index "$tmp/clone" > "$tmp/other.log" 2>&1 || status=$?
+  if [ "$status" -eq 0 ] || ! grep -q "siloscope: building a wheel needs the wheel package for $tmp/other/bin/python3" \
+      "$tmp/other.log"; then
+    cat "$tmp/other.log"
+    echo "pip on $other: expected siloscope's message about the wheel package"
+    exit 1
+  fi
+  echo "pip on another Python ($other): refused with siloscope's message"
+  rm -rf "$tmp/other"
+  break
+done
