@@ -339,10 +339,11 @@ class Importer {
     const std::string fix =
         ": check --scale, --origin and --y-up (or the calibration detect wrote beside the tracks)";
     for (int k = 0; k < nf_; ++k) {
+      const long leaving = static_cast<long>(exits_at_[k].size());
+      if (leaving <= 10) continue;
       long seen = 0;
       for (int g = 0; g < n_; ++g) seen += present_[k][g];
-      const long leaving = static_cast<long>(exits_at_[k].size());
-      if (leaving > 10 && leaving > seen / 4)
+      if (leaving > seen / 4)
         throw core::InputError(
             tracks_.source + ": " + std::to_string(leaving) + " of " + std::to_string(seen) +
             " grains leave through the outlet at once (at t = " + core::format_g(t_[k], 4) +
@@ -360,16 +361,19 @@ class Importer {
                                " times their species' radius in the geometry scene (the median)" + fix);
     }
     std::vector<double> ratio;
-    for (int k = 0; k < std::min(nf_, 5); ++k)
-      for (int g = 0; g < n_; ++g) {
-        if (!present_[k][g]) continue;
+    for (int k = 0; k < std::min(nf_, 5); ++k) {
+      std::vector<int> seen;  // the grains of this frame (a long film has many more grains than a frame)
+      for (int g = 0; g < n_; ++g)
+        if (present_[k][g]) seen.push_back(g);
+      for (int g : seen) {
         double nearest = INFINITY;
-        for (int h = 0; h < n_; ++h)
-          if (h != g && present_[k][h])
+        for (int h : seen)
+          if (h != g)
             nearest =
                 std::min(nearest, core::length(pos_[k][g] - pos_[k][h]) / (out_.radius[g] + out_.radius[h]));
         if (std::isfinite(nearest)) ratio.push_back(nearest);
       }
+    }
     if (ratio.size() < 10) return;
     const double m = core::median(ratio);
     if (m < 0.5 || m > 3)
