@@ -283,7 +283,6 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
       throw core::InputError(path + ": a directory with no frames (PNG, JPEG, BMP or TIFF files)");
     }
     count_ = static_cast<long>(impl_->files.size());
-    is_stack_or_directory_ = true;
     const cv::Mat first = cv::imread(impl_->files.front().string(), cv::IMREAD_COLOR);
     if (first.empty()) {
       const std::string f = impl_->files.front().string();
@@ -302,7 +301,6 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
       throw core::InputError(path + ": cannot be decoded as a TIFF image or stack");
     }
     count_ = static_cast<long>(impl_->pages);
-    is_stack_or_directory_ = true;
     width_ = impl_->chunk.front().cols, height_ = impl_->chunk.front().rows;
     impl_->chunk.clear();
     return;

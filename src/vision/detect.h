@@ -73,7 +73,7 @@ class FrameSource {
   long count() const { return count_; }  // frames, when known (-1: unknown)
   // A video that ended before the frames its header announces (cut short: a copy or a recording interrupted);
   // call after next() returned false.
-  bool ended_early() const { return exhausted_ && !video_frames_unknown() && read_ + 1 < count_; }
+  bool ended_early() const { return exhausted_ && read_ + 1 < count_; }
   long frames_read() const { return read_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -85,9 +85,7 @@ class FrameSource {
   long count_ = -1;
   int width_ = 0, height_ = 0;
   long read_ = 0;           // video frames read
-  bool exhausted_ = false;  // the video gave no further frame
-  bool video_frames_unknown() const { return count_ <= 0 || is_stack_or_directory_; }
-  bool is_stack_or_directory_ = false;
+  bool exhausted_ = false;  // a video (only) gave no further frame
 };
 
 }  // namespace vision
