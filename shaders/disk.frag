@@ -8,6 +8,8 @@ flat in vec4 v_shape;
 uniform float u_outline_px;   // dark rim inside the grain's edge
 uniform vec4 u_outline;
 uniform float u_halo_px;
+uniform float u_halo_edge_px;  // a dark edge outside the halo (light backgrounds), pixels; 0: none
+uniform vec4 u_halo_edge;
 
 out vec4 o_color;  // premultiplied alpha
 
@@ -42,9 +44,11 @@ void main() {
   float rim = clamp(d + u_outline_px + 0.5, 0.0, 1.0);
   vec3 rgb = mix(v_fill.rgb, u_outline.rgb, rim * u_outline.a);
   vec4 disk = vec4(rgb * v_fill.a, v_fill.a) * inside;
-  // Halo: a ring just outside the edge, under the grain.
-  float ring = clamp(0.5 + d, 0.0, 1.0) * clamp(u_halo_px + 0.5 - d, 0.0, 1.0) * v_halo.a;
-  vec4 halo = vec4(v_halo.rgb * ring, ring);
+  // Halo: a ring just outside the edge, under the grain, with its edge beyond it.
+  float outer = u_halo_px + u_halo_edge_px;
+  float ring = clamp(0.5 + d, 0.0, 1.0) * clamp(outer + 0.5 - d, 0.0, 1.0) * v_halo.a;
+  float edge = u_halo_edge_px > 0.0 ? clamp(d - u_halo_px + 0.5, 0.0, 1.0) * u_halo_edge.a : 0.0;
+  vec4 halo = vec4(mix(v_halo.rgb, u_halo_edge.rgb, edge) * ring, ring);
   o_color = disk + halo * (1.0 - disk.a);
   if (o_color.a <= 0.0) discard;
 }

@@ -10,6 +10,7 @@ layout(location = 4) in vec4 a_shape;    // angle (rad), sides (0 disk, 3-8 poly
 uniform mat3 u_world_to_clip;
 uniform float u_px_per_m;
 uniform float u_halo_px;
+uniform float u_halo_edge_px;  // the halo's dark edge beyond it (0: none)
 
 out vec2 v_offset_px;   // fragment offset from the centre, pixels, along the world's axes
 out float v_radius_px;
@@ -18,7 +19,7 @@ out vec4 v_halo;
 flat out vec4 v_shape;  // angle, sides, box half sizes in pixels
 
 void main() {
-  float margin_px = 1.5 + (a_halo.a > 0.0 ? u_halo_px : 0.0);
+  float margin_px = 1.5 + (a_halo.a > 0.0 ? u_halo_px + u_halo_edge_px : 0.0);
   float extent = a_disk.z + margin_px / u_px_per_m;
   vec2 world = a_disk.xy + a_corner * extent;
   gl_Position = vec4((u_world_to_clip * vec3(world, 1.0)).xy, 0.0, 1.0);

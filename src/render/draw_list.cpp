@@ -18,6 +18,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
                         (style.color == ColorMode::Displacement || style.color == ColorMode::Coordination);
   DrawList out;
   out.halo_m = static_cast<float>(arch.halo_m);
+  out.halo_edge = halo_edge_color(style);
   out.bond_m = static_cast<float>(arch.bond_m);
   out.shapes.reserve(frame.particles.size() + 1);
   out.grains = frame.particles.size();
@@ -30,7 +31,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       frame.arch_forming || frame.clog_arrested || frame.since_last_exit >= arch.fade_below ? 1.0f : 0.35f;
   if (show_arch)
     for (int id : frame.arch) member[static_cast<size_t>(id)] = true;
-  const Rgba halo = arch_color(style.palette);
+  const Rgba halo = arch_color(style);
   // Circumradius over equal-area radius of each polygon (0-2: a disk).
   float extent[9];
   for (int k = 0; k < 9; ++k) extent[k] = static_cast<float>(core::polygon_extent(k));

@@ -97,6 +97,9 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       const float outer = r + 0.3f * em;
       ImVec2 p = ImGui::GetCursorScreenPos();
       ImVec2 c(p.x + outer, p.y + 0.5f * ImGui::GetTextLineHeight());
+      const Rgba edge = halo_edge_color(style);  // as the picture's halos have it
+      if (ring.a > 0 && edge.a > 0)
+        ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(edge), 0, 0.4f * em);
       if (ring.a > 0) ImGui::GetWindowDrawList()->AddCircle(c, r + 0.15f * em, to_u32(ring), 0, 0.25f * em);
       ImGui::GetWindowDrawList()->AddCircleFilled(c, r, to_u32(fill));
       ImGui::Dummy(ImVec2(2 * outer, ImGui::GetTextLineHeight()));
@@ -113,7 +116,7 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
     if (style.color == ColorMode::Id) ImGui::TextUnformatted("colour: grain id");
     colour_bar(style, em);
     // What the picture marks: the arch's halo (unless it is off), the tracked grains' ring.
-    if (style.show_arch) swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style.palette), "arch");
+    if (style.show_arch) swatch({0.85f, 0.85f, 0.85f, 1}, arch_color(style), "arch");
     if (!style.tracked.empty()) {
       if (style.show_arch) ImGui::SameLine();
       swatch({0.85f, 0.85f, 0.85f, 1}, tracked_color(style), "tracked");

@@ -209,6 +209,16 @@ Rgba arch_color(Palette p) {
   return {1.0f, 0.76f, 0.0f, 1};  // gold
 }
 
+Rgba arch_color(const Style& s) {
+  if (s.palette == Palette::ColorBlind && s.dark) return {1.0f, 1.0f, 1.0f, 1};
+  return arch_color(s.palette);
+}
+
+Rgba halo_edge_color(const Style& s) {
+  if (s.dark || s.transparent) return {0, 0, 0, 0};
+  return {0.12f, 0.12f, 0.12f, 0.9f};
+}
+
 Rgba colormap(double t) {
   t = std::clamp(t, 0.0, 1.0);
   // Viridis, 6th-order polynomial fit per channel.

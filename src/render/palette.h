@@ -79,8 +79,13 @@ Rgba species_color(const Style& style, core::Species s);
 std::string hex_rgb(Rgba c);
 Rgba background_color(const Style& s);
 Rgba wall_color(Palette p);
-Rgba wall_color(const Style& s);     // light on a dark background
-Rgba arch_color(Palette p);          // halo and bonds of arch members
+Rgba wall_color(const Style& s);  // light on a dark background
+Rgba arch_color(Palette p);       // halo and bonds of arch members
+// On the style's background: the colour-blind palette's black arch is white on a dark background (black had
+// 1.1:1 contrast there).
+Rgba arch_color(const Style& s);
+// The dark edge outside halos on a light background (alpha 0 on a dark or transparent one).
+Rgba halo_edge_color(const Style& s);
 Rgba tracked_color(const Style& s);  // ring and trail of tracked grains
 // A perceptually uniform map (viridis, polynomial fit) of t in [0, 1].
 Rgba colormap(double t);

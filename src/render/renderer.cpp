@@ -112,6 +112,7 @@ void Renderer::paint(const DrawList& list, const std::vector<View>& views, const
   trail_width_m_ = list.trail_width_m;
   chain_width_m_ = list.chain_width_m;
   halo_m_ = list.halo_m;
+  halo_edge_ = list.halo_edge;
   bond_m_ = list.bond_m;
   wall_m_ = list.wall_m;
   // Draws into whatever framebuffer the caller bound (an off-screen Target, or a window's).
@@ -161,7 +162,12 @@ void Renderer::draw_view(const View& v, int image_h) {
   glUseProgram(disk_program_);
   glUniformMatrix3fv(glGetUniformLocation(disk_program_, "u_world_to_clip"), 1, GL_FALSE, m.data());
   glUniform1f(glGetUniformLocation(disk_program_, "u_px_per_m"), s);
-  glUniform1f(glGetUniformLocation(disk_program_, "u_halo_px"), std::max(2.0f * scale, halo_m_ * s));
+  const float halo_px = std::max(2.0f * scale, halo_m_ * s);
+  glUniform1f(glGetUniformLocation(disk_program_, "u_halo_px"), halo_px);
+  glUniform1f(glGetUniformLocation(disk_program_, "u_halo_edge_px"),
+              halo_edge_.a > 0 ? std::max(1.0f * scale, 0.35f * halo_px) : 0.0f);
+  glUniform4f(glGetUniformLocation(disk_program_, "u_halo_edge"), halo_edge_.r, halo_edge_.g, halo_edge_.b,
+              halo_edge_.a);
   glUniform1f(glGetUniformLocation(disk_program_, "u_outline_px"), std::max(0.75f, 0.0025f * s));
   glUniform4f(glGetUniformLocation(disk_program_, "u_outline"), 0.1f, 0.1f, 0.1f, 0.55f);
   glBindVertexArray(disk_vao_);

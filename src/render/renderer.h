@@ -36,6 +36,7 @@ class Renderer {
   std::vector<float> chain_width_m_, trail_width_m_;
   std::vector<SegmentInstance> trails_;
   float halo_m_ = 0.012f, bond_m_ = 0.012f, wall_m_ = 0.012f;
+  Rgba halo_edge_{0, 0, 0, 0};
 };
 
 }  // namespace render

@@ -464,7 +464,7 @@ std::string Inspector::vector_key() const {
         k += "species\t" + overlay_data.species_names[s] + "\t" +
              render::hex_rgb(render::species_color(st, static_cast<core::Species>(s))) + "\n";
     if (st.show_arch && !f.arch.empty())
-      k += "arch\tarch members\t" + render::hex_rgb(render::arch_color(st.palette)) + "\n";
+      k += "arch\tarch members\t" + render::hex_rgb(render::arch_color(st)) + "\n";
   }
   if (!scale.empty() && (o.legend || o.colorbar)) {
     std::snprintf(line, sizeof line, "\t%.6g\t%.6g\t%s\n", st.color_min, render::color_scale_max(st),

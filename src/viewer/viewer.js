@@ -365,11 +365,16 @@
       const f = D.flags[k];
       archAlpha = (f & 4) || (f & 2) || D.since[k] >= L.fade_below ? 1 : 0.35;
       ctx.globalAlpha = archAlpha;
-      ctx.strokeStyle = L.arch;
-      ctx.lineWidth = 2 * halo;
       ctx.lineJoin = "round";
       ctx.beginPath();
       for (let a = a0; a < a1; ++a) if (D.arch[a] >= 0 && D.arch[a] < H.n && present(k, D.arch[a])) shapePath(ctx, c, k, D.arch[a], 0);
+      if (!L.dark) {  // a dark edge outside the ring, as the movies have it: gold alone is 1.6:1 on white
+        ctx.strokeStyle = "rgba(31,31,31,0.9)";
+        ctx.lineWidth = 2 * (halo + Math.max(dpr, 0.35 * halo));
+        ctx.stroke();
+      }
+      ctx.strokeStyle = L.arch;
+      ctx.lineWidth = 2 * halo;
       ctx.stroke();
       ctx.globalAlpha = 1;
     }

@@ -256,6 +256,70 @@ TEST_CASE("disks show their species colour at the expected pixels, arch members 
   CHECK(flipped.rgba == img.rgba);
 }
 
+namespace {
+// WCAG 2's relative luminance and contrast ratio of two pixels.
+double luminance(const std::uint8_t* px) {
+  double l = 0;
+  const double weight[3] = {0.2126, 0.7152, 0.0722};
+  for (int k = 0; k < 3; ++k) {
+    const double c = px[k] / 255.0;
+    l += weight[k] * (c <= 0.03928 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+  }
+  return l;
+}
+double contrast(const std::uint8_t* a, const std::uint8_t* b) {
+  const double la = luminance(a), lb = luminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
+}
+}  // namespace
+
+TEST_CASE(
+    "every species and the arch's ring stand 3 to 1 against the background, white or dark, in both palettes",
+    "[render]") {
+  // WCAG's contrast for graphics: what bounds a grain (its fill or its dark rim) and the arch's halo (the
+  // gold, or its dark edge on white: gold alone has 1.6:1 there) reaches 3:1 against the background. Read
+  // from the pixels on a line from outside each grain to its centre: the largest contrast met on the way.
+  auto& fx = fixture();
+  const int w = 600, h = 200;
+  core::Frame f;
+  for (int k = 0; k < 8; ++k)  // the paper's two, five more, and the grey beyond them
+    f.particles.push_back(disk(-0.7f + 0.2f * k, 0.5f, 0.065f, static_cast<core::Species>(k)));
+  f.particles.push_back(disk(0.0f, 0.2f, 0.065f, core::Species::Original));
+  f.arch = {8};
+  f.since_last_exit = 3.0;
+  f.clog_open = true;
+  auto views = render::layout_views(render::parse_camera("window:-0.9,0,0.9,0.6"), fx.geo, w, h);
+  render::Target target(w, h);
+  for (const bool dark : {false, true})
+    for (const auto palette : {render::Palette::Paper, render::Palette::ColorBlind}) {
+      render::Style style;
+      style.dark = dark;
+      style.palette = palette;
+      target.bind();
+      fx.renderer.draw(f, fx.geo, views, style, w, h);
+      core::Image img;
+      target.read(img);
+      const auto& v = views[0];
+      const std::uint8_t* bg = img.pixel(2, 2);
+      auto largest = [&](const core::Particle& p, double from, double to) {  // along y below the grain
+        double best = 0;
+        for (double r = from; r >= to; r -= 0.25 / v.px_per_m()) {
+          const core::Vec2 q = v.world_to_pixel({p.x, p.y - r});
+          best = std::max(best, contrast(img.pixel(static_cast<int>(q.x), static_cast<int>(q.y)), bg));
+        }
+        return best;
+      };
+      INFO((dark ? "dark" : "white") << " background, palette " << static_cast<int>(palette));
+      REQUIRE(distance(bg, render::background_color(style)) <= 1);
+      for (int k = 0; k < 8; ++k) {
+        INFO("species " << k);
+        CHECK(largest(f.particles[static_cast<size_t>(k)], 0.065 + 0.01, 0.0) >= 3.0);
+      }
+      // The halo: from outside it to the grain's edge (not into the grain: the ring alone must stand out).
+      CHECK(largest(f.particles[8], 0.065 + 0.04, 0.065 + 1.0 / v.px_per_m()) >= 3.0);
+    }
+}
+
 TEST_CASE("force chains are drawn between touching grains in the colour map, over the grains", "[render]") {
   auto& fx = fixture();
   const int w = 400, h = 400;

@@ -317,7 +317,7 @@ std::string look_json(const Look& look, const core::Geometry& geo) {
   j << "{\"background\":" << json_string(render::hex_rgb(render::background_color(st)))
     << ",\"dark\":" << (st.dark ? "true" : "false")
     << ",\"walls\":" << json_string(render::hex_rgb(render::wall_color(st)))
-    << ",\"arch\":" << json_string(render::hex_rgb(render::arch_color(st.palette)))
+    << ",\"arch\":" << json_string(render::hex_rgb(render::arch_color(st)))
     << ",\"picked\":" << json_string(render::hex_rgb(render::tracked_color(st)))
     << ",\"color\":" << json_string(render::color_mode_name(st.color))
     << ",\"speed_max\":" << json_number(st.speed_max) << ",\"force_max\":" << json_number(st.force_max)
