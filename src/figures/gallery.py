@@ -5,7 +5,9 @@ halos as paths: the PDF and SVG are vector throughout (no bitmap), text stays te
 
     python3 gallery.py TILES_DIR OUT TITLE VERSION [COLUMNS] [TILE_PX] [FOOTER] [LOOK]
 
-LOOK: "background=dark;font_scale=2" (look.py), the run's look.
+LOOK: "background=dark;font_scale=2" (look.py), the run's look; with ";width_pt=W" a journal figure W points
+wide (text 7-9 pt, tiles at least 40 mm). TILES_DIR/key.tsv, when there, gives the species legend (and the
+arch's ring) above the tiles and a scale bar in the first tile (look.read_key).
 """
 import math
 import os
@@ -15,7 +17,7 @@ import textwrap
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import siloscope  # noqa: E402  one reader of siloscope's files
 from siloscope._tables import read_table  # noqa: E402
-from look import Look  # noqa: E402
+from look import Look, read_key  # noqa: E402
 
 import matplotlib  # noqa: E402
 
@@ -74,8 +76,13 @@ def draw_tile(ax, table, window, height=None, width_in=TILE_IN, look=None):
         shape.set_clip_path(clip)
         ax.add_patch(shape)
         if halo is not None:
-            ring = mpatches.Circle((x, y), rad + 0.006, facecolor="none", edgecolor=halo,
-                                   lw=max(0.8, 0.012 * pt_per_m))
+            lw = max(0.8, 0.012 * pt_per_m)
+            if not (look and look.dark):  # a dark edge under the ring: gold alone has 1.6:1 against white
+                edge = mpatches.Circle((x, y), rad + 0.006, facecolor="none", edgecolor=(0.12, 0.12, 0.12, 0.9),
+                                       lw=lw + max(0.8, 0.7 * lw))
+                edge.set_clip_path(clip)
+                ax.add_patch(edge)
+            ring = mpatches.Circle((x, y), rad + 0.006, facecolor="none", edgecolor=halo, lw=lw)
             ring.set_clip_path(clip)
             ax.add_patch(ring)
     for kind in ("chain", "bond"):
@@ -98,6 +105,51 @@ def label(k, r):
             f"{int(float(r['defects']))} defect{'s' if int(float(r['defects'])) != 1 else ''}")
 
 
+def round_length(most):
+    """The largest of 1, 2, 5 x 10^k metres not above `most`."""
+    step = 10 ** math.floor(math.log10(most))
+    return max(m * step for m in (1, 2, 5) if m * step <= most)
+
+
+def length_text(m):
+    return f"{m * 1000:g} mm" if m < 0.01 else f"{m * 100:g} cm" if m < 1 else f"{m:g} m"
+
+
+def draw_scale_bar(ax, window, look, size):
+    """A bar of a round length in the tile's lower-left corner, named above it (the tile is `window` m wide)."""
+    bar = round_length(0.3 * window)
+    x0, y0 = -0.45 * window, -0.44 * window
+    ink = look.fg
+    ax.plot([x0, x0 + bar], [y0, y0], color=ink, lw=2.0, solid_capstyle="butt")
+    ax.text(x0, y0 + 0.025 * window, length_text(bar), fontsize=size, color=ink, va="bottom", ha="left",
+            bbox={"facecolor": look.bg, "edgecolor": "none", "alpha": 0.75, "pad": 0.6})
+
+
+def legend_handles(key, look):
+    """Each species' swatch and the arch's ring, as the pictures' legend has them (the ring with its dark edge
+    on a light background)."""
+    from matplotlib.lines import Line2D
+    from matplotlib import patheffects
+    edge = [] if look.dark else [patheffects.Stroke(linewidth=3.2, foreground=(0.12, 0.12, 0.12, 0.9)),
+                                 patheffects.Normal()]
+    handles = [Line2D([], [], marker="o", linestyle="", markersize=6, markerfacecolor=c, markeredgecolor="#555555",
+                      label=name) for name, c in key["species"]]
+    handles += [Line2D([], [], marker="o", linestyle="", markersize=7, markerfacecolor="none", markeredgecolor=c,
+                       markeredgewidth=1.8, label=name, path_effects=edge) for name, c in key["arch"]]
+    return handles
+
+
+def sheet_layout(look, n, columns):
+    """Columns and the tile's width in inches: the default sheet's 2.2 in tiles, or a journal width filled
+    with tiles at least 40 mm wide (a filmstrip of four at 85 mm: two rows of two)."""
+    cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
+    if not look.journal:
+        return cols, TILE_IN
+    width = look.width_pt / 72
+    cols = max(1, min(cols, n, int(width * 25.4 // 40)))
+    return cols, (width - 0.12 * cols) / cols
+
+
 def main(tiles, out, title, version, columns=0, tile_px=480, footer=None, look_spec=""):
     look = Look(look_spec)
     look.apply(plt)
@@ -107,10 +159,13 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None, look_s
     except siloscope.SiloscopeError as e:
         print(f"gallery: {e}", file=sys.stderr)
         sys.exit(2)
+    key_path = os.path.join(tiles, "key.tsv")
+    key = read_key(key_path, "gallery") if os.path.exists(key_path) else None
+    handles = legend_handles(key, look) if key else []
     n = len(rows)
-    cols = columns if columns > 0 else max(1, math.ceil(math.sqrt(n)))
+    cols, tile_in = sheet_layout(look, n, columns)
     nrows = math.ceil(n / cols)
-    width = TILE_IN * cols
+    width = look.width_pt / 72 if look.journal else tile_in * cols
     # Wrapped to the sheet's width, so that a narrow sheet never cuts its title or footer; the sheet is as tall
     # as its tiles plus the lines of both, so neither runs into a tile.
     chars = max(30, int(width * 72 / (look.size(9) * 0.55)))
@@ -120,22 +175,39 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None, look_s
         f"removed each arch; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
         f"defects: bead angles above 180\u00b0 (README, arch descriptors)")
     footer_lines = textwrap.wrap(footer, int(width * 72 / (look.size(6) * 0.55)))
-    title_in = len(title_lines) * look.size(9) * 1.3 / 72 + 0.1
-    footer_in = len(footer_lines) * look.size(6) * 1.3 / 72 + 0.1
-    height = (TILE_IN + 0.55 * look.font_scale) * nrows + title_in + footer_in
-    fig, axes = plt.subplots(nrows, cols, figsize=(width, height), squeeze=False)
-    for k, ax in enumerate(axes.flat):
-        if k >= n:
-            ax.axis("off")
-            continue
-        draw_tile(ax, tables[k], float(rows[k]["window_m"]), look=look)
-        # Each caption wrapped to its tile's width at the look's text size: neighbours never run together.
-        chars = max(12, int(TILE_IN * 72 / (look.size(6.5) * 0.55)))
-        text = "\n".join(w for line in label(k, rows[k]).split("\n") for w in textwrap.wrap(line, chars) or [""])
-        ax.set_title(text, fontsize=look.size(6.5))
-    fig.suptitle("\n".join(title_lines), fontsize=look.size(9))
-    fig.text(0.01, 0.003, "\n".join(footer_lines), ha="left", va="bottom", fontsize=look.size(6), color=look.muted)
-    fig.tight_layout(rect=(0, footer_in / height, 1, 1 - title_in / height))
+    # Each caption wrapped to its tile's width at the look's text size: neighbours never run together.
+    caption_chars = max(12, int(tile_in * 72 / (look.size(6.5) * 0.55)))
+    captions = ["\n".join(w for line in label(k, rows[k]).split("\n") for w in textwrap.wrap(line, caption_chars)
+                          or [""]) for k in range(n)]
+    line = 1.22 / 72  # inches per point of text, a line's height
+    caption_in = max(c.count("\n") + 1 for c in captions) * look.size(6.5) * line + 0.1
+    title_in = len(title_lines) * look.size(9) * line + 0.08
+    legend_in = (look.size(7) * 1.7 / 72) * math.ceil(len(handles) / 4) + 0.04 if handles else 0
+    footer_in = len(footer_lines) * look.size(6) * line + 0.08
+    gap, edge = 0.1, 0.05  # between tiles, and round the sheet (inches)
+    top_in = edge + title_in + legend_in
+    height = top_in + (caption_in + tile_in) * nrows + gap * (nrows - 1) + 0.06 + footer_in + edge
+    fig = plt.figure(figsize=(width, height))
+    # Every part placed by its own measured size: captions above their tiles, the legend under the title, the
+    # footer under the last row; none can run into another (tight_layout could, with square tiles).
+    left0 = 0.5 * (width - cols * tile_in - gap * (cols - 1))
+    for k in range(n):
+        r, c = divmod(k, cols)
+        x = left0 + c * (tile_in + gap)
+        y_top = top_in + r * (caption_in + tile_in + gap) + caption_in
+        ax = fig.add_axes([x / width, 1 - (y_top + tile_in) / height, tile_in / width, tile_in / height])
+        window = float(rows[k]["window_m"])
+        draw_tile(ax, tables[k], window, width_in=tile_in, look=look)
+        ax.set_title(captions[k], fontsize=look.size(6.5), pad=4)
+        if k == 0 and key and key["scale"]:
+            draw_scale_bar(ax, window, look, look.size(6.5))
+    fig.text(0.5, 1 - edge / height, "\n".join(title_lines), ha="center", va="top", fontsize=look.size(9))
+    if handles:
+        fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1 - (edge + title_in) / height),
+                   ncol=min(4, len(handles)), frameon=False, fontsize=look.size(7), borderaxespad=0.0,
+                   handletextpad=0.3, columnspacing=1.2, labelcolor=look.fg)
+    fig.text(edge / width, edge / height, "\n".join(footer_lines), ha="left", va="bottom", fontsize=look.size(6),
+             color=look.muted)
     # The creator tag lets `siloscope gallery --force` recognise its own sheet (and nothing else).
     tag = f"siloscope gallery {version}"
     if out.endswith(".pdf"):
@@ -144,8 +216,13 @@ def main(tiles, out, title, version, columns=0, tile_px=480, footer=None, look_s
         meta = {"Date": None, "Creator": tag}
     else:
         meta = {"Software": tag}
-    # bbox_inches="tight" grows the page to hold every label: nothing is cut at any width.
-    fig.savefig(out, dpi=max(72, int(tile_px / TILE_IN)), metadata=meta, bbox_inches="tight", pad_inches=0.08)
+    dpi = max(72, int(tile_px / tile_in))
+    if look.journal:
+        # The page is the width asked for: everything was laid out inside it (a tight box would change it).
+        fig.savefig(out, dpi=max(dpi, 300), metadata=meta)
+    else:
+        # bbox_inches="tight" grows the page to hold every label: nothing is cut at any width.
+        fig.savefig(out, dpi=dpi, metadata=meta, bbox_inches="tight", pad_inches=0.08)
 
 
 if __name__ == "__main__":

@@ -16,35 +16,11 @@ import siloscope  # noqa: E402
 from siloscope._tables import read_table  # noqa: E402
 
 import gallery  # noqa: E402  the tile drawing, shared
+from look import Look, read_key  # noqa: E402
 import matplotlib  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from guard import guarded  # noqa: E402  one line, never a traceback
-
-
-def read_key(path):
-    key = {"background": "white", "font_scale": 1.0, "info": [], "species": [], "arch": [], "colorbar": None,
-           "scale": None}
-    with open(path, encoding="utf-8") as f:
-        for line in f.read().splitlines():
-            parts = line.split("\t")
-            kind = parts[0]
-            if kind == "background" and len(parts) == 2:
-                key["background"] = parts[1]
-            elif kind == "font_scale" and len(parts) == 2:
-                key["font_scale"] = float(parts[1])
-            elif kind == "info" and len(parts) == 2:
-                key["info"].append(parts[1])
-            elif kind in ("species", "arch") and len(parts) == 3:
-                key[kind].append((parts[1], parts[2]))
-            elif kind == "colorbar" and len(parts) == 5:
-                key["colorbar"] = (parts[1], float(parts[2]), float(parts[3]), parts[4])
-            elif kind == "scale" and len(parts) == 3:
-                key["scale"] = (float(parts[1]), parts[2])
-            else:
-                print(f"snapshot: {path}: a line siloscope does not write: {line!r}", file=sys.stderr)
-                sys.exit(2)
-    return key
 
 
 def draw_key(fig, ax, side, key, width_m, height_m):
@@ -91,7 +67,7 @@ def main(table, out, width_m, height_m, caption, version, key_path=None):
     except siloscope.SiloscopeError as e:
         print(f"snapshot: {e}", file=sys.stderr)
         sys.exit(2)
-    key = read_key(key_path) if key_path else None
+    key = read_key(key_path, "snapshot") if key_path else None
     width_in = 7.0
     height_in = width_in * height_m / width_m + 0.5
     side_panel = bool(key) and bool(key["info"] or key["species"] or key["arch"] or key["colorbar"])
@@ -100,8 +76,8 @@ def main(table, out, width_m, height_m, caption, version, key_path=None):
                                        gridspec_kw={"width_ratios": [width_in, 2.4]})
     else:
         fig, ax = plt.subplots(figsize=(width_in, height_in))
-    gallery.draw_tile(ax, rows, width_m, height_m, width_in)
     dark = bool(key) and key["background"] == "dark"
+    gallery.draw_tile(ax, rows, width_m, height_m, width_in, look=Look("background=dark" if dark else ""))
     if dark:
         fig.patch.set_facecolor("#121217")
         ax.set_facecolor("#121217")

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -319,6 +321,80 @@ TEST_CASE("filmstrip: one clog at several times in one row, vector with its text
              Catch::Matchers::Contains("--times: -30 s from clog 1's start"));
   CHECK_FALSE(fs::exists(d / "x.svg"));
   CHECK(cli("filmstrip " + rec.string() + " --times=0 --out " + (d / "strip.svg").string()).code == 2);
+}
+
+TEST_CASE("journal figures: filmstrip gallery and timeline at 85 mm have text of 7 to 9 pt read from the PDF",
+          "[export][app]") {
+  const fs::path rec = recorded("journal");
+  const fs::path d = rec.parent_path();
+  // The page's width (MediaBox) and every font size the content streams set (Tf), read back from the PDF.
+  std::ofstream(d / "pdf_text.py") << R"(import re, sys, zlib
+b = open(sys.argv[1], "rb").read()
+box = [float(v) for v in re.search(rb"/MediaBox \[ *([-\d.]+) ([-\d.]+) ([-\d.]+) ([-\d.]+) *\]", b).groups()]
+sizes = []
+for m in re.finditer(rb"stream\r?\n(.*?)\r?\nendstream", b, re.S):
+    try:
+        sizes += [float(v) for v in re.findall(rb"/F\d+ ([\d.]+) Tf", zlib.decompress(m.group(1)))]
+    except zlib.error:
+        pass
+print(f"width_mm {(box[2] - box[0]) * 25.4 / 72:.2f} smallest_pt {min(sizes):.2f} largest_pt {max(sizes):.2f} "
+      f"texts {len(sizes)}")
+)";
+  auto pdf_text = [&](const fs::path& pdf) {
+    const fs::path log = d / (pdf.stem().string() + ".log");
+    REQUIRE(test::sh("/usr/bin/python3 " + (d / "pdf_text.py").string() + " " + pdf.string() + " > " +
+                     log.string() + " 2>&1") == 0);
+    std::istringstream in(slurp(log));
+    std::string k1, k2, k3, k4;
+    double width = 0, smallest = 0, largest = 0;
+    long texts = 0;
+    in >> k1 >> width >> k2 >> smallest >> k3 >> largest >> k4 >> texts;
+    INFO(slurp(log));
+    CHECK(texts >= 5);
+    return std::array<double, 3>{width, smallest, largest};
+  };
+  const std::string strip = "filmstrip " + rec.string() + " --clog 1 --times=-1,-0.5,0,1 ";
+  for (const auto& [how, mm] : std::vector<std::pair<std::string, double>>{
+           {"--width 85mm", 85.0}, {"--width single", 86.0}, {"--width 7in", 177.8}}) {
+    const fs::path pdf = d / ("strip_" + std::to_string(static_cast<int>(mm)) + ".pdf");
+    const auto r = cli(strip + how + " --font-scale 2 --out " + pdf.string());
+    INFO(how << ": " << r.output);
+    REQUIRE(r.code == 0);
+    const auto [width, smallest, largest] = pdf_text(pdf);
+    CHECK(std::fabs(width - mm) < 0.1);
+    // At that width the text is 7 to 9 pt, whatever the look's text size (here 2x).
+    CHECK(smallest >= 7.0 - 1e-6);
+    CHECK(largest <= 9.0 + 1e-6);
+  }
+  // Without a width, the sheet's own size (the old look: captions under 7 pt).
+  REQUIRE(cli(strip + "--out " + (d / "strip_own.pdf").string()).code == 0);
+  CHECK(pdf_text(d / "strip_own.pdf")[1] < 7.0);
+  // The legend (each species, the arch's ring) and a scale bar, as text in the SVG.
+  REQUIRE(cli(strip + "--width 85mm --out " + (d / "strip.svg").string()).code == 0);
+  const std::string svg = slurp(d / "strip.svg");
+  CHECK_THAT(svg, Catch::Matchers::Contains(">original<") && Catch::Matchers::Contains(">added<") &&
+                      Catch::Matchers::Contains(">arch members<") && Catch::Matchers::Contains(" cm<"));
+  // The gallery (of a run long enough for the rule to remove an arch, at 6.5 s) and the timeline at a double
+  // and a single column.
+  REQUIRE(cli("run " + kScene + " --duration 7 --quiet --out " + (d / "run7").string()).code == 0);
+  REQUIRE(cli("gallery " + (d / "run7").string() + " --width double --out " + (d / "gallery.pdf").string())
+              .code == 0);
+  const auto g = pdf_text(d / "gallery.pdf");
+  CHECK(std::fabs(g[0] - 178.0) < 0.1);
+  CHECK(g[1] >= 7.0 - 1e-6);
+  REQUIRE(cli("timeline " + rec.string() + " --width 85mm --out " + (d / "timeline.pdf").string()).code == 0);
+  const auto t = pdf_text(d / "timeline.pdf");
+  CHECK(std::fabs(t[0] - 85.0) < 0.1);
+  CHECK(t[1] >= 7.0 - 1e-6);
+  CHECK(t[2] <= 9.0 + 1e-6);
+  // Widths refused name the value and what is allowed; nothing is written.
+  CHECK_THAT(cli(strip + "--width 85 --out " + (d / "x.pdf").string()).output,
+             Catch::Matchers::Contains("--width 85: expected a length with its unit"));
+  CHECK_THAT(cli(strip + "--width 500mm --out " + (d / "x.pdf").string()).output,
+             Catch::Matchers::Contains("--width 500mm: 500 mm is outside 40 mm to 300 mm"));
+  CHECK_THAT(cli("timeline " + rec.string() + " --width wide --out " + (d / "x.pdf").string()).output,
+             Catch::Matchers::Contains("--width wide"));
+  CHECK_FALSE(fs::exists(d / "x.pdf"));
 }
 
 TEST_CASE("a drain's jam is named as the movie names it in the timeline's legend", "[export][app]") {

@@ -160,6 +160,7 @@ struct FilmstripOptions {
   long clog = 1;
   bool force = false;
   LookOptions looks;  // the recording's own look unless given
+  FigureWidth width;
 };
 
 // siloscope filmstrip RECORDING --clog K --times ...: clog K at several times from its start (s), one row of
@@ -186,6 +187,7 @@ int filmstrip(const FilmstripOptions& o) {
     }
   }
   if (dts.empty() || dts.size() > 12) throw core::InputError("--times " + o.times + ": give 1 to 12 times");
+  const double width_pt = o.width.points();
   const fs::path out = io::output_path(o.out);
   const std::string ext = out.extension().string();
   if (ext != ".pdf" && ext != ".svg" && ext != ".png")
@@ -210,7 +212,7 @@ int filmstrip(const FilmstripOptions& o) {
     }
   } cleanup{tmp};
   std::string index = "tile,t_s,window_m,label\n";
-  std::string scale;
+  std::string scale, key;  // the key (legend, scale bar): a tile's with the arch where one shows it
   for (size_t k = 0; k < dts.size(); ++k) {
     const double t = start + dts[k];
     try {
@@ -237,10 +239,13 @@ int filmstrip(const FilmstripOptions& o) {
                            : "no exit for " + core::format_g(f.since_last_exit, 2) + " s";
     std::snprintf(label, sizeof label, "%+g s (t = %.2f s)\\n%s", dts[k], f.t, state.c_str());
     index += name + "," + core::format_g(f.t, 9) + "," + core::format_g(w, 9) + ",\"" + label + "\"\n";
+    const std::string tile_key = insp.vector_key();
+    if (key.empty() || tile_key.find("\narch\t") != std::string::npos) key = tile_key;
     const size_t nl = caption.find("\ncolour: ");
     if (nl != std::string::npos) scale = caption.substr(nl + 1);
   }
   io::write_file_atomic(tmp / "index.csv", index);
+  io::write_file_atomic(tmp / "key.tsv", key);
   const std::string title = "clog " + std::to_string(o.clog) + " of " +
                             fs::absolute(o.path).filename().string() + ", starting at " +
                             core::format_g(start, 6) + " s" + (scale.empty() ? "" : "; " + scale);
@@ -252,7 +257,7 @@ int filmstrip(const FilmstripOptions& o) {
        "each tile the view at its time from the clog's start (clogs.csv's start_s, its last exit); a "
        "clog is open once no grain has left for clog_min_gap; arches ringed, bonds dark; one colour "
        "scale for every tile",
-       look.figure_spec()});
+       look.figure_spec(width_pt)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
@@ -295,6 +300,7 @@ void define_filmstrip_command(CLI::App& command, Action& action) {
   fsc->add_option("--out", fs_o->out, "F.pdf, F.svg or F.png")->required();
   fsc->add_option("--camera", fs_o->camera, "outlet, hopper or window:X0,Y0,X1,Y1")->capture_default_str();
   fs_o->looks.add_to(*fsc);
+  fs_o->width.add_to(*fsc);
   fsc->add_flag("--force", fs_o->force, "replace an earlier filmstrip or gallery sheet");
   fsc->callback([fs_o, &action] { action = [fs_o] { return filmstrip(*fs_o); }; });
 }

@@ -43,6 +43,7 @@ struct GalleryOptions {
   int tile = 480, columns = 0, max_arches = 60;
   bool force = false;
   LookOptions looks;  // the run's own look unless given
+  FigureWidth width;  // a journal's column, or the figure's own size
 };
 
 // The index's row of one tile: the arch's time, members, species and the descriptors of the literature
@@ -113,6 +114,17 @@ std::string sheet_title(const io::Run& run, bool imported, size_t n, size_t of, 
                        : "");
 }
 
+// The sheet's key (src/figures/look.py read_key): each species' colour, the arch's ring, the grain's size.
+std::string sheet_key(const std::vector<std::string>& names, const render::Style& style, double diameter) {
+  std::string k = std::string("background\t") + (style.dark ? "dark" : "white") + "\n";
+  for (size_t s = 0; s < names.size(); ++s)
+    k += "species\t" + names[s] + "\t" +
+         render::hex_rgb(render::species_color(style, static_cast<core::Species>(s))) + "\n";
+  if (style.show_arch) k += "arch\tarch members\t" + render::hex_rgb(render::arch_color(style)) + "\n";
+  return k + "scale\t" + core::format_g(diameter, 6) + "\t1 d = " + core::format_g(100 * diameter, 3) +
+         " cm\n";
+}
+
 int gallery(const GalleryOptions& o) {
   const fs::path out = o.out;
   const std::string ext = out.extension().string();
@@ -121,6 +133,7 @@ int gallery(const GalleryOptions& o) {
   if (o.tile < 120 || o.tile > 2000 || o.tile % 2)
     throw core::InputError("--tile " + std::to_string(o.tile) +
                            ": allowed are even sizes from 120 to 2000 pixels");
+  const double width_pt = o.width.points();
   // The run opened once: its manifest checked, its scene compiled (the re-simulation, the pictures and the
   // species' names share it), its events read.
   const io::Run run = io::Run::open(o.run, "gallery", io::Run::kEvents);
@@ -199,6 +212,7 @@ int gallery(const GalleryOptions& o) {
     resimulate(run, until, FrameClock::at_steps(at), {&tiles}, "gallery: re-simulating");
   }
   io::write_file_atomic(tmp / "index.csv", index);
+  io::write_file_atomic(tmp / "key.tsv", sheet_key(names, style, geo.grain_diameter));
   const std::string title = sheet_title(run, imported, n, recorded.arches.size(), style);
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
@@ -211,7 +225,7 @@ int gallery(const GalleryOptions& o) {
              "(contacts by distance, import's --contact-tolerance); h/(s/2): rise over half the span; "
              "\u03b8max: the largest bead angle; defects: bead angles above 180\u00b0"
            : "",
-       look.figure_spec()});
+       look.figure_spec(width_pt)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
@@ -236,6 +250,7 @@ void define_gallery_command(CLI::App& command, Action& action) {
       ->check(whole_number(1, 1000))
       ->capture_default_str();
   o->looks.add_to(*cmd);
+  o->width.add_to(*cmd);
   cmd->add_flag("--force", o->force, "replace an earlier gallery sheet");
   cmd->callback([o, &action] { action = [o] { return gallery(*o); }; });
 }

@@ -27,6 +27,7 @@ struct TimelineOptions {
   double from = 0, to = -1;  // s; to < 0: the run's end
   bool force = false;
   LookOptions looks;  // the run's own look unless given: species' colours, background, text size
+  FigureWidth width;  // a journal's column, or the figure's own size
 };
 
 int timeline(const TimelineOptions& o) {
@@ -35,6 +36,7 @@ int timeline(const TimelineOptions& o) {
   const std::string ext = out.extension().string();
   if (ext != ".pdf" && ext != ".svg" && ext != ".png")
     throw core::InputError("--out " + o.out + ": the figure is .pdf, .svg or .png");
+  const double width_pt = o.width.points();
   // The run's own files, checked as analyze checks them (times in order, species known, clogs in range).
   const core::Model& model = run.model();
   const core::Events& ev = run.events();
@@ -59,7 +61,7 @@ int timeline(const TimelineOptions& o) {
   const int status =
       run_python(script_path("timeline.py"),
                  {run.dir().string(), partial.string(), core::format_g(o.from, 9), core::format_g(to, 9),
-                  io::version_string(), command_line(), look.species_hex(model), look.figure_spec()});
+                  io::version_string(), command_line(), look.species_hex(model), look.figure_spec(width_pt)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
@@ -81,6 +83,7 @@ void define_timeline_command(CLI::App& command, Action& action) {
   cmd->add_option("--to", o->to, "end of the time axis, s (default: the run's end)");
   cmd->add_flag("--force", o->force, "replace an earlier timeline or gallery figure of the same name");
   o->looks.add_to(*cmd);
+  o->width.add_to(*cmd);
   cmd->callback([o, &action] { action = [o] { return timeline(*o); }; });
 }
 

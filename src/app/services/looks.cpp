@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "app/services/recording.h"
 #include "core/error.h"
@@ -223,9 +224,43 @@ std::string Look::species_hex(const core::Model& model) const {
   return colors;
 }
 
-std::string Look::figure_spec() const {
+std::string Look::figure_spec(double width_pt) const {
   return std::string("background=") + (style.dark ? "dark" : "white") +
-         ";font_scale=" + core::format_g(overlay.font_scale, 6);
+         ";font_scale=" + core::format_g(overlay.font_scale, 6) +
+         (width_pt > 0 ? ";width_pt=" + core::format_g(width_pt, 9) : "");
+}
+
+void FigureWidth::add_to(CLI::App& cmd) {
+  cmd.add_option(
+      "--width", given,
+      "lay the figure out at this width on the page, text 7-9 pt there: 85mm, 8.5cm, 3.35in, 241pt, "
+      "single (a journal's column, 86 mm) or double (178 mm)");
+}
+
+double FigureWidth::points() const {
+  if (given.empty()) return 0;
+  constexpr double mm = 72.0 / 25.4;
+  if (given == "single") return 86 * mm;
+  if (given == "double") return 178 * mm;
+  const std::pair<const char*, double> units[] = {{"mm", mm}, {"cm", 10 * mm}, {"in", 72.0}, {"pt", 1.0}};
+  for (const auto& [unit, factor] : units) {
+    const size_t n = std::strlen(unit);
+    if (given.size() <= n || given.compare(given.size() - n, n, unit) != 0) continue;
+    const std::string number = given.substr(0, given.size() - n);
+    char* end = nullptr;
+    const double v = std::strtod(number.c_str(), &end);
+    if (*end || !std::isfinite(v)) break;
+    const double pt = v * factor;
+    // From a narrow column (40 mm) to a landscape page (300 mm).
+    if (pt < 40 * mm - 1e-9 || pt > 300 * mm + 1e-9)
+      throw core::InputError("--width " + given + ": " + core::format_g(pt / mm, 4) +
+                             " mm is outside 40 mm to 300 mm");
+    return pt;
+  }
+  throw core::InputError(
+      "--width " + given +
+      ": expected a length with its unit (85mm, 8.5cm, 3.35in, 241pt) or single (86 mm) or "
+      "double (178 mm)");
 }
 
 io::Facts LookOptions::facts(const Look& look) const {

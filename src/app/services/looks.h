@@ -36,8 +36,20 @@ struct Look {
   bool color_scale_from_data = false;
   // "#rrggbb" of each species in this look, comma-separated (figure scripts).
   std::string species_hex(const core::Model& model) const;
-  // What the figure scripts take of it (src/figures/look.py): "background=dark;font_scale=2".
-  std::string figure_spec() const;
+  // What the figure scripts take of it (src/figures/look.py): "background=dark;font_scale=2", and with a
+  // journal width (points, FigureWidth) ";width_pt=241".
+  std::string figure_spec(double width_pt = 0) const;
+};
+
+// A figure's width on the page, for a journal (--width of filmstrip, gallery and timeline): the figure is
+// laid out at that width with text of 7 to 9 pt there (src/figures/look.py), whatever the look's text size.
+struct FigureWidth {
+  std::string given;  // "": the figure's own size
+
+  void add_to(CLI::App& cmd);
+  // Points (1/72 in); 0 when not given. "85mm", "8.5cm", "3.35in", "241pt", or a journal's column: single
+  // (86 mm, 3.375 in) or double (178 mm, 7 in). Throws core::InputError naming the value and what is allowed.
+  double points() const;
 };
 
 struct LookOptions {
