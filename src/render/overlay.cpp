@@ -225,6 +225,7 @@ void Overlay::reset() {
   info_corner_ = 0;
   info_left_ = false;
   spots_.clear();
+  text_spots_.clear();
 }
 
 void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOptions& o,
@@ -351,8 +352,6 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   ImDrawList* dl = ImGui::GetForegroundDrawList();
 
   if (o.zoombox && views.size() > 1) draw_zoombox(views, h);
-  if (o.events) draw_events(notes, views, em);
-  if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   if (o.ids || notes.selected >= 0) draw_ids(f, views, o.ids, notes.selected, em);
   // What the boxes keep off: the container as this picture shows it (where a vibrating one is now), the
   // grains, and each box placed before the next. The information box first: the plot, the colour bar and
@@ -370,6 +369,10 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   if (o.plot) plot(f, d, o, views, style);
   draw_colorbar(o, views, style, em);
   if (o.scale) draw_scale(d, o, views, em);
+  // The texts over the scene after the boxes, in the space they left: none over a box or another text.
+  texts_.clear();
+  if (o.events) draw_events(notes, views, em);
+  if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   // A bold line between panels of a comparison, thin separators between views.
   if (d.panel_x > 0)
     dl->AddLine(ImVec2(static_cast<float>(d.panel_x), 0),

@@ -147,6 +147,15 @@ class Overlay {
   // a box the user placed (--overlay-at) counts as clear.
   bool boxes_clear() const { return boxes_clear_; }
   std::array<float, 4> scale_rect() const { return scale_rect_; }
+  // The texts drawn over the scene in the last picture (an event's caption, the slow-motion badge, each
+  // note's label in each view), by name ("caption", "badge", "note K V"), with whether each found clear
+  // space.
+  struct PlacedText {
+    std::string name;
+    std::array<float, 4> rect;
+    bool clear;
+  };
+  const std::vector<PlacedText>& texts() const { return texts_; }
 
  private:
   void ensure_font(int h, double scale);
@@ -208,6 +217,13 @@ class Overlay {
   };
   static constexpr int kRecheck = 30;
   std::map<std::string, Spot> spots_;
+  // A text over the scene (caption, badge, note label) as one more box of the layout, placed after the boxes:
+  // where it would stand (`want`, its top-left) if that is clear, else the clear spot nearest to it within
+  // `within` (where it stood in the last picture while that stays clear), else `want` (not clear). Blocks it.
+  Box place_text(const std::string& name, float w, float h, const Box& within, std::array<float, 2> want,
+                 float ax, float ay);
+  std::map<std::string, Box> text_spots_;
+  std::vector<PlacedText> texts_;
   std::optional<Box> spot(const std::string& key, float w, float h, const Box& within, int corner, float pad);
   float panel_x0_ = 0, panel_x1_ = 0, panel_y1_ = 0;  // the panel's region, pixels
   int info_corner_ = 0;     // 0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left (place_clear)
