@@ -280,8 +280,8 @@ TEST_CASE("events on screen: a rule removal stays marked >= 10 frames, the badge
       const unsigned char* p = px + 4 * i;
       ring +=
           std::abs(p[0] - 200) < 25 && p[1] < 40 && std::abs(p[2] - 160) < 25;  // the magenta rings/caption
-      // The badge's yellow text (255, 220, 0), wherever the layout put it: the arch's gold (255, 194, 0) and its
-      // blends with the white background or the halo's dark edge stay outside this band.
+      // The badge's yellow text (255, 220, 0), wherever the layout put it: the arch's gold (255, 194, 0) and
+      // its blends with the white background or the halo's dark edge stay outside this band.
       badge += p[0] > 230 && std::abs(p[1] - 220) < 12 && p[2] < 40;
     }
     stbi_image_free(px);
