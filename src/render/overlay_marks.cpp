@@ -207,7 +207,7 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
     }
     const View& zoom = most_zoomed(views);
     // The panel's extent (its views'): the caption and the badge stay inside it, clear of the boxes and the
-    // grains where the panel has room (the layout's free space), else where they always stood.
+    // grains where the panel has room (the layout's free space), else off the boxes and texts (place_text).
     Box panel{static_cast<float>(zoom.rect.x), static_cast<float>(zoom.rect.y),
               static_cast<float>(zoom.rect.x + zoom.rect.w), static_cast<float>(zoom.rect.y + zoom.rect.h)};
     for (const auto& v : views)
