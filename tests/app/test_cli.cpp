@@ -162,7 +162,7 @@ TEST_CASE("record --color-max sets the colour scale or takes it from the data (a
 }
 
 TEST_CASE("record colours by displacement, coordination or id on a chosen colour map and range",
-          "[app][record]") {
+          "[app][record][heavy]") {
   fs::path d = temp_dir("colorby");
   const std::string base = "record " + kScene +
                            " --duration 0.5 --set settle_time=2 --size 160x120 --fps 10 --no-movie " +
@@ -198,7 +198,7 @@ TEST_CASE("record colours by displacement, coordination or id on a chosen colour
 }
 
 TEST_CASE("record --freeze holds the picture at each clog and --camera-path moves the camera",
-          "[app][record]") {
+          "[app][record][heavy]") {
   fs::path d = temp_dir("freeze");
   const std::string base =
       "record " + kScene + " --duration 9 --size 160x120 --fps 10 --no-movie --png-every 1 --quiet --out ";
@@ -251,7 +251,7 @@ TEST_CASE("record --freeze holds the picture at each clog and --camera-path move
 }
 
 TEST_CASE("record tags grains by region at a time and by role (a long-lasting arch's members)",
-          "[app][record]") {
+          "[app][record][heavy]") {
   fs::path d = temp_dir("tags");
   const std::string base =
       "record " + kScene + " --duration 7 --size 160x120 --fps 10 --no-movie --png-every 100 --quiet --out ";
@@ -330,7 +330,7 @@ TEST_CASE("kill -9 during record leaves nothing under the final names", "[app][r
 }
 
 TEST_CASE("record --slowmo slows the video around a long-lasting arch's removal and nowhere else",
-          "[app][record]") {
+          "[app][record][heavy]") {
   fs::path d = temp_dir("slowmo");
   // Seed 1: the first clog is removed by the rule at t = 6.521 s; the slow window is 6.021 to 7.521 s.
   const std::string common = "record " + kScene + " --duration 8 --size 160x120 --fps 10 --quiet --out ";
@@ -360,7 +360,7 @@ TEST_CASE("record: --background, --font-scale, --force-chains and --track are ch
   }
 }
 
-TEST_CASE("bench record flags a stage slowed 1.5x against its committed figures, and exits 1", "[cli][app]") {
+TEST_CASE("bench record flags a stage slowed 1.5x against its committed figures, and exits 1", "[cli][app][heavy]") {
   // The rule itself.
   CHECK(app::slowed_stage("record_720p30", "draw", 1.4, 1.0).empty());
   CHECK(app::slowed_stage("record_720p30", "draw", 1.5, 1.0).empty());

@@ -62,7 +62,7 @@ TEST_CASE("export --format xyz loads in ASE with the right atoms, radii and arch
 }
 
 TEST_CASE("export --format csv writes one frame or a range, values equal to the trajectory frame",
-          "[export][app]") {
+          "[export][app][heavy]") {
   const fs::path r = recorded("export_csv");
   REQUIRE(cli("export " + r.string() + " --format csv --frames 10 --out " + (r / "f10.csv").string()).code ==
           0);
@@ -143,7 +143,7 @@ TEST_CASE("scene --keys lists exactly the field table, scene FILE resolves and v
 }
 
 TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a trajectory, in PDF, SVG and PNG",
-          "[gallery][app]") {
+          "[gallery][app][heavy]") {
   fs::path d = temp_dir("gallery");
   REQUIRE(cli("run " + kScene + " --duration 18 --seed 4 --quiet --out " + (d / "run").string()).code == 0);
   REQUIRE_FALSE(fs::exists(d / "run" / "trajectory.sstraj"));
@@ -212,7 +212,7 @@ TEST_CASE("gallery: one tile per long-lasting arch, re-simulated without a traje
 }
 
 TEST_CASE("timeline: the discharge staircase with clog bands in PDF, SVG and PNG, vector text, owned outputs",
-          "[export][app]") {
+          "[export][app][heavy]") {
   fs::path d = temp_dir("timeline");
   REQUIRE(cli("run " + kScene + " --duration 10 --quiet --out " + (d / "r").string()).code == 0);
   for (const char* ext : {".svg", ".pdf", ".png"}) {
@@ -258,7 +258,7 @@ TEST_CASE("timeline: the discharge staircase with clog bands in PDF, SVG and PNG
 }
 
 TEST_CASE("frame: one picture of a recording at a clog, a time or a frame, at any size, in PNG, SVG and PDF",
-          "[export][app]") {
+          "[export][app][heavy]") {
   const fs::path rec = recorded("frame");
   const fs::path d = rec.parent_path();
   auto r = cli("frame " + rec.string() + " --at clog:1 --size 640x360 --camera outlet --out " +
@@ -293,7 +293,7 @@ TEST_CASE("frame: one picture of a recording at a clog, a time or a frame, at an
 }
 
 TEST_CASE("filmstrip: one clog at several times in one row, vector with its text, every tile captioned",
-          "[export][app]") {
+          "[export][app][heavy]") {
   const fs::path rec = recorded("filmstrip");
   const fs::path d = rec.parent_path();
   for (const char* ext : {".svg", ".pdf", ".png"}) {
@@ -324,7 +324,7 @@ TEST_CASE("filmstrip: one clog at several times in one row, vector with its text
 }
 
 TEST_CASE("journal figures: filmstrip gallery and timeline at 85 mm have text of 7 to 9 pt read from the PDF",
-          "[export][app]") {
+          "[export][app][heavy]") {
   const fs::path rec = recorded("journal");
   const fs::path d = rec.parent_path();
   // The page's width (MediaBox) and every font size the content streams set (Tf), read back from the PDF.
@@ -505,7 +505,7 @@ TEST_CASE("record --panel-title names each panel of a comparison, one each, in o
 
 TEST_CASE(
     "frame re-simulates a run written without a trajectory, as far as --at needs, and leaves nothing behind",
-    "[app]") {
+    "[app][heavy]") {
   const fs::path d = temp_dir("frame_resim");
   REQUIRE(cli("run " + kScene + " --seed 3 --duration 8 --quiet --out " + (d / "r").string()).code == 0);
   REQUIRE(!fs::exists(d / "r" / "trajectory.sstraj"));
@@ -522,7 +522,7 @@ TEST_CASE(
   CHECK(bad.output.find("--at clog:9: the run has 2 clogs (numbered from 1)") != std::string::npos);
 }
 
-TEST_CASE("runs of every earlier trajectory version open: inspect, frame and export", "[app][history]") {
+TEST_CASE("runs of every earlier trajectory version open: inspect, frame and export", "[app][history][heavy]") {
   // One file of each earlier version in the test data (version 1 stores a scene with a key since retired),
   // and one of the current version made now.
   const std::string corpus = std::string(SILOSCOPE_SOURCE_DIR) + "/tests/fuzz/corpus/trajectory/";

@@ -176,7 +176,7 @@ std::string slurp_log(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("every command of the table answers --help and --version and is in the usage line",
-          "[app][frame]") {
+          "[app][frame][heavy]") {
   const std::string version = io::version_string();
   const auto usage = test::cli("");
   CHECK(usage.code == 2);

@@ -51,7 +51,7 @@ void write_trackpy(const fs::path& traj, const fs::path& csv) {
 }  // namespace
 
 TEST_CASE("import: a trackpy CSV of a recording gives back its clogs, arches the inspector shows, an export",
-          "[lab][app]") {
+          "[lab][app][heavy]") {
   const fs::path d = temp_dir("lab_import");
   REQUIRE(
       cli("run " + kScene + " --seed 3 --duration 8 --trajectory-fps 30 --quiet --out " + (d / "r").string())
@@ -154,7 +154,7 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
 }
 
 TEST_CASE("round trip: a filmed recording's grains, clogs and arches come back through detect and import",
-          "[lab][app]") {
+          "[lab][app][heavy]") {
   const fs::path d = temp_dir("lab_roundtrip");
   REQUIRE(cli("record " + kScene +
               " --seed 3 --duration 8 --camera window:-1.4,-0.4,1.4,1.6 --size 1280x720 --overlay none "

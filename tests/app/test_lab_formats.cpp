@@ -96,7 +96,7 @@ std::string origin_of(const std::string& meta) {
 }  // namespace
 
 TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate's spots give the same run",
-          "[lab][app]") {
+          "[lab][app][heavy]") {
   const fs::path d = test::temp_dir("lab_formats");
   REQUIRE(
       cli("run " + kScene + " --seed 3 --duration 6 --trajectory-fps 30 --quiet --out " + (d / "r").string())
@@ -304,7 +304,7 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
 
 TEST_CASE(
     "detect: the obstacle is no grain, a dark background is found by itself, --force replaces its own files",
-    "[lab][app]") {
+    "[lab][app][heavy]") {
   const fs::path d = test::temp_dir("detect_films");
   const std::string film =
       " --seed 3 --duration 1 --camera window:-1.4,-0.4,1.4,1.6 --size 960x540 --overlay none "

@@ -62,7 +62,7 @@ double largest_font(const std::string& svg) {
 }  // namespace
 
 TEST_CASE("pictures made from a recording use its look: species colours, dark background, text size",
-          "[app][look]") {
+          "[app][look][heavy]") {
   using test::cli;
   const fs::path d = test::temp_dir("look");
   const std::string rec = (d / "rec").string();

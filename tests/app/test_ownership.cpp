@@ -28,7 +28,7 @@ fs::path make_run(const fs::path& where, int seed = 1) {
 }  // namespace
 
 TEST_CASE("force replaces only siloscope's output of the same kind, holding what its manifest lists",
-          "[trust][app]") {
+          "[trust][app][heavy]") {
   const fs::path d = temp_dir("ownership");
   const fs::path run = make_run(d / "run");
   // The same kind, untouched: replaced.
@@ -109,7 +109,7 @@ TEST_CASE("output paths are resolved first: r1/../r1, a trailing slash, empty an
 }
 
 TEST_CASE("readers check what they read: a truncated file, a cut metadata.toml, a link to a device",
-          "[trust][app]") {
+          "[trust][app][heavy]") {
   const fs::path d = temp_dir("readers");
   // exits.csv cut to half (at a line end, so the CSV itself still parses): the manifest names it.
   const fs::path a = make_run(d / "runs" / "a");
@@ -254,7 +254,7 @@ TEST_CASE("claims and figures refuse a points.csv with impossible counts", "[tru
 }
 
 TEST_CASE("every single-file writer: --force replaces its own untouched file, never one a user changed",
-          "[trust][app]") {
+          "[trust][app][heavy]") {
   // Each writer's file gets a record beside it (.NAME.siloscope: size and hash); a line added to the file, or
   // a movie re-encoded, no longer matches it.
   const fs::path d = temp_dir("single_files");

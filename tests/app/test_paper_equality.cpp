@@ -16,7 +16,7 @@ namespace {
 const std::string kSource = SILOSCOPE_SOURCE_DIR;
 }
 
-TEST_CASE("the paper's presets give the committed events, byte for byte", "[app][scene][golden]") {
+TEST_CASE("the paper's presets give the committed events, byte for byte", "[app][scene][golden][heavy]") {
   struct Case {
     const char* name;
     const char* args;
@@ -43,7 +43,7 @@ TEST_CASE("the paper's presets give the committed events, byte for byte", "[app]
   }
 }
 
-TEST_CASE("every committed campaign analyses to its committed points.csv", "[app][analysis][golden]") {
+TEST_CASE("every committed campaign analyses to its committed points.csv", "[app][analysis][golden][heavy]") {
   const fs::path d = test::temp_dir("campaign_equality");
   int campaigns = 0;
   for (const auto& e : fs::directory_iterator(fs::path(kSource) / "docs/campaigns")) {

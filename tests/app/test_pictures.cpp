@@ -256,7 +256,7 @@ TEST_CASE(
 TEST_CASE(
     "a camera on an arch or a grain: the arch whole as its clog forms, the grain followed, each kept in the "
     "picture on the way to it",
-    "[app][record]") {
+    "[app][record][heavy]") {
   app::RecordOptions o;
   o.scene.path = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
   o.scene.seed = 1;

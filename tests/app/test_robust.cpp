@@ -44,7 +44,7 @@ struct SmallDisk {
 }  // namespace
 
 TEST_CASE("a full disk during record: a clear error, no partial files, earlier outputs intact",
-          "[robust][app]") {
+          "[robust][app][heavy]") {
   SmallDisk disk("full", "size=3m");
   if (!disk.mounted && ::geteuid() != 0) {
     WARN("not root: cannot mount a small tmpfs, the full-disk test does not run here");
@@ -106,7 +106,7 @@ TEST_CASE("SIGTERM during record also leaves a playable movie", "[robust][app]")
 }
 
 TEST_CASE("every subcommand answers --help and --version, wrong arguments give usage and exit 2",
-          "[robust][app]") {
+          "[robust][app][heavy]") {
   for (const char* sub : {"run", "record", "inspect", "live", "sweep", "analyze", "figures", "gallery",
                           "timeline", "frame", "claims", "export", "scene", "bench sim", "bench arch",
                           "bench accuracy", "bench stability", "bench sweep"}) {

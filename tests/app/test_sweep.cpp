@@ -108,7 +108,7 @@ TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {
              Catch::Matchers::Contains("duplicates"));
 }
 
-TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel", "[campaign][app]") {
+TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel", "[campaign][app][heavy]") {
   fs::path d = temp_dir("workers");
   fs::path c = tiny_campaign(d, 2);
   REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 1 --quiet --results " + (d / "one").string()) == 0);
@@ -140,7 +140,7 @@ TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU paral
   CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") == first_exits);
 }
 
-TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization", "[campaign][app]") {
+TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization", "[campaign][app][heavy]") {
   fs::path d = temp_dir("resume");
   fs::path c = tiny_campaign(d, 4);  // 12 realizations
   for (int sig : {SIGINT, SIGKILL}) {
@@ -175,7 +175,7 @@ TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realiz
 }
 
 TEST_CASE("a resumed sweep refuses a finished realization that was cut, edited or lost its manifest",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("resume_check");
   fs::path c = tiny_campaign(d, 1);  // 3 realizations
   const fs::path r = d / "r";
@@ -209,7 +209,7 @@ TEST_CASE("a resumed sweep refuses a finished realization that was cut, edited o
 }
 
 TEST_CASE("a realization the health monitor refuses is recorded once, not rerun, and counted by analyze",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("refused");
   // Two points: the literal kick, and one so strong (0.5 N s) that the first kick throws a disk out.
   std::ofstream(d / "short.toml") << "settle_time = 1.0\n";
@@ -271,7 +271,7 @@ TEST_CASE("a realization the health monitor refuses is recorded once, not rerun,
 }
 
 TEST_CASE("sweep --status says how far a campaign got and what is left, and writes nothing",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("status");
   fs::path c = tiny_campaign(d, 2);  // 3 points x 2
   const fs::path res = d / "res";
@@ -347,7 +347,7 @@ TEST_CASE("sweep --status says how far a campaign got and what is left, and writ
 }
 
 TEST_CASE("figures draws what the grid allows, avalanche sizes included, and names what it skipped",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("figures");
   std::ofstream(d / "short.toml") << "settle_time = 2.0\n";
   std::ofstream(d / "c.toml") << "name = \"fig\"\nscene = \"short.toml\"\nseed = 5\nrealizations = 2\n"
@@ -398,7 +398,7 @@ TEST_CASE("figures draws what the grid allows, avalanche sizes included, and nam
 }
 
 TEST_CASE("emit-jobs groups realizations into array tasks of --task-minutes and at most --max-array of them",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("array");
   fs::path c = tiny_campaign(d, 2);
   // Without a finished realization there is no wall time to fill minutes with: the limit on tasks decides.
@@ -450,7 +450,7 @@ TEST_CASE("emit-jobs groups realizations into array tasks of --task-minutes and 
 }
 
 TEST_CASE("the committed paper figures are what the current figure script draws from the committed analysis",
-          "[campaign][app]") {
+          "[campaign][app][heavy]") {
   // One of each kind the figure script draws from the tidy tables: a curve over r, a curve over mu, a
   // survival; byte for byte (matplotlib's PNG output is deterministic here, and no version is drawn in).
   fs::path d = temp_dir("figures_again");

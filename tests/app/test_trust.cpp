@@ -145,7 +145,7 @@ TEST_CASE("leftovers of a dead process are removed by the next run to the same o
 }
 
 TEST_CASE("analyze counts a run for the time it covered and names what it leaves out",
-          "[trust][app][analysis]") {
+          "[trust][app][analysis][heavy]") {
   fs::path d = temp_dir("analyze_cover");
   for (int seed : {1, 2, 3})
     REQUIRE(cli("run " + kScene + " --duration 6 --set settle_time=2 --quiet --seed " + std::to_string(seed) +
@@ -263,7 +263,7 @@ TEST_CASE("conflicting flags are refused with both named, and output lost on a f
 }
 
 TEST_CASE("keys that do nothing in this scene and species rounded to no grains are warned about, by origin",
-          "[trust][app]") {
+          "[trust][app][heavy]") {
   auto r = cli("scene " + kScene +
                " --set obstacle_height=0.5 --set chi=0.001 --set kick_impulse_max=0 --set "
                "kick_period=0.5");

@@ -128,7 +128,7 @@ TEST_CASE("a staged clog broken by strong kicks (5e-3 N s) is labelled vibration
 
 TEST_CASE(
     "real runs: the literal kick breaks almost no clog, a 100x kick breaks many, and none is mislabelled",
-    "[clog][sim]") {
+    "[clog][sim][heavy]") {
   auto run = [](double impulse) {
     core::Scene s;
     s.duration = 25;

@@ -41,7 +41,7 @@ TEST_CASE("the clog rule fires at clog_timeout, removes exactly the arch and re-
 }
 
 TEST_CASE("arches shown agree with the clog rule's, and a flowing outlet shows none that blocks nothing",
-          "[arch][sim]") {
+          "[arch][sim][heavy]") {
   core::Scene s;  // the built-in default: the paper's hopper at the literal kick
   s.seed = 3;
   sim::Silo h(core::compile(s));

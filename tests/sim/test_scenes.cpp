@@ -117,7 +117,7 @@ TEST_CASE("a tilted container: gravity at the tilt in its frame", "[sim][scenes]
 
 TEST_CASE(
     "the shipped flat silo tilted up to 60 degrees fills as it stands and measures its surface along gravity",
-    "[sim][scenes]") {
+    "[sim][scenes][heavy]") {
   // The shipped scene at its own height (3.5 m): dropped into the standing tilted container, the grains used
   // to rest in a chain up its lower wall above the top ("still above the top of the container" at any
   // settle time until the silo was twice as tall).

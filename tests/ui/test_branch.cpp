@@ -30,7 +30,7 @@ ArrestedClog first_arrested(const fs::path& run, double fps) {
 }  // namespace
 
 TEST_CASE("a scripted branch removes an arch member of an arrested clog, ends the clog there and replays",
-          "[ui][app]") {
+          "[ui][app][heavy]") {
   const fs::path d = temp_dir("branch");
   REQUIRE(test::cli("run " + test::kScene + " --seed 3 --duration 8 --trajectory-fps 30 --quiet --out " +
                     (d / "run").string())
@@ -97,7 +97,7 @@ TEST_CASE("a scripted branch removes an arch member of an arrested clog, ends th
 }
 
 TEST_CASE("branch lines are refused with what to do: no branch yet, a saved branch, a key it cannot change",
-          "[ui][app]") {
+          "[ui][app][heavy]") {
   const fs::path d = temp_dir("branch_errors");
   REQUIRE(test::cli("run " + test::kScene + " --duration 2 --trajectory-fps 30 --quiet --out " +
                     (d / "run").string())

@@ -475,7 +475,7 @@ TEST_CASE("the window opens under Xvfb, draws the hopper and the panel, and says
   CHECK_THAT(err, Contains("no display") && Contains("--script"));
 }
 
-TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvfb, xdotool)", "[ui]") {
+TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvfb, xdotool)", "[ui][heavy]") {
   fs::path d = temp_dir("window_keys");
   REQUIRE(
       sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
@@ -498,7 +498,7 @@ TEST_CASE("the inspector window idles without CPU and never loses a key tap (Xvf
 
 TEST_CASE(
     "the live window pauses without CPU, steps one frame and snapshots without overwriting (Xvfb, xdotool)",
-    "[ui]") {
+    "[ui][heavy]") {
   fs::path d = temp_dir("live_keys");
   const std::string log = (d / "log.txt").string();
   REQUIRE(sh("xvfb-run -a -s '-screen 0 1280x720x24' bash " + std::string(SILOSCOPE_SOURCE_DIR) +
@@ -533,7 +533,7 @@ TEST_CASE(
 }
 
 TEST_CASE("the inspector's clog bars start at each clog's start_s in clogs.csv, not clog_min_gap later",
-          "[ui]") {
+          "[ui][heavy]") {
   fs::path d = temp_dir("clog_bars");
   REQUIRE(test::cli("run " + test::kScene + " --duration 25 --seed 2 --quiet --trajectory-fps 10 --out " +
                     (d / "r").string())
@@ -561,7 +561,7 @@ TEST_CASE("the inspector's clog bars start at each clog's start_s in clogs.csv, 
 }
 
 TEST_CASE("an inspector snapshot at 3000x2000 places its information box clear of the grains",
-          "[ui][render]") {
+          "[ui][render][heavy]") {
   // The first picture of a size used to keep the box top-right (its size was not yet known), over the funnel.
   fs::path d = temp_dir("snapshot_clear");
   REQUIRE(test::cli("record " + test::kScene +
@@ -602,7 +602,7 @@ TEST_CASE("an inspector snapshot at 3000x2000 places its information box clear o
 }
 
 TEST_CASE("the inspector draws force chains from a recording's contacts, and says when a run has none",
-          "[ui][render]") {
+          "[ui][render][heavy]") {
   fs::path d = temp_dir("inspector_chains");
   REQUIRE(test::cli("record " + test::kScene +
                     " --duration 8 --size 320x180 --no-movie --png-every 1000 --quiet --out " +
@@ -756,7 +756,7 @@ TEST_CASE("each colouring keeps its own colour range and a refused colour line c
 }
 
 TEST_CASE("a window session saved as a script replays off-screen to the same snapshot bytes (Xvfb, xdotool)",
-          "[ui]") {
+          "[ui][heavy]") {
   fs::path d = temp_dir("session");
   REQUIRE(sh(kBin + " record " + std::string(SILOSCOPE_SOURCE_DIR) +
              "/assets/scenes/paper.toml --duration 12 --size 320x240 --fps 30 --quiet --out " +
@@ -791,7 +791,7 @@ TEST_CASE("a window session saved as a script replays off-screen to the same sna
 
 TEST_CASE(
     "every click on the step buttons and the colourings is on screen before the window goes idle (Xvfb)",
-    "[ui]") {
+    "[ui][heavy]") {
   fs::path d = temp_dir("clicks");
   REQUIRE(sh(kBin + " run " + std::string(SILOSCOPE_SOURCE_DIR) +
              "/assets/scenes/paper.toml --duration 3 --trajectory-fps 30 --quiet --out " +
@@ -886,7 +886,7 @@ struct GridClicker {
 TEST_CASE(
     "every control of the inspector's and the live window's panels survives clicks and drags (paper, "
     "pentagons)",
-    "[ui]") {
+    "[ui][heavy]") {
   gl();
   for (const std::string scene : {"paper", "pentagons"}) {
     INFO(scene);
@@ -979,7 +979,7 @@ TEST_CASE(
 }
 
 TEST_CASE("vector snapshots carry the information box, legend, colour bar and scale bar as text and paths",
-          "[ui]") {
+          "[ui][heavy]") {
   fs::path d = temp_dir("vector_key");
   REQUIRE(test::cli("record " + test::kScene +
                     " --duration 3 --size 320x180 --no-movie --png-every 1000 --quiet --out " +
