@@ -8,7 +8,8 @@
 
 namespace fs = std::filesystem;
 
-TEST_CASE("breaking: each arrested clog's breaking kick in a table, bad input refused", "[app][forces][heavy]") {
+TEST_CASE("breaking: each arrested clog's breaking kick in a table, bad input refused",
+          "[app][forces][heavy]") {
   const fs::path d = test::temp_dir("breaking");
   const std::string paper = std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper.toml";
   auto r = test::cli("run " + paper + " --seed 3 --duration 4 --quiet --out " + (d / "run").string());

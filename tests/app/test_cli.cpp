@@ -360,7 +360,8 @@ TEST_CASE("record: --background, --font-scale, --force-chains and --track are ch
   }
 }
 
-TEST_CASE("bench record flags a stage slowed 1.5x against its committed figures, and exits 1", "[cli][app][heavy]") {
+TEST_CASE("bench record flags a stage slowed 1.5x against its committed figures, and exits 1",
+          "[cli][app][heavy]") {
   // The rule itself.
   CHECK(app::slowed_stage("record_720p30", "draw", 1.4, 1.0).empty());
   CHECK(app::slowed_stage("record_720p30", "draw", 1.5, 1.0).empty());

@@ -522,7 +522,8 @@ TEST_CASE(
   CHECK(bad.output.find("--at clog:9: the run has 2 clogs (numbered from 1)") != std::string::npos);
 }
 
-TEST_CASE("runs of every earlier trajectory version open: inspect, frame and export", "[app][history][heavy]") {
+TEST_CASE("runs of every earlier trajectory version open: inspect, frame and export",
+          "[app][history][heavy]") {
   // One file of each earlier version in the test data (version 1 stores a scene with a key since retired),
   // and one of the current version made now.
   const std::string corpus = std::string(SILOSCOPE_SOURCE_DIR) + "/tests/fuzz/corpus/trajectory/";

@@ -108,7 +108,8 @@ TEST_CASE("bad campaigns are refused with the file and the key", "[campaign]") {
              Catch::Matchers::Contains("duplicates"));
 }
 
-TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel", "[campaign][app][heavy]") {
+TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU parallel",
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("workers");
   fs::path c = tiny_campaign(d, 2);
   REQUIRE(sh(kBin + " sweep " + c.string() + " --workers 1 --quiet --results " + (d / "one").string()) == 0);
@@ -140,7 +141,8 @@ TEST_CASE("sweeps: identical results with 1 and 2 workers, and through GNU paral
   CHECK(slurp(d / "one" / "runs" / "p001" / "r001" / "exits.csv") == first_exits);
 }
 
-TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization", "[campaign][app][heavy]") {
+TEST_CASE("a sweep killed mid-way resumes without losing or duplicating a realization",
+          "[campaign][app][heavy]") {
   fs::path d = temp_dir("resume");
   fs::path c = tiny_campaign(d, 4);  // 12 realizations
   for (int sig : {SIGINT, SIGKILL}) {
