@@ -4,7 +4,7 @@ slides and a text size. The C++ side passes it to the figure scripts as one argu
 the page, ";width_pt=241" (--width): its text is then 7 to 9 pt at that width, whatever the text size.
 
 A figure's key (read_key) is what the bitmap pictures' legend and scale bar say, as tab-separated lines the C++
-side writes: background, font_scale, info, species, arch, colorbar and scale."""
+side writes: background, font_scale, info, species, arch, colorbar and scale, and width_pt for a journal figure."""
 import sys
 
 
@@ -49,7 +49,7 @@ class Look:
 def read_key(path, who):
     """A figure's key file -> {background, font_scale, info, species, arch, colorbar, scale}."""
     key = {"background": "white", "font_scale": 1.0, "info": [], "species": [], "arch": [], "colorbar": None,
-           "scale": None}
+           "scale": None, "width_pt": 0.0}
     with open(path, encoding="utf-8") as f:
         for line in f.read().splitlines():
             parts = line.split("\t")
@@ -66,6 +66,8 @@ def read_key(path, who):
                 key["colorbar"] = (parts[1], float(parts[2]), float(parts[3]), parts[4])
             elif kind == "scale" and len(parts) == 3:
                 key["scale"] = (float(parts[1]), parts[2])
+            elif kind == "width_pt" and len(parts) == 2:  # frame --width: a journal figure this wide
+                key["width_pt"] = float(parts[1])
             else:
                 print(f"{who}: {path}: a line siloscope does not write: {line!r}", file=sys.stderr)
                 sys.exit(2)

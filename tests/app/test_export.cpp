@@ -323,8 +323,9 @@ TEST_CASE("filmstrip: one clog at several times in one row, vector with its text
   CHECK(cli("filmstrip " + rec.string() + " --times=0 --out " + (d / "strip.svg").string()).code == 2);
 }
 
-TEST_CASE("journal figures: filmstrip gallery and timeline at 85 mm have text of 7 to 9 pt read from the PDF",
-          "[export][app][heavy]") {
+TEST_CASE(
+    "journal figures: filmstrip gallery timeline and frame at 85 mm have text of 7 to 9 pt read from the PDF",
+    "[export][app][heavy]") {
   const fs::path rec = recorded("journal");
   const fs::path d = rec.parent_path();
   // The page's width (MediaBox) and every font size the content streams set (Tf), read back from the PDF.
@@ -387,6 +388,19 @@ print(f"width_mm {(box[2] - box[0]) * 25.4 / 72:.2f} smallest_pt {min(sizes):.2f
   CHECK(std::fabs(t[0] - 85.0) < 0.1);
   CHECK(t[1] >= 7.0 - 1e-6);
   CHECK(t[2] <= 9.0 + 1e-6);
+  // frame: the vector picture at a single column, with the colour bar of its colouring.
+  REQUIRE(cli("frame " + rec.string() +
+              " --at clog:1 --camera outlet --color speed --font-scale 2 --width 85mm " + "--out " +
+              (d / "frame.pdf").string())
+              .code == 0);
+  const auto f = pdf_text(d / "frame.pdf");
+  CHECK(std::fabs(f[0] - 85.0) < 0.1);
+  CHECK(f[1] >= 7.0 - 1e-6);
+  CHECK(f[2] <= 9.0 + 1e-6);
+  CHECK_THAT(
+      cli("frame " + rec.string() + " --at clog:1 --width 85mm --out " + (d / "x.png").string()).output,
+      Catch::Matchers::Contains("--width 85mm: a page width is for a vector figure"));
+  CHECK_FALSE(fs::exists(d / "x.png"));
   // Widths refused name the value and what is allowed; nothing is written.
   CHECK_THAT(cli(strip + "--width 85 --out " + (d / "x.pdf").string()).output,
              Catch::Matchers::Contains("--width 85: expected a length with its unit"));

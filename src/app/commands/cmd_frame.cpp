@@ -45,6 +45,7 @@ namespace fs = std::filesystem;
 struct FrameOptions {
   std::string path, at, size = "3840x2160", out, camera = "split";
   LookOptions looks;  // the recording's own look unless given
+  FigureWidth width;  // .svg and .pdf: a journal's column
 };
 
 // siloscope frame RUN --at ...: one picture of a recorded run at an event, as the inspector's script makes it
@@ -112,6 +113,11 @@ int frame(const FrameOptions& o) {
   const std::string ext = fs::path(o.out).extension().string();
   if (ext != ".png" && ext != ".svg" && ext != ".pdf")
     throw core::InputError("--out " + o.out + ": the frame is .png, .svg or .pdf");
+  const double width_pt = o.width.points();
+  if (width_pt > 0 && ext == ".png")
+    throw core::InputError("--width " + o.width.given +
+                           ": a page width is for a vector figure (--out F.pdf or F.svg); a .png is --size "
+                           "pixels");
   // A run without a trajectory is simulated again into a temporary directory beside the output.
   struct Cleanup {
     fs::path p;
@@ -128,7 +134,8 @@ int frame(const FrameOptions& o) {
   }
   const io::Run& source = resimulated ? *resimulated : run;
   const TrajectoryFrames frames(source);
-  const RecordFiles files;
+  RecordFiles files;
+  files.figure_width_pt = width_pt;
   ui::Inspector insp(frames, run.model(), &files);
   title_imported(insp, run);
   int w = 0, h = 0;
@@ -287,6 +294,7 @@ void define_frame_command(CLI::App& command, Action& action) {
   fc->add_option("--camera", fo->camera, "split, outlet, hopper or window:X0,Y0,X1,Y1")
       ->capture_default_str();
   fo->looks.add_to(*fc);
+  fo->width.add_to(*fc);
   fc->callback([fo, &action] { action = [fo] { return frame(*fo); }; });
 }
 

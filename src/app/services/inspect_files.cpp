@@ -82,8 +82,10 @@ void RecordFiles::write_vector(const std::string& path, const std::string& draw_
   std::vector<std::string> args = {
       table.string(), partial.string(),    core::format_g(width_m, 9), core::format_g(height_m, 9),
       caption,        io::version_string()};
-  if (!key.empty()) {
-    io::write_file_atomic(key_file, key);
+  if (!key.empty() || figure_width_pt > 0) {
+    const std::string width =
+        figure_width_pt > 0 ? "width_pt\t" + core::format_g(figure_width_pt, 9) + "\n" : "";
+    io::write_file_atomic(key_file, key + width);
     args.push_back(key_file.string());
   }
   const int status = run_python(script_path("snapshot.py"), args);

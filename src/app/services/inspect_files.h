@@ -52,6 +52,8 @@ class RecordFiles : public ui::ImageFiles {
   void write_vector(const std::string& path, const std::string& draw_list_csv, double width_m,
                     double height_m, const std::string& caption, const std::string& key = "") const override;
   void write_text(const std::string& path, const std::string& text) const override;
+  // > 0: vector pictures are laid out as journal figures this many points wide (frame --width), text 7-9 pt.
+  double figure_width_pt = 0;
 };
 
 }  // namespace app
