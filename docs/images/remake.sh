@@ -48,3 +48,10 @@ frame tracked_grains tracked 120
 $S record assets/scenes/paper.toml --duration 8 --size 1280x720 --no-movie --png-every 240 \
   --color displacement --displacement-from 6 --colormap magma --quiet --force --out $R/displacement
 frame displacement displacement 240
+# The forces on an arrested arch (docs/arches.md): the paper's scene without kicks or the rule, at rest 5.91 s
+# in; grains by stress, the arch's outside forces as arrows. frame never writes over a file: the old one goes.
+$S run assets/scenes/paper.toml --set kick_impulse_max=0 --set clog_timeout=0 --duration 6 --trajectory-fps 30 \
+  --quiet --force --out $R/forces 2>/dev/null
+rm -f docs/images/arch_forces.png
+$S frame $R/forces --at frame:179 --camera outlet --color stress --arch-forces on --size 1280x720 \
+  --out docs/images/arch_forces.png

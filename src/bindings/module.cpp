@@ -140,22 +140,31 @@ class Simulation {
   }
   std::vector<std::string> species_names() const { return silo_->setup().species_names(); }
 
-  // Grain-grain contacts now, with their normal force over the last step (N).
+  // Grain-grain contacts now, with their forces over the last step (N: normal, and tangential along (ny,
+  // -nx)), where they touch (m) and their unit normal from a to b (core::Contact).
   py::dict contacts() const {
     const core::Frame f = silo_->frame(true);
     const auto n = static_cast<py::ssize_t>(f.contacts.size());
     py::array_t<int> a(n), b(n);
-    py::array_t<double> force(n);
+    py::array_t<double> force(n), ft(n), x(n), y(n), nx(n), ny(n);
     auto aa = a.mutable_unchecked<1>(), bb = b.mutable_unchecked<1>();
-    auto ff = force.mutable_unchecked<1>();
+    auto ff = force.mutable_unchecked<1>(), tt = ft.mutable_unchecked<1>();
+    auto xx = x.mutable_unchecked<1>(), yy = y.mutable_unchecked<1>();
+    auto nnx = nx.mutable_unchecked<1>(), nny = ny.mutable_unchecked<1>();
     for (py::ssize_t i = 0; i < n; ++i) {
       const auto& c = f.contacts[static_cast<size_t>(i)];
-      aa(i) = c.a, bb(i) = c.b, ff(i) = c.force;
+      aa(i) = c.a, bb(i) = c.b, ff(i) = c.force, tt(i) = c.ft;
+      xx(i) = c.px, yy(i) = c.py, nnx(i) = c.nx, nny(i) = c.ny;
     }
     py::dict d;
     d["a"] = a;
     d["b"] = b;
     d["force"] = force;
+    d["ft"] = ft;
+    d["x"] = x;
+    d["y"] = y;
+    d["nx"] = nx;
+    d["ny"] = ny;
     return d;
   }
   // The open clog (None when flowing) and the arch standing over the outlet now.
@@ -240,7 +249,8 @@ class Simulation {
     style.color = render::parse_color_mode(color);
     render::OverlayOptions o = render::parse_overlay(overlay);
     o.place_clear = !o.plot;  // the information box where it covers the fewest grains, as snapshots place it
-    const core::Frame f = silo_->frame(style.color == render::ColorMode::Force);
+    const core::Frame f =
+        silo_->frame(style.color == render::ColorMode::Force || style.color == render::ColorMode::Stress);
     const render::CameraSpec cam = render::parse_camera(camera);
     const core::Geometry& geo = silo_->geometry();
     render::OverlayData od = render::overlay_data_for(silo_->model());

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "core/physics.h"
+
 namespace core {
 
 namespace {
@@ -59,6 +61,37 @@ Vec2 wall_reaction(const std::vector<ContactForce>& forces) {
   for (const ContactForce& c : forces)
     if (c.a < 0) sum = sum + c.on_b();
   return sum;
+}
+
+std::vector<ContactForce> contact_forces(const Frame& f) {
+  std::vector<ContactForce> out;
+  for (const auto* list : {&f.contacts, &f.wall_contacts})
+    for (const Contact& c : *list) {
+      if (!c.has_geometry()) return {};
+      ContactForce k;
+      k.a = c.a, k.b = c.b;
+      k.point = {c.px, c.py};
+      k.normal = {c.nx, c.ny};
+      k.fn = c.force, k.ft = c.ft;
+      out.push_back(k);
+    }
+  return out;
+}
+
+std::vector<double> pressures(const Frame& f) {
+  const std::vector<ContactForce> forces = contact_forces(f);
+  if (forces.empty()) return {};
+  std::vector<Vec2> centres(f.particles.size());
+  std::vector<double> areas(f.particles.size());
+  for (size_t i = 0; i < f.particles.size(); ++i) {
+    const Particle& p = f.particles[i];
+    centres[i] = {p.x, p.y};
+    areas[i] = kPi * static_cast<double>(p.radius) * p.radius;
+  }
+  const std::vector<Stress> s = love_weber(forces, centres, areas);
+  std::vector<double> out(s.size());
+  for (size_t i = 0; i < s.size(); ++i) out[i] = s[i].pressure();
+  return out;
 }
 
 }  // namespace core

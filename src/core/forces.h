@@ -34,6 +34,13 @@ struct ArchBalance {
 ArchBalance arch_balance(const std::vector<ContactForce>& forces, const std::vector<int>& members,
                          const std::vector<Vec2>& weights);
 
+// A frame's contacts (grain-grain and wall) as ContactForces: empty when they carry no geometry (a frame
+// without contacts, or a version-1 contacts file's).
+std::vector<ContactForce> contact_forces(const Frame& f);
+// Each grain's pressure from its Love-Weber stress, N/m (> 0 in compression; area pi r^2, r the equal-area
+// radius): empty when the frame's contacts carry no geometry.
+std::vector<double> pressures(const Frame& f);
+
 // The resultant of the forces the walls exert on the grains, N: at rest, minus their total weight.
 Vec2 wall_reaction(const std::vector<ContactForce>& forces);
 

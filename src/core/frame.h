@@ -36,10 +36,18 @@ double polygon_extent(int sides);
 // Whether two grains are close enough to touch: their circumscribed circles, 10% enlarged, overlap.
 bool within_reach(const Particle& a, const Particle& b);
 
-// A contact between two grains and its normal force, N (from the last step's impulse).
+// A contact and its force as the solver applied it in the last step (impulses over dt), as recordings keep
+// it: `b` is a grain; `a` a grain, or a wall (-1 - its core::Wall index) in Frame::wall_contacts. On b the
+// force is force * n + ft * (ny, -nx) (on a, the opposite); n is the unit normal from a towards b, (px, py)
+// where they touch (world frame, m). A version-1 contacts file (io/contacts.h) carries the normal force only
+// (ft, the point and the normal 0).
 struct Contact {
   int a, b;
-  float force;
+  float force;   // N, normal, >= 0 (compression)
+  float ft = 0;  // N, tangential (friction), signed
+  float px = 0, py = 0;
+  float nx = 0, ny = 0;
+  bool has_geometry() const { return nx != 0 || ny != 0; }
 };
 
 // A contact's force as the solver applied it in the last step, split into its normal and tangential parts:
@@ -86,9 +94,11 @@ struct Frame {
     return n;
   }
   double container_x = 0, container_y = 0;  // m, a vibrating container's displacement from rest
-  // Grain-grain contacts with their normal forces, when forces were asked for (a live simulation's frames;
-  // trajectories keep only each grain's summed force).
+  // Grain-grain contacts with their forces, when forces were asked for (a live simulation's frames, or a
+  // recording's contacts file; trajectories keep only each grain's summed force), and the grains' contacts
+  // with walls (a < 0): what a grain's stress and an arch's force balance need beside them.
   std::vector<Contact> contacts;
+  std::vector<Contact> wall_contacts;
 };
 
 struct ExitEvent {

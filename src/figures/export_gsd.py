@@ -11,7 +11,11 @@ from guard import guarded  # noqa: E402  one line, never a traceback
 
 def main():
     t = siloscope.read_trajectory(sys.argv[1])
-    write_gsd(t, sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), tuple(float(v) for v in sys.argv[5:9]))
+    # The recording's contacts, when it kept them, as the frames' bonds (force chains in OVITO).
+    beside = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), "contacts.sscon")
+    contacts = siloscope.read_contacts(beside, n_particles=t.n) if os.path.exists(beside) else None
+    write_gsd(t, sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), tuple(float(v) for v in sys.argv[5:9]),
+              contacts=contacts)
 
 
 if len(sys.argv) != 9:

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/forces.h"
 #include "core/format.h"
 
 namespace io {
@@ -125,6 +126,10 @@ std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& spe
     body += out.array("String", "SpeciesNames", 1, names_ascii, names_raw,
                       static_cast<int>(species_names.size()));
   body += "    </FieldData>\n<!--piece-->";
+  // Each grain's pressure from its Love-Weber stress, when the frame's contacts carry their geometry.
+  const std::vector<double> pressure = core::pressures(f);
+  Column<float> pres{a};
+  for (double v : pressure) pres.add(static_cast<float>(v));
   body += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n" +
           out.array("Float32", "radius", 1, radius.text, radius.raw) +
           out.array("Float32", "extent", 1, extent.text, extent.raw) +
@@ -133,7 +138,9 @@ std::string vtu_grains(const core::Frame& f, const std::vector<std::string>& spe
           out.array("Int32", "species", 1, species.text, species.raw) +
           out.array("Int32", "arch", 1, arch.text, arch.raw) + out.array("Int32", "id", 1, id.text, id.raw) +
           out.array("Float32", "angle", 1, angle.text, angle.raw) +
-          out.array("Int32", "sides", 1, sides.text, sides.raw) + "      </PointData>\n";
+          out.array("Int32", "sides", 1, sides.text, sides.raw) +
+          (pressure.empty() ? std::string() : out.array("Float32", "pressure", 1, pres.text, pres.raw)) +
+          "      </PointData>\n";
   body += "      <Points>\n" + out.array("Float32", nullptr, 3, pts.text, pts.raw) + "      </Points>\n";
   body += "      <Cells>\n" + out.array("Int64", "connectivity", 1, conn.text, conn.raw) +
           out.array("Int64", "offsets", 1, offsets.text, offsets.raw) +
@@ -299,26 +306,32 @@ std::string vtu_arch(const core::Frame& f, VtuEncoding enc) {
   return vtu_cells(points, cells, types, {}, {members}, enc);
 }
 
-std::string vtu_chains(const core::Frame& f, const std::vector<core::Contact>& contacts, VtuEncoding enc) {
+std::string vtu_chains(const core::Frame& f, VtuEncoding enc) {
   std::vector<core::Vec2> points;
   std::vector<std::vector<std::int64_t>> cells;
   std::vector<std::uint8_t> types;
-  CellFloats force{"force", {}};
+  CellFloats force{"force", {}}, tangential{"tangential_force", {}};
   CellInts a_id{"a", {}}, b_id{"b", {}};
-  for (const auto& c : contacts) {
-    if (c.a < 0 || c.b < 0 || static_cast<size_t>(c.a) >= f.particles.size() ||
-        static_cast<size_t>(c.b) >= f.particles.size())
-      continue;
-    const auto& p = f.particles[static_cast<size_t>(c.a)];
-    const auto& q = f.particles[static_cast<size_t>(c.b)];
-    const auto k = static_cast<std::int64_t>(points.size());
-    points.push_back({p.x, p.y});
-    points.push_back({q.x, q.y});
-    cells.push_back({k, k + 1});
-    types.push_back(3);  // VTK_LINE
-    force.second.push_back(c.force), a_id.second.push_back(c.a), b_id.second.push_back(c.b);
-  }
-  return vtu_cells(points, cells, types, {force}, {a_id, b_id}, enc);
+  const size_t n = f.particles.size();
+  for (const auto* list : {&f.contacts, &f.wall_contacts})
+    for (const auto& c : *list) {
+      const bool wall = c.a < 0;
+      if (c.b < 0 || static_cast<size_t>(c.b) >= n || (!wall && static_cast<size_t>(c.a) >= n) ||
+          (wall && !c.has_geometry()))
+        continue;
+      const auto& q = f.particles[static_cast<size_t>(c.b)];
+      const auto k = static_cast<std::int64_t>(points.size());
+      if (wall)
+        points.push_back({c.px, c.py});
+      else
+        points.push_back({f.particles[static_cast<size_t>(c.a)].x, f.particles[static_cast<size_t>(c.a)].y});
+      points.push_back({q.x, q.y});
+      cells.push_back({k, k + 1});
+      types.push_back(3);  // VTK_LINE
+      force.second.push_back(c.force), tangential.second.push_back(c.ft);
+      a_id.second.push_back(c.a), b_id.second.push_back(c.b);
+    }
+  return vtu_cells(points, cells, types, {force, tangential}, {a_id, b_id}, enc);
 }
 
 std::string pvd(const std::vector<PvdEntry>& entries) {

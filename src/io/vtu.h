@@ -40,9 +40,10 @@ std::string vtu_cells(const std::vector<core::Vec2>& points,
 std::string vtu_shapes(const core::Frame& f, VtuEncoding enc = VtuEncoding::Binary);
 // The frame's blocking arch as a polyline through its members' centres (no cell when none stands).
 std::string vtu_arch(const core::Frame& f, VtuEncoding enc = VtuEncoding::Binary);
-// Force chains: a line cell between the centres of each pair in contact, cell data force (N, normal), a, b.
-std::string vtu_chains(const core::Frame& f, const std::vector<core::Contact>& contacts,
-                       VtuEncoding enc = VtuEncoding::Binary);
+// Force chains from the frame's contacts: a line cell between the centres of each pair in contact, and from
+// each grain's centre to where it touches a wall; cell data force (N, normal), tangential_force (N, signed;
+// 0 from a version-1 contacts file), a (a wall: -1 - its index), b.
+std::string vtu_chains(const core::Frame& f, VtuEncoding enc = VtuEncoding::Binary);
 
 // The obstacle at displacement (dx, dy), filled: a disk as a 64-sided polygon cell, a bar as a rectangle (no
 // cell without an obstacle); cell data wall.

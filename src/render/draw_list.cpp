@@ -4,18 +4,82 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/grain_values.h"
+
 namespace render {
 
 namespace {
 void copy(float* dst, Rgba c) {
   dst[0] = c.r, dst[1] = c.g, dst[2] = c.b, dst[3] = c.a;
 }
+
+double largest_force(const std::vector<ArchForce>& forces) {
+  double largest = 0;
+  for (const ArchForce& a : forces)
+    largest = std::max(largest, std::hypot(static_cast<double>(a.fx), static_cast<double>(a.fy)));
+  return largest;
+}
+
+// The forces on the arch from outside it, as arrows ending at their contact points (drawn with the chains:
+// a shaft and two barbs each, in the walls' colour), the largest as long as the members' mean diameter.
+void arch_force_arrows(const core::Frame& frame, const Style& style, DrawList& out) {
+  const std::vector<ArchForce> arrows = arch_external_forces(frame);
+  const double largest = largest_force(arrows);
+  double size = 0;
+  for (int id : frame.arch) size += 2.0 * frame.particles[static_cast<size_t>(id)].radius;
+  size /= static_cast<double>(frame.arch.size());
+  if (!(largest > 0)) return;
+  const Rgba color = wall_color(style);
+  const float width = static_cast<float>(0.09 * size);
+  for (const ArchForce& a : arrows) {
+    const double f = std::hypot(static_cast<double>(a.fx), static_cast<double>(a.fy));
+    if (f < 0.02 * largest) continue;  // too short to read
+    const double len = size * f / largest, ux = a.fx / f, uy = a.fy / f;
+    const double tx = a.x - len * ux, ty = a.y - len * uy;  // the tail: the force points at the contact
+    const double barb = std::min(0.35 * size, 0.6 * len);
+    auto segment = [&](double x0, double y0, double x1, double y1) {
+      SegmentInstance s{static_cast<float>(x0),
+                        static_cast<float>(y0),
+                        static_cast<float>(x1),
+                        static_cast<float>(y1),
+                        {},
+                        0};
+      copy(s.color, color);
+      out.chains.push_back(s);
+      out.chain_width_m.push_back(width);
+    };
+    segment(tx, ty, a.x, a.y);
+    for (double side : {-1.0, 1.0}) {
+      const double c = std::cos(0.45), s = side * std::sin(0.45);  // barbs 26 degrees off the shaft
+      segment(a.x, a.y, a.x - barb * (c * ux - s * uy), a.y - barb * (s * ux + c * uy));
+    }
+  }
+}
 }  // namespace
+
+std::vector<ArchForce> arch_external_forces(const core::Frame& frame) {
+  auto member = [&](int i) {
+    return i >= 0 && std::find(frame.arch.begin(), frame.arch.end(), i) != frame.arch.end();
+  };
+  std::vector<ArchForce> out;
+  for (const auto* list : {&frame.contacts, &frame.wall_contacts})
+    for (const core::Contact& c : *list) {
+      if (!c.has_geometry() || member(c.a) == member(c.b)) continue;
+      // The force on the member: on b it is force * n + ft * (ny, -nx); on a, the opposite.
+      float fx = c.force * c.nx + c.ft * c.ny, fy = c.force * c.ny - c.ft * c.nx;
+      if (!member(c.b)) fx = -fx, fy = -fy;
+      out.push_back({c.px, c.py, fx, fy});
+    }
+  return out;
+}
+
+double largest_arch_force(const core::Frame& frame) {
+  return largest_force(arch_external_forces(frame));
+}
 
 DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,
                          const ArchStyle& arch, const std::vector<float>* values, double value_top) {
-  const bool by_value = values && values->size() == frame.particles.size() &&
-                        (style.color == ColorMode::Displacement || style.color == ColorMode::Coordination);
+  const bool by_value = values && values->size() == frame.particles.size() && per_grain_values(style.color);
   DrawList out;
   out.halo_m = static_cast<float>(arch.halo_m);
   out.halo_edge = halo_edge_color(style);
@@ -89,6 +153,7 @@ DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, co
       out.chain_width_m.push_back(static_cast<float>((0.15 + 0.85 * u) * std::min(a.radius, b.radius)));
     }
   }
+  if (show_arch && style.arch_forces) arch_force_arrows(frame, style, out);
   if (show_arch) {
     for (size_t k = 0; k + 1 < frame.arch.size(); ++k) {
       const auto& a = frame.particles[static_cast<size_t>(frame.arch[k])];

@@ -50,6 +50,15 @@ struct DrawList {
   Rgba halo_edge{0, 0, 0, 0};
 };
 
+// The forces on a frame's arch from outside it (grains that are not members, and walls), each on its member
+// at the contact point, N (from contacts with their geometry; none without). largest_arch_force: the
+// largest's magnitude (0 without), the length Style::arch_forces gives a member's diameter.
+struct ArchForce {
+  float x, y, fx, fy;
+};
+std::vector<ArchForce> arch_external_forces(const core::Frame& f);
+double largest_arch_force(const core::Frame& f);
+
 // The draw list of a frame in its container, as the style says. `values`: each grain's value for the
 // displacement and coordination colourings (render/grain_values.h), on the scale [color_min, value_top].
 DrawList build_draw_list(const core::Frame& frame, const core::Geometry& geo, const Style& style,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/forces.h"
+
 namespace render {
 
 std::vector<float> coordination(const core::Frame& f) {
@@ -54,6 +56,10 @@ const std::vector<float>& GrainValues::update(const core::Frame& f, const Style&
   largest_ = 0;
   if (style.color == ColorMode::Coordination) {
     values_ = coordination(f);
+  } else if (style.color == ColorMode::Stress) {
+    const std::vector<double> p = core::pressures(f);
+    values_.assign(f.particles.size(), NAN);
+    for (size_t i = 0; i < p.size() && i < values_.size(); ++i) values_[i] = static_cast<float>(p[i]);
   } else if (style.color == ColorMode::Displacement) {
     if (have_ref_ && (f.t < ref_t_ || ref_x_.size() != f.particles.size())) have_ref_ = false;
     const core::Frame* r =

@@ -1,6 +1,6 @@
 // Per-grain quantities a picture can be coloured by that a Particle does not carry on its own: the
-// displacement since a reference time (kept from frame to frame, like the trails) and the coordination
-// number. Pure data, no GL.
+// displacement since a reference time (kept from frame to frame, like the trails), the coordination number
+// and the pressure of the Love-Weber stress. Pure data, no GL.
 #pragma once
 
 #include <vector>
@@ -17,9 +17,17 @@ namespace render {
 constexpr double kCoordinationGap = 0.02;
 std::vector<float> coordination(const core::Frame& f);
 
+// Whether a colouring needs GrainValues (displacement, coordination, stress), not the particle alone.
+inline bool per_grain_values(ColorMode m) {
+  return m == ColorMode::Displacement || m == ColorMode::Coordination || m == ColorMode::Stress;
+}
+
 class GrainValues {
  public:
   // The values of the style's mode in `f` (empty for species, speed, force and id, which need none).
+  // Stress: each grain's pressure, N/m (core::pressures), from the frame's contacts and wall contacts; NaN
+  // (grey) where the frame carries no contact geometry (a trajectory without its contacts file, or one of
+  // version 1).
   // Displacement: from where each grain stood in the first frame at or after style.displacement_from (0
   // before it); a grain re-injected since then (now more than two of its diameters higher than it was: the
   // grains of a silo fall) has none (NaN). A frame earlier than the reference (a jump back) drops it.

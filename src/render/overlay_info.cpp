@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/draw_list.h"
 #include "render/overlay.h"
 #include "render/overlay_detail.h"
 
@@ -88,6 +89,10 @@ void info_contents(const core::Frame& f, const OverlayData& d, const OverlayOpti
       ImGui::Text("arch: %zu disks (%d added)%s", f.arch.size(), added, forming);
     else
       ImGui::Text("arch: %zu grains%s", f.arch.size(), forming);
+    // The arrows' scale: the longest, a member's diameter, is this force.
+    if (given.arch_forces && given.show_arch)
+      if (const double top = largest_arch_force(f); top > 0)
+        ImGui::Text("arrows: forces on it, longest %.3g N", top);
   }
   if (o.legend) {
     ImGui::Separator();

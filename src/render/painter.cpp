@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "render/draw_list.h"
+#include "render/grain_values.h"
 #include "render/renderer.h"
 #include "render/target.h"
 
@@ -26,8 +27,7 @@ void Painter::draw(const std::vector<PanelInput>& panels, const Style& style, co
     Style panel_style = style;
     panel_style.clear = style.clear && k == 0;
     if (p.data) panel_style.species_colors = p.data->species_colors;
-    const bool valued =
-        panel_style.color == ColorMode::Displacement || panel_style.color == ColorMode::Coordination;
+    const bool valued = per_grain_values(panel_style.color);
     if (panel_style.tracked.empty() && !valued) {
       renderer_->draw(*p.frame, *p.geometry, *p.views, panel_style, w, h);
     } else {

@@ -16,10 +16,10 @@ Palette parse_palette(const std::string& s) {
 
 ColorMode parse_color_mode(const std::string& s) {
   for (ColorMode m : {ColorMode::Species, ColorMode::Speed, ColorMode::Force, ColorMode::Displacement,
-                      ColorMode::Coordination, ColorMode::Id})
+                      ColorMode::Coordination, ColorMode::Stress, ColorMode::Id})
     if (s == color_mode_name(m)) return m;
   throw core::InputError("color '" + s + "'" +
-                         ": expected species, speed, force, displacement, coordination or id");
+                         ": expected species, speed, force, displacement, coordination, stress or id");
 }
 
 Colormap parse_colormap(const std::string& s) {
@@ -38,6 +38,8 @@ const char* color_mode_name(ColorMode m) {
       return "displacement";
     case ColorMode::Coordination:
       return "coordination";
+    case ColorMode::Stress:
+      return "stress";
     case ColorMode::Id:
       return "id";
     case ColorMode::Species:
@@ -73,24 +75,33 @@ std::string color_scale_label(const Style& s) {
     }
     case ColorMode::Coordination:
       return "contacts per grain";
+    case ColorMode::Stress:
+      return "pressure (Love-Weber stress) [N/m]";
     default:
       return "";
   }
 }
 
-double color_scale_max(const Style& s) {
+double* color_scale_top(Style& s) {
   switch (s.color) {
     case ColorMode::Speed:
-      return s.speed_max;
+      return &s.speed_max;
     case ColorMode::Force:
-      return s.force_max;
+      return &s.force_max;
     case ColorMode::Displacement:
-      return s.displacement_max;
+      return &s.displacement_max;
     case ColorMode::Coordination:
-      return s.coordination_max;
+      return &s.coordination_max;
+    case ColorMode::Stress:
+      return &s.stress_max;
     default:
-      return 0;
+      return nullptr;
   }
+}
+
+double color_scale_max(const Style& s) {
+  const double* top = color_scale_top(const_cast<Style&>(s));
+  return top ? *top : 0;
 }
 
 namespace {
@@ -109,8 +120,9 @@ int read_range(const std::string& text, double& a, double& b) {
 
 void set_color_range(Style& style, const std::string& text) {
   if (style.color == ColorMode::Species || style.color == ColorMode::Id)
-    throw core::InputError("a colour range applies to speed, force, displacement and coordination, not " +
-                           std::string(color_mode_name(style.color)));
+    throw core::InputError(
+        "a colour range applies to speed, force, displacement, coordination and stress, not " +
+        std::string(color_mode_name(style.color)));
   double lo = 0, hi = 0;
   if (text == "auto") {
     if (style.color != ColorMode::Displacement)
@@ -126,19 +138,7 @@ void set_color_range(Style& style, const std::string& text) {
                              ": expected MAX or MIN:MAX with 0 <= MIN < MAX, or auto");
   }
   style.color_min = lo;
-  switch (style.color) {
-    case ColorMode::Speed:
-      style.speed_max = hi;
-      break;
-    case ColorMode::Force:
-      style.force_max = hi;
-      break;
-    case ColorMode::Displacement:
-      style.displacement_max = hi;  // 0: each frame's largest
-      break;
-    default:
-      style.coordination_max = hi;
-  }
+  *color_scale_top(style) = hi;  // displacement's 0: each frame's largest
 }
 
 void set_chains(Style& style, const std::string& text, const std::string& option) {

@@ -15,9 +15,9 @@ struct Rgba {
 
 enum class Palette { Paper, ColorBlind };
 // What sets a grain's colour: its species (the legend), a per-grain quantity on a colour map (speed, the
-// summed contact force, the displacement since a reference time, the coordination number), or its id
-// (distinct colours, to tell grains apart).
-enum class ColorMode { Species, Speed, Force, Displacement, Coordination, Id };
+// summed contact force, the displacement since a reference time, the coordination number, the pressure of
+// its Love-Weber stress), or its id (distinct colours, to tell grains apart).
+enum class ColorMode { Species, Speed, Force, Displacement, Coordination, Stress, Id };
 // Perceptually uniform colour maps (matplotlib's; cividis also reads for red-green colour blindness).
 enum class Colormap { Viridis, Magma, Inferno, Cividis };
 
@@ -32,10 +32,15 @@ struct Style {
   double color_min = 0;
   double displacement_max = 0;
   double coordination_max = 6;
+  double stress_max = 60;        // N/m: about the 99th percentile of the paper's silo at rest
   double displacement_from = 0;  // s: displacement is measured from the first frame at or after this time
   bool transparent = false;      // transparent background (PNG)
   bool dark = false;             // a dark background (projectors, dark slides): light walls, dark panels
   bool show_arch = true;
+  // Arrows of the forces the shown arch takes from outside it (the grains above, the walls), at their contact
+  // points, from the frame's contacts (version 2: with points); the largest as long as an arch member's
+  // diameter.
+  bool arch_forces = false;
   // Force chains: a segment between the centres of each pair of grains in contact whose normal force is at
   // least chain_min, its width and colour (the colour map) growing with the force up to chain_max.
   bool chains = false;
@@ -53,7 +58,7 @@ struct Style {
   std::vector<Rgba> species_colors;
 };
 
-// Parse "paper"/"colorblind", "species"/"speed"/"force"/"displacement"/"coordination"/"id" and
+// Parse "paper"/"colorblind", "species"/"speed"/"force"/"displacement"/"coordination"/"stress"/"id" and
 // "viridis"/"magma"/"inferno"/"cividis"; throw core::InputError naming the option and what is allowed.
 Palette parse_palette(const std::string& s);
 ColorMode parse_color_mode(const std::string& s);
@@ -67,8 +72,10 @@ void set_chains(Style& style, const std::string& text, const std::string& option
 const char* colormap_name(Colormap m);
 // The colour scale's quantity and unit for the colour bar, e.g. "speed [m/s]"; "" for species and id.
 std::string color_scale_label(const Style& s);
-// The top of the colour scale the style uses for its mode (0 for species and id).
+// The top of the colour scale the style uses for its mode (0 for species and id), and where it is kept
+// (null for species and id).
 double color_scale_max(const Style& s);
+double* color_scale_top(Style& s);
 
 // The palette's colour of a species by its index: the paper's original disks red and added disks blue, then
 // Okabe-Ito green, orange, purple, sky blue, yellow, grey; the colour-blind-safe palette starts with

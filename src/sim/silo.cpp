@@ -521,8 +521,9 @@ core::Frame Silo::frame(bool with_forces) const {
   for (const b2Contact* c = with_forces ? world_->GetContactList() : nullptr; c; c = c->GetNext()) {
     if (!c->IsTouching()) continue;
     const b2Manifold* m = c->GetManifold();
-    double impulse = 0;
-    for (int k = 0; k < m->pointCount; ++k) impulse += m->points[k].normalImpulse;
+    double impulse = 0, tangential = 0;
+    for (int k = 0; k < m->pointCount; ++k)
+      impulse += m->points[k].normalImpulse, tangential += m->points[k].tangentImpulse;
     float force = static_cast<float>(impulse * to_newton);
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
     // A grain re-injected at the top after the step still has its contact with the grain it touched below
@@ -530,7 +531,18 @@ core::Frame Silo::frame(bool with_forces) const {
     if (a >= 0 && b >= 0 && !core::within_reach(f.particles[a], f.particles[b])) continue;
     if (a >= 0) f.particles[a].force += force;
     if (b >= 0) f.particles[b].force += force;
-    if (a >= 0 && b >= 0) f.contacts.push_back({a, b, force});
+    if (m->pointCount == 0 || (a < 0 && b < 0)) continue;
+    // The whole contact as core::ContactForce has it (the same as contact_forces()): b a grain.
+    b2WorldManifold wm;
+    c->GetWorldManifold(&wm);
+    double px = 0, py = 0;
+    for (int k = 0; k < m->pointCount; ++k) px += wm.points[k].x, py += wm.points[k].y;
+    core::Contact k{a, b, force};
+    k.ft = static_cast<float>(tangential * to_newton);
+    k.px = static_cast<float>(px / m->pointCount / L_), k.py = static_cast<float>(py / m->pointCount / L_);
+    k.nx = wm.normal.x, k.ny = wm.normal.y;
+    if (b < 0) std::swap(k.a, k.b), k.nx = -k.nx, k.ny = -k.ny;
+    (k.a >= 0 ? f.contacts : f.wall_contacts).push_back(k);
   }
   // The open clog as the step reported it: a frame shows an arch only while a clog is open.
   const core::ClogState& clog = clogs_.state();

@@ -29,7 +29,9 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +64,17 @@ struct ArchMember {
   double bead_deg;                 // the bead angle (core::bead_angles_deg); NaN at the two ends
   double force_left, force_right;  // N, normal force to the left / right neighbour; NaN when not known
   std::string walls;  // the walls or obstacle it touches ("left hopper wall", "floor", ...), or ""
+  // N, from the contact forces (a recording's contacts of version 2; NaN without them): the load it takes
+  // from grains that are not members, along gravity (> 0: pressed down), and the walls' force on it (its
+  // magnitude).
+  double load = std::numeric_limits<double>::quiet_NaN();
+  double wall_force = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The arch as a body (core::ArchBalance along gravity), N: the load the grains above put on it, what the
+// walls hold up, its own weight, and what is left (the residual's magnitude: 0 at rest).
+struct ArchLoads {
+  double load = 0, held = 0, weight = 0, residual = 0;
 };
 
 class Inspector {
@@ -114,11 +127,14 @@ class Inspector {
   // The selected grain's details, one line each: id and species, position, speed, angle, summed force,
   // coordination and its contacts (with normal forces when the run kept its contacts, else by distance).
   std::vector<std::string> grain_details() const;
-  // The arch of the current frame, member by member.
+  // The arch of the current frame, member by member; and its force balance, when the frame has an arch and
+  // its contacts carry their forces' geometry.
   std::vector<ArchMember> arch_table() const;
+  std::optional<ArchLoads> arch_loads() const;
   std::string print_frame();
   // `print grain`: grain_details(); `print arch`: the arch table as CSV (id,species,x_m,y_m,bead_angle_deg,
-  // force_left_N,force_right_N,walls), a header line first.
+  // force_left_N,force_right_N,load_N,wall_N,walls), a header line first, and, when the forces are known, a
+  // line "# balance: load_N=... held_N=... weight_N=... residual_N=...".
   std::string print_grain();
   std::string print_arch();
   // Every clog of the run as the inspector holds it (the recording's own events: the rows of clogs.csv), one
@@ -171,6 +187,7 @@ class Inspector {
 
   long frame_index() const { return frame_; }
   bool has_contacts() const { return traj_.has_contacts(); }
+  bool has_contact_forces() const { return traj_.has_contact_forces(); }
   void set_frame(long k);  // clamps to the trajectory
   core::Frame current() const { return traj_.frame(frame_); }
   const std::vector<ClogSpan>& clogs() const { return clogs_; }
@@ -222,7 +239,7 @@ class Inspector {
   Branch& need_branch(const char* what) const;
   bool look_command(const std::vector<std::string>& a, const std::string& line);
   // The "from" each colouring last had (each keeps its own; its "to" is its own in Style already).
-  using ColorMins = std::array<double, 6>;
+  using ColorMins = std::array<double, 7>;  // one per render::ColorMode
   ColorMins color_mins_{};
   // Switches `st` to colouring m, its "from" restored from `mins` and the one it leaves kept there.
   static void switch_color(render::Style& st, render::ColorMode m, ColorMins& mins);

@@ -1,11 +1,14 @@
 // Grains and arches the inspector can be asked about: the grain under a click, its details, and the arch of
 // the current frame member by member (ui/inspector.h).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "core/arch.h"
 #include "core/error.h"
+#include "core/forces.h"
+#include "core/physics.h"
 #include "ui/inspector.h"
 
 namespace ui {
@@ -142,7 +145,49 @@ std::vector<ArchMember> Inspector::arch_table() const {
     if (k + 1 < f.arch.size()) m.force_right = contact_force(f, id, f.arch[k + 1]);
     rows.push_back(m);
   }
+  // Each member's load from grains outside the arch and the walls' force on it.
+  const std::vector<core::ContactForce> forces = core::contact_forces(f);
+  const core::Vec2 g = model_.setup.gravity;
+  const double gn = std::hypot(g.x, g.y);
+  if (!forces.empty() && gn > 0) {
+    const core::Vec2 down{g.x / gn, g.y / gn};
+    for (ArchMember& m : rows) {
+      core::Vec2 from_grains, from_walls;
+      for (const core::ContactForce& c : forces) {
+        if (c.a != m.id && c.b != m.id) continue;
+        const int other = c.b == m.id ? c.a : c.b;
+        const core::Vec2 on_b = c.on_b();
+        const core::Vec2 on_m = c.b == m.id ? on_b : core::Vec2{-on_b.x, -on_b.y};
+        if (other < 0)
+          from_walls = from_walls + on_m;
+        else if (std::find(f.arch.begin(), f.arch.end(), other) == f.arch.end())
+          from_grains = from_grains + on_m;
+      }
+      m.load = from_grains.x * down.x + from_grains.y * down.y;
+      m.wall_force = std::hypot(from_walls.x, from_walls.y);
+    }
+  }
   return rows;
+}
+
+std::optional<ArchLoads> Inspector::arch_loads() const {
+  const core::Frame f = current();
+  const std::vector<core::ContactForce> forces = core::contact_forces(f);
+  const core::Vec2 g = model_.setup.gravity;
+  const double gn = std::hypot(g.x, g.y);
+  if (f.arch.empty() || forces.empty() || !(gn > 0)) return std::nullopt;
+  // Each grain's weight from its species' areal density and its equal-area radius.
+  std::vector<core::Vec2> weights(f.particles.size());
+  for (size_t i = 0; i < f.particles.size(); ++i) {
+    const auto s = static_cast<size_t>(core::species_index(f.particles[i].species));
+    const double density = s < model_.setup.species.size() ? model_.setup.species[s].density : 0;
+    const double m = core::mass_of(f.particles[i].radius, density);
+    weights[i] = {m * g.x, m * g.y};
+  }
+  const core::ArchBalance b = core::arch_balance(forces, f.arch, weights);
+  const core::Vec2 down{g.x / gn, g.y / gn};
+  const core::Vec2 r = b.residual();
+  return ArchLoads{b.load(down), b.held(down), std::hypot(b.weight.x, b.weight.y), std::hypot(r.x, r.y)};
 }
 
 std::string Inspector::print_grain() {
@@ -155,11 +200,18 @@ std::string Inspector::print_grain() {
 }
 
 std::string Inspector::print_arch() {
-  std::string all = "id,species,x_m,y_m,bead_angle_deg,force_left_N,force_right_N,walls\n";
+  std::string all = "id,species,x_m,y_m,bead_angle_deg,force_left_N,force_right_N,load_N,wall_N,walls\n";
   for (const auto& m : arch_table()) {
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "%d,%s,%.6f,%.6f,%.2f,%.4g,%.4g,%.4g,%.4g,\"%s\"\n", m.id,
+                  m.species.c_str(), m.x, m.y, m.bead_deg, m.force_left, m.force_right, m.load, m.wall_force,
+                  m.walls.c_str());
+    all += buf;
+  }
+  if (const auto b = arch_loads()) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%d,%s,%.6f,%.6f,%.2f,%.4g,%.4g,\"%s\"\n", m.id, m.species.c_str(), m.x,
-                  m.y, m.bead_deg, m.force_left, m.force_right, m.walls.c_str());
+    std::snprintf(buf, sizeof buf, "# balance: load_N=%.4g held_N=%.4g weight_N=%.4g residual_N=%.4g\n",
+                  b->load, b->held, b->weight, b->residual);
     all += buf;
   }
   std::printf("%s", all.c_str());

@@ -168,8 +168,18 @@ bool Inspector::look_command(const std::vector<std::string>& a, const std::strin
   }
   if (cmd == "species-color") return species_color_command(a), true;
   if (cmd == "arch") {
-    need(1, "arch on|off");
-    if (a[1] != "on" && a[1] != "off") throw core::InputError("usage: arch on|off");
+    // arch on|off: the halo and bonds; arch forces on|off: the arrows of the forces on it from outside.
+    if (a.size() == 3 && a[1] == "forces" && (a[2] == "on" || a[2] == "off")) {
+      if (a[2] == "on" && !traj_.has_contact_forces())
+        throw core::InputError(
+            "arch forces: this trajectory has no contact forces beside it (contacts.sscon of version 2: "
+            "record "
+            "and run --trajectory-fps write one; runs made before have normal forces only, or none)");
+      style.arch_forces = a[2] == "on";
+      return log(line), true;
+    }
+    if (a.size() != 2 || (a[1] != "on" && a[1] != "off"))
+      throw core::InputError("usage: arch on|off | arch forces on|off");
     return show_arch(a[1] == "on"), true;
   }
   if (cmd == "annotate") {
@@ -187,9 +197,15 @@ bool Inspector::look_command(const std::vector<std::string>& a, const std::strin
 void Inspector::color_command(const std::vector<std::string>& a, const std::string& line) {
   // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
   // displacement; speed and force keep their defaults) and, for displacement, the reference time.
-  const char* usage = "color species|speed|force|displacement|coordination|id [MAX|MIN:MAX|auto] [from T]";
+  const char* usage =
+      "color species|speed|force|displacement|coordination|stress|id [MAX|MIN:MAX|auto] [from T]";
   if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
   const render::ColorMode m = render::parse_color_mode(a[1]);
+  if (m == render::ColorMode::Stress && !traj_.has_contact_forces())
+    throw core::InputError(
+        "color stress: this trajectory has no contact forces beside it (contacts.sscon of version 2, with "
+        "each contact's point and its walls' contacts: record and run --trajectory-fps write one; runs made "
+        "before have normal forces only, or none)");
   size_t k = 2;
   render::Style next = style;
   ColorMins mins = color_mins_;  // kept only if the line is taken

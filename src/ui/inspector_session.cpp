@@ -39,6 +39,8 @@ std::string color_line(const render::Style& s) {
       return line + " " + lo + num(s.force_max);
     case render::ColorMode::Coordination:
       return line + " " + lo + num(s.coordination_max);
+    case render::ColorMode::Stress:
+      return line + " " + lo + num(s.stress_max);
     case render::ColorMode::Displacement:
       return line + " " + (s.displacement_max > 0 ? lo + num(s.displacement_max) : "auto") + " from " +
              num(s.displacement_from);
@@ -67,6 +69,7 @@ std::vector<std::string> Inspector::state_lines() const {
   lines.push_back(color_line(style));
   lines.push_back(std::string("colormap ") + render::colormap_name(style.colormap));
   lines.push_back(style.show_arch ? "arch on" : "arch off");
+  lines.push_back(style.arch_forces ? "arch forces on" : "arch forces off");
   lines.push_back(style.chains ? "chains " + num(style.chain_min) + ":" + num(style.chain_max)
                                : "chains off");
   lines.push_back("overlay " + overlay_spec(overlay));

@@ -186,12 +186,13 @@ void draw_live_panel(LiveSource& source, LiveState& st, const core::Frame& f, co
       {"force", render::ColorMode::Force},
       {"displacement", render::ColorMode::Displacement},
       {"coordination", render::ColorMode::Coordination},
+      {"stress", render::ColorMode::Stress},
       {"id", render::ColorMode::Id}};
   // The colourings in an ID scope of their own: "speed" is also the simulation speed's slider in this window
   // (one ImGui ID for both aborted the window on the first click).
   ImGui::PushID("color");
   for (const auto& [label, mode] : colors) {
-    if (mode == render::ColorMode::Displacement) ImGui::NewLine();
+    if (mode == render::ColorMode::Displacement || mode == render::ColorMode::Stress) ImGui::NewLine();
     if (ImGui::RadioButton(label, st.style.color == mode)) st.style.color = mode;
     ImGui::SameLine();
   }

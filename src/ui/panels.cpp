@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <utility>
 
 #include "core/arch.h"
@@ -236,9 +237,10 @@ void draw_view(Inspector& insp, PanelState& ps) {
       {"force", render::ColorMode::Force},
       {"displacement", render::ColorMode::Displacement},
       {"coordination", render::ColorMode::Coordination},
+      {"stress", render::ColorMode::Stress},
       {"id", render::ColorMode::Id}};
   for (size_t k = 0; k < std::size(colors); ++k) {
-    if (k > 0 && k != 3) ImGui::SameLine();
+    if (k > 0 && k != 3 && k != 5) ImGui::SameLine();
     if (ImGui::RadioButton(colors[k].first, insp.style.color == colors[k].second))
       act(insp, ps, [&] { insp.set_color(colors[k].second, colors[k].first); });
   }
@@ -255,11 +257,7 @@ void draw_view(Inspector& insp, PanelState& ps) {
       act(insp, ps, [&] { insp.execute(std::string("colormap ") + render::colormap_name(m)); });
   }
   ImGui::PopID();
-  double* top = insp.style.color == render::ColorMode::Speed          ? &insp.style.speed_max
-                : insp.style.color == render::ColorMode::Force        ? &insp.style.force_max
-                : insp.style.color == render::ColorMode::Displacement ? &insp.style.displacement_max
-                : insp.style.color == render::ColorMode::Coordination ? &insp.style.coordination_max
-                                                                      : nullptr;
+  double* top = render::color_scale_top(insp.style);
   double none = 0, lo_min = 0, hi_max = 1e6;
   ImGui::SetNextItemWidth(0.6f * ImGui::GetContentRegionAvail().x);
   // Drag in steps of 0.5% of the top; the top stays above the bottom (displacement: 0 is each frame's own).
@@ -280,6 +278,12 @@ void draw_view(Inspector& insp, PanelState& ps) {
   ImGui::Checkbox("arch", &insp.style.show_arch);
   ImGui::SameLine();
   ImGui::Checkbox("member ids", &insp.overlay.ids);
+  if (insp.has_contact_forces()) {  // the forces on the arch from outside it, as arrows
+    ImGui::SameLine();
+    bool arrows = insp.style.arch_forces;
+    if (ImGui::Checkbox("forces", &arrows))
+      act(insp, ps, [&] { insp.execute(arrows ? "arch forces on" : "arch forces off"); });
+  }
   if (insp.has_contacts()) {  // the run kept its contacts: force chains as record draws them
     ImGui::Checkbox("force chains", &insp.style.chains);
     ImGui::SameLine();
@@ -341,10 +345,12 @@ void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
   const std::vector<ArchMember> rows = insp.arch_table();
   if (!rows.empty()) {
     const bool forces = !f.contacts.empty();
-    const int cols = forces ? 7 : 5;
+    const std::optional<ArchLoads> loads = insp.arch_loads();  // with the contacts' geometry (version 2)
+    const int cols = loads ? 9 : forces ? 7 : 5;
     if (ImGui::BeginTable("arch members", cols,
                           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
-      const char* heads[] = {"id", "species", "x [m]", "y [m]", "bead", "F left [N]", "F right [N]"};
+      const char* heads[] = {"id",         "species",     "x [m]",    "y [m]",    "bead",
+                             "F left [N]", "F right [N]", "load [N]", "walls [N]"};
       for (int c = 0; c < cols; ++c) ImGui::TableSetupColumn(heads[c]);
       ImGui::TableHeadersRow();
       for (const auto& m : rows) {
@@ -368,7 +374,9 @@ void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
         else
           ImGui::Text("%.0f", m.bead_deg);
         if (forces) {
-          for (double F : {m.force_left, m.force_right}) {
+          const double values[] = {m.force_left, m.force_right, m.load, m.wall_force};
+          for (int c = 0; c < cols - 5; ++c) {
+            const double F = values[c];
             ImGui::TableNextColumn();
             if (std::isnan(F))
               ImGui::TextDisabled("-");
@@ -385,6 +393,12 @@ void draw_arch(Inspector& insp, PanelState& ps, const core::Frame& f) {
       act(insp, ps, [&] { insp.execute("track " + ids); });
     }
     remember(ps, "track arch");
+    if (loads)
+      ImGui::TextWrapped(
+          "as a body: load from above %.2f N, walls hold %.2f N, its weight %.2f N (left over: %.2f N)",
+          loads->load, loads->held, loads->weight, loads->residual);
+    else if (forces)
+      ImGui::TextDisabled("loads: the run's contacts hold normal forces only (recorded before version 2)");
     if (!forces) ImGui::TextDisabled("forces: the run kept no contacts (record keeps them)");
   }
 }

@@ -25,6 +25,8 @@ class FrameSource {
   virtual double frame_interval() const = 0;           // s between frames
   virtual double clog_min_gap() const = 0;             // s: a gap at least this long is a clog
   virtual bool has_contacts() const { return false; }  // frames carry their contacts (force chains)
+  // Their contacts carry tangential forces, contact points and the walls' contacts: stress can be shown.
+  virtual bool has_contact_forces() const { return false; }
 };
 
 // "What if": the run continued from one of its frames with changes, simulated by the app

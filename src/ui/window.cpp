@@ -498,7 +498,8 @@ void run_live_window(LiveSource& source, const WindowOptions& o) {
       st.message = blame_edits(st, e.what());  // a failure after a restart names the edits it ran with
       st.paused = true;
     }
-    const core::Frame f = source.frame(st.style.color == render::ColorMode::Force || st.style.chains);
+    const core::Frame f = source.frame(st.style.color == render::ColorMode::Force ||
+                                       st.style.color == render::ColorMode::Stress || st.style.chains);
     const render::OverlayData od = source.overlay_data();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win.get(), &fw, &fh);

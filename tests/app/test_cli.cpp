@@ -161,7 +161,7 @@ TEST_CASE("record --color-max sets the colour scale or takes it from the data (a
   CHECK_FALSE(fs::exists(d / "e"));
 }
 
-TEST_CASE("record colours by displacement, coordination or id on a chosen colour map and range",
+TEST_CASE("record colours by displacement, coordination, stress or id on a chosen colour map and range",
           "[app][record][heavy]") {
   fs::path d = temp_dir("colorby");
   const std::string base = "record " + kScene +
@@ -179,6 +179,13 @@ TEST_CASE("record colours by displacement, coordination or id on a chosen colour
   CHECK(fs::exists(d / "a" / "frames" / "frame_000000.png"));
   REQUIRE(cli(base + (d / "b").string() + " --color coordination").code == 0);
   CHECK_THAT(slurp(d / "b" / "metadata.toml"), Catch::Matchers::Contains("color_scale_max = 6"));
+  // Stress: from the solver's contacts as the movie is made, its scale in N/m; the frame command draws it
+  // again from the recording's contacts, and refuses a recording whose contacts are gone.
+  REQUIRE(cli(base + (d / "s").string() + " --color stress").code == 0);
+  CHECK_THAT(slurp(d / "s" / "metadata.toml"), Catch::Matchers::Contains("color = \"stress\"") &&
+                                                   Catch::Matchers::Contains("color_scale_max = 60"));
+  REQUIRE(cli("frame " + (d / "s").string() + " --at frame:4 --out " + (d / "s4.png").string()).code == 0);
+  CHECK(fs::exists(d / "s4.png"));
   REQUIRE(cli(base + (d / "c").string() + " --color displacement").code == 0);
   CHECK_THAT(slurp(d / "c" / "metadata.toml"),
              Catch::Matchers::Contains("color_scale = \"each frame's largest\""));
@@ -188,7 +195,7 @@ TEST_CASE("record colours by displacement, coordination or id on a chosen colour
       {" --color id --color-max 3", "not id"},
       {" --color speed --color-max 2:1", "0 <= MIN < MAX"},
       {" --colormap jet", "viridis, magma, inferno or cividis"},
-      {" --color pressure", "coordination or id"}};
+      {" --color pressure", "coordination, stress or id"}};
   for (const auto& [args, says] : bad) {
     auto r = cli(base + (d / "e").string() + args);
     CHECK(r.code == 2);

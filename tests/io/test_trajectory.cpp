@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/forces.h"
 #include "fixtures.h"
 #include "helpers.h"
 #include "io/contacts.h"
@@ -136,24 +137,46 @@ TEST_CASE(
   refused(fb - 24 * n + 4 * 5, &far, 4, "x of particle 5 is 1e+30 m, far outside");
 }
 
+namespace {
+core::Contact contact(int a, int b, float fn, float ft = 0.5f, float nx = 0.6f, float ny = 0.8f) {
+  core::Contact c{a, b, fn};
+  c.ft = ft, c.px = 0.25f, c.py = -1.5f, c.nx = nx, c.ny = ny;
+  return c;
+}
+}  // namespace
+
 TEST_CASE("contacts files: each frame's contacts read back, a cut file read to its last whole frame",
           "[io]") {
   const auto d = test::temp_dir("contacts");
   const auto p = d / "contacts.sscon";
   {
     io::ContactsWriter w(p, 4);
-    w.add({{0, 1, 2.5f}, {2, 3, 0.0f}});
-    w.add({});
-    w.add({{1, 3, 7.25f}});
+    w.add({contact(0, 1, 2.5f, -0.75f), contact(2, 3, 0.0f)}, {contact(-3, 2, 4.0f, 1.0f, 0, -1)});
+    w.add({}, {});
+    w.add({contact(1, 3, 7.25f)}, {});
     w.close();
   }
   io::Contacts c(p, 4, 3);
   REQUIRE(c.size() == 3);
+  CHECK(c.has_geometry());
   const auto f0 = c.frame(0);
   REQUIRE(f0.size() == 2);
   CHECK(f0[0].a == 0);
   CHECK(f0[0].b == 1);
   CHECK(f0[0].force == 2.5f);
+  CHECK(f0[0].ft == -0.75f);
+  CHECK(f0[0].px == 0.25f);
+  CHECK(f0[0].py == -1.5f);
+  CHECK(f0[0].nx == 0.6f);
+  CHECK(f0[0].ny == 0.8f);
+  // Contacts with walls apart: the wall's code, the grain, the force, the normal from the wall.
+  const auto w0 = c.walls(0);
+  REQUIRE(w0.size() == 1);
+  CHECK(w0[0].a == -3);
+  CHECK(w0[0].b == 2);
+  CHECK(w0[0].force == 4.0f);
+  CHECK(w0[0].ny == -1.0f);
+  CHECK(c.walls(2).empty());
   CHECK(c.frame(1).empty());
   CHECK(c.frame(2)[0].force == 7.25f);
   CHECK(c.frame(3).empty());  // beyond the last frame: none
@@ -166,11 +189,25 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
   CHECK_THROWS_WITH(io::Contacts(d / "x.sscon", 4, 3), Catch::Contains("no SILOCONT header"));
   {
     io::ContactsWriter w(d / "bad.sscon", 4);
-    w.add({{0, 9, 1.0f}});
+    w.add({contact(0, 9, 1.0f)}, {});
     w.close();
   }
   CHECK_THROWS_WITH(io::Contacts(d / "bad.sscon", 4, 3),
                     Catch::Contains("names grain 9; ids run from 0 to 3"));
+  {
+    io::ContactsWriter w(d / "normal.sscon", 4);
+    w.add({contact(0, 1, 1.0f, 0.0f, 0.5f, 0.5f)}, {});
+    w.close();
+  }
+  CHECK_THROWS_WITH(io::Contacts(d / "normal.sscon", 4, 3),
+                    Catch::Contains("contact normal of length 0.7") && Catch::Contains("a unit vector"));
+  {
+    io::ContactsWriter w(d / "nan.sscon", 4);
+    w.add({contact(0, 1, 1.0f, std::nanf(""))}, {});
+    w.close();
+  }
+  CHECK_THROWS_WITH(io::Contacts(d / "nan.sscon", 4, 3),
+                    Catch::Contains("frame 0 holds a non-finite number"));
   // Bounded before it is read: more bytes than the frames of a run of this size can take (a valid header
   // padded to gigabytes: sparse, so no disk is used), or more contacts in a frame than grains in a plane
   // have.
@@ -178,11 +215,41 @@ TEST_CASE("contacts files: each frame's contacts read back, a cut file read to i
   CHECK_THROWS_WITH(io::Contacts(p, 4, 3), Catch::Contains("more than the contacts of 3 frames of 4 grains"));
   {
     io::ContactsWriter w(d / "many.sscon", 4);
-    w.add(std::vector<core::Contact>(40, core::Contact{0, 1, 1.0f}));
+    w.add(std::vector<core::Contact>(300, contact(0, 1, 1.0f)), {});
     w.close();
   }
   CHECK_THROWS_WITH(io::Contacts(d / "many.sscon", 4, 3),
-                    Catch::Contains("grains in a plane have at most 28"));
+                    Catch::Contains("grains in a plane have at most 268"));
+}
+
+TEST_CASE("contacts files of version 1 (normal forces of grain pairs only) still read", "[io]") {
+  const auto d = test::temp_dir("contacts_v1");
+  const auto p = d / "contacts.sscon";
+  {
+    std::ofstream out(p, std::ios::binary);
+    auto u32 = [&](std::uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+    auto f32 = [&](float v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+    out.write("SILOCONT", 8);
+    u32(1), u32(4);
+    u32(0), u32(2), u32(0), u32(1), f32(2.5f), u32(2), u32(3), f32(1.0f);
+    u32(1), u32(0);
+  }
+  io::Contacts c(p, 4, 3);
+  REQUIRE(c.size() == 2);
+  CHECK_FALSE(c.has_geometry());
+  const auto f0 = c.frame(0);
+  REQUIRE(f0.size() == 2);
+  CHECK(f0[1].a == 2);
+  CHECK(f0[1].b == 3);
+  CHECK(f0[1].force == 1.0f);
+  CHECK(f0[1].ft == 0.0f);
+  CHECK_FALSE(f0[1].has_geometry());
+  CHECK(c.walls(0).empty());
+  // No geometry, no stress: a frame with these contacts gives no pressures.
+  core::Frame f;
+  f.particles.resize(4);
+  f.contacts = f0;
+  CHECK(core::pressures(f).empty());
 }
 
 TEST_CASE("a version-1 trajectory still opens: its clogs rebuilt from the timers, no arch in a flowing frame",

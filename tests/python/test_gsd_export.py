@@ -42,6 +42,13 @@ def test_gsd_holds_each_species_shape_and_orientation(binary, pentagons, tmp_pat
                                                                                    atol=1e-5)
         origin = s.log["siloscope/origin_m"]
         assert np.allclose(s.particles.position[:, 0] + origin[0], t.frames["x"][len(t) - 1], atol=1e-5)
+        # The frame's grain pairs in contact are its bonds, their forces bond properties.
+        c = siloscope.read_contacts(str(pentagons))
+        pairs = c[(c["frame"] == len(t) - 1) & (c["a"] >= 0)]
+        assert s.bonds.N == len(pairs) > 50 and s.bonds.types == ["contact"]
+        assert (s.bonds.group[:, 0] == pairs["a"].to_numpy()).all()
+        assert np.allclose(s.log["bonds/normal_force_N"], pairs["force_N"], rtol=1e-6)
+        assert np.allclose(s.log["bonds/tangential_force_N"], pairs["ft_N"], rtol=1e-6)
     # Its own file is replaced with --force; one that is not GSD is refused.
     assert subprocess.run([binary, "export", str(pentagons), "--format", "gsd", "--out", str(path), "--force"],
                           capture_output=True).returncode == 0

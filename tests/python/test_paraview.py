@@ -46,12 +46,13 @@ def test_paraview_opens_a_pentagon_run_as_pentagons(binary, root, tmp_path):
     subprocess.run([binary, "export", str(rec), "--format", "vtu"], check=True, capture_output=True)
     blocks, ink = render(rec / "vtu" / "trajectory.pvd", tmp_path / "pent.png")
     grains, walls, shapes, arch, chains = blocks[:5]
-    assert grains["cells"] == 300 and {"radius", "species", "force", "velocity", "angle"} <= grains["arrays"]
+    assert grains["cells"] == 300
+    assert {"radius", "species", "force", "velocity", "angle", "pressure"} <= grains["arrays"]
     assert walls["types"] == {"3"} and walls["cells"] == 5
     assert shapes["cells"] == 300 and shapes["types"] == {"7"} and shapes["points"] == 5 * 300  # pentagons
     assert {"force", "species", "arch", "id"} <= shapes["arrays"]
     assert "members" in arch["arrays"]
-    assert chains["cells"] > 100 and chains["types"] == {"3"} and "force" in chains["arrays"]
+    assert chains["cells"] > 100 and chains["types"] == {"3"} and {"force", "tangential_force"} <= chains["arrays"]
     assert ink > 0.05, f"the picture is {ink:.1%} ink: no grains drawn?"
 
 

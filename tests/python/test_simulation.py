@@ -38,6 +38,14 @@ def test_arrays_contacts_and_the_arch(root):
     assert np.array_equal(s.positions, g["position"])
     c = s.contacts
     assert len(c) > n // 2 and (c["force"] >= 0).all() and (c["a"] != c["b"]).all()
+    # With the tangential force, where they touch and the unit normal from a to b (pentagons: not the line of
+    # centres, but within a grain's reach of both).
+    assert list(c.columns) == ["a", "b", "force", "ft", "x", "y", "nx", "ny"]
+    assert np.allclose(np.hypot(c["nx"], c["ny"]), 1, atol=1e-5) and (c["ft"] != 0).any()
+    pos, r = s.positions, s.grains()["radius"]
+    a, b = c["a"].to_numpy(), c["b"].to_numpy()
+    reach = 1.2 * np.maximum(r[a], r[b]) * 1.3
+    assert (np.hypot(c["x"] - pos[a, 0], c["y"] - pos[a, 1]) < reach).all()
     arch = s.arch
     assert all(0 <= i < n for i in arch)
     if s.clog is not None:

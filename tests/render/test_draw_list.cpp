@@ -193,7 +193,7 @@ TEST_CASE("colour by id: neighbouring ids get distinguishable colours", "[render
 
 TEST_CASE("colour options: every bad value names what is allowed", "[render]") {
   CHECK_THROWS_WITH(render::parse_color_mode("pressure"),
-                    Catch::Contains("displacement, coordination or id"));
+                    Catch::Contains("displacement, coordination, stress or id"));
   CHECK_THROWS_WITH(render::parse_colormap("jet"), Catch::Contains("viridis, magma, inferno or cividis"));
   render::Style s;
   s.color = render::ColorMode::Coordination;
@@ -208,4 +208,50 @@ TEST_CASE("colour options: every bad value names what is allowed", "[render]") {
   s.color = render::ColorMode::Displacement;
   render::set_color_range(s, "auto");
   CHECK(s.displacement_max == 0);
+}
+
+TEST_CASE(
+    "arch force arrows: one per force from outside the arch, ending at its contact point, scaled to the "
+    "largest",
+    "[render][forces]") {
+  core::Scene s;
+  const core::Geometry geo = core::make_geometry(s);
+  core::Frame f;
+  f.particles = {grain(-0.05f, 0.1f, 0.05f, 0), grain(0.05f, 0.1f, 0.05f, 0), grain(0.0f, 0.19f, 0.05f, 0)};
+  f.arch = {0, 1};
+  f.clog_open = true;
+  auto contact = [](int a, int b, float fn, float ft, float px, float py, float nx, float ny) {
+    core::Contact c{a, b, fn};
+    c.ft = ft, c.px = px, c.py = py, c.nx = nx, c.ny = ny;
+    return c;
+  };
+  // Member 0 and 1 press on each other (inside the arch: no arrow); grain 2 loads member 0 from above with
+  // 5 N; the left wall pushes member 0 with 10 N to the right (normal from the wall, a = -1) and 2 N of
+  // friction.
+  f.contacts = {contact(0, 1, 7, 0, 0, 0.1f, 1, 0), contact(2, 0, 5, 0, -0.025f, 0.145f, 0, -1)};
+  f.wall_contacts = {contact(-1, 0, 10, 2, -0.1f, 0.1f, 1, 0)};
+  render::Style style;
+  CHECK(render::build_draw_list(f, geo, style).chains.empty());  // off by default
+  style.arch_forces = true;
+  const render::DrawList d = render::build_draw_list(f, geo, style);
+  REQUIRE(d.chains.size() == 6);  // two arrows: a shaft and two barbs each
+  CHECK(render::largest_arch_force(f) == Approx(std::hypot(10.0, 2.0)));
+  // The shafts end at the contact points; the largest is a member's diameter (0.1 m) long, the other in
+  // proportion, each along its force on the member (the wall's: 10 along +x, friction 2 along (ny, -nx)).
+  const auto& load = d.chains[0];
+  CHECK(load.bx == Approx(-0.025f));
+  CHECK(load.by == Approx(0.145f));
+  CHECK(std::hypot(load.bx - load.ax, load.by - load.ay) == Approx(0.1 * 5 / std::hypot(10.0, 2.0)));
+  CHECK(load.by < load.ay);  // pressed down
+  const auto& wall = d.chains[3];
+  CHECK(wall.bx == Approx(-0.1f));
+  CHECK(std::hypot(wall.bx - wall.ax, wall.by - wall.ay) == Approx(0.1));
+  CHECK((wall.bx - wall.ax) / (wall.by - wall.ay) == Approx(10.0 / -2.0));
+  // Without the contacts' geometry (a version-1 file), or without a shown arch, none.
+  core::Frame old = f;
+  for (auto* list : {&old.contacts, &old.wall_contacts})
+    for (auto& c : *list) c.nx = c.ny = 0;
+  CHECK(render::build_draw_list(old, geo, style).chains.empty());
+  style.show_arch = false;
+  CHECK(render::build_draw_list(f, geo, style).chains.empty());
 }

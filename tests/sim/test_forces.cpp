@@ -11,6 +11,8 @@
 #include "core/forces.h"
 #include "core/physics.h"
 #include "core/scene.h"
+#include "helpers.h"
+#include "io/contacts.h"
 #include "sim/breaking.h"
 #include "sim/silo.h"
 
@@ -85,6 +87,38 @@ TEST_CASE("contact forces at rest: the walls carry the weight, an arch's load me
     }
     CHECK(loaded > static_cast<int>(stress.size()) / 2);
     CHECK(compressed == loaded);
+
+    // What a recording keeps: the frame's contacts (grain pairs and walls) are the same forces, and through a
+    // contacts file and back they still balance the weight and give each grain the same pressure.
+    const core::Frame g = h.frame(true);
+    auto key = [](const core::ContactForce& c) { return std::make_pair(c.a, c.b); };
+    auto sorted = [&](std::vector<core::ContactForce> v) {
+      std::sort(v.begin(), v.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
+      return v;
+    };
+    const auto want = sorted(forces), got = sorted(core::contact_forces(g));
+    REQUIRE(got.size() == want.size());
+    for (size_t k = 0; k < got.size(); ++k) {
+      CHECK(key(got[k]) == key(want[k]));
+      CHECK(std::abs(got[k].fn - want[k].fn) <= 1e-6 * (1 + want[k].fn));
+      CHECK(std::abs(got[k].ft - want[k].ft) <= 1e-6 * (1 + std::abs(want[k].ft)));
+      CHECK(norm(got[k].point - want[k].point) < 1e-6);
+      CHECK(norm(got[k].normal - want[k].normal) < 1e-6);
+    }
+    const auto dir = test::temp_dir("forces_file");
+    {
+      io::ContactsWriter w(dir / "contacts.sscon", static_cast<std::uint32_t>(g.particles.size()));
+      w.add(g.contacts, g.wall_contacts);
+      w.close();
+    }
+    const io::Contacts back(dir / "contacts.sscon", static_cast<std::uint32_t>(g.particles.size()), 1);
+    core::Frame read = f;
+    read.contacts = back.frame(0), read.wall_contacts = back.walls(0);
+    CHECK(norm(core::wall_reaction(core::contact_forces(read)) + weight) < 0.02 * norm(weight));
+    const std::vector<double> p = core::pressures(read);
+    REQUIRE(p.size() == stress.size());
+    for (size_t i = 0; i < p.size(); ++i)
+      CHECK(std::abs(p[i] - stress[i].pressure()) <= 1e-3 * (1 + std::abs(p[i])));
   }
 }
 

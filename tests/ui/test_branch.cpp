@@ -2,10 +2,14 @@
 // continued and saved as a run of its own, by a script that replays to the same pictures.
 #include <catch2/catch.hpp>
 
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "helpers.h"
 #include "io/csv_table.h"
@@ -129,4 +133,59 @@ TEST_CASE("branch lines are refused with what to do: no branch yet, a saved bran
       test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "s.txt").string());
   CHECK(r.code == 2);
   CHECK(r.output.find("exits.csv differs from what siloscope wrote") != std::string::npos);
+}
+
+TEST_CASE("the inspector's arch table carries each member's load and the arch's force balance at rest",
+          "[ui][app][forces]") {
+  // No kicks and no rule: the first arrested clog's arch stands at rest to the run's end. Its forces come
+  // from the recording's contacts (version 2: the tangential force, the point, the walls' contacts).
+  const fs::path d = temp_dir("arch_loads");
+  REQUIRE(test::cli("run " + test::kScene +
+                    " --set kick_impulse_max=0 --set clog_timeout=0 --duration 6 --trajectory-fps 30 --quiet "
+                    "--out " +
+                    (d / "run").string())
+              .code == 0);
+  const io::CsvTable clogs = io::CsvTable::read((d / "run" / "clogs.csv").string(), "clogs.csv");
+  REQUIRE(clogs.rows() >= 1);
+  const size_t last = clogs.rows() - 1;
+  REQUIRE(clogs.num(last, "arrested") == 1);
+  REQUIRE(clogs.num(last, "start_s") < 5);
+  // 5.91 s: at rest, still clogged; the stress colouring and the arrows taken (the recording's contacts
+  // carry their points).
+  std::ofstream(d / "arch.txt") << "goto frame 179\ncolor stress\narch forces on\nprint arch\n";
+  const test::Result r =
+      test::cli("inspect " + (d / "run").string() + " --quiet --script " + (d / "arch.txt").string());
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  std::stringstream rows(r.output);
+  std::string line;
+  std::getline(rows, line);
+  REQUIRE(line == "id,species,x_m,y_m,bead_angle_deg,force_left_N,force_right_N,load_N,wall_N,walls");
+  double members_load = 0;
+  int members = 0, on_walls = 0;
+  double load = NAN, held = NAN, weight = NAN, residual = NAN;
+  while (std::getline(rows, line)) {
+    if (line.rfind("# balance:", 0) == 0) {
+      REQUIRE(std::sscanf(line.c_str(), "# balance: load_N=%lf held_N=%lf weight_N=%lf residual_N=%lf", &load,
+                          &held, &weight, &residual) == 4);
+      continue;
+    }
+    if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    REQUIRE(f.size() >= 10);
+    members_load += std::stod(f[7]);
+    on_walls += std::stod(f[8]) > 0;
+    ++members;
+  }
+  REQUIRE(members >= 2);
+  CHECK(on_walls >= 2);  // its two ends lean on the hopper's walls
+  // The arch as a body at rest: the walls hold up the load from above and its own weight, to within 2% of
+  // what they hold; the members' loads add up to the arch's.
+  CHECK(load > 0);
+  CHECK(weight > 0);
+  CHECK(held > load);
+  CHECK(residual < 0.02 * held);
+  CHECK(members_load == Approx(load).epsilon(0.01));
 }

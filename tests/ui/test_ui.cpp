@@ -168,6 +168,10 @@ TEST_CASE("script errors name the line, frames out of range are refused", "[ui]"
   CHECK(insp.style.color_min == 1);
   CHECK_THROWS_WITH(insp.execute("color speed from 2"), Contains("displacement only"));
   CHECK_THROWS_WITH(insp.execute("color id 4"), Contains("not id"));
+  CHECK_THROWS_WITH(insp.execute("color stress"), Contains("no contact forces beside it"));
+  CHECK_THROWS_WITH(insp.execute("arch forces on"), Contains("no contact forces beside it"));
+  CHECK_THROWS_WITH(insp.execute("arch forces"), Contains("usage: arch on|off | arch forces on|off"));
+  insp.execute("arch forces off");
   CHECK_THROWS_WITH(insp.execute("colormap jet"), Contains("viridis, magma"));
   CHECK(insp.style.color == render::ColorMode::Coordination);  // a refused line changes nothing
   insp.execute("color species");

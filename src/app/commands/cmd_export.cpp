@@ -99,7 +99,9 @@ int export_vtu(const ExportOptions& o, const io::Run& run, long first, long last
     return std::string(name);
   };
   for (long k = first; k <= last; ++k) {
-    const core::Frame f = t.frame(k);
+    core::Frame f = t.frame(k);
+    if (contacts && k < contacts->size())
+      f.contacts = contacts->frame(k), f.wall_contacts = contacts->walls(k);
     const std::string grains = per_frame("grains", k);
     io::write_file_atomic(dir.file(grains), io::vtu_grains(f, names, enc), false);
     entries.push_back({f.t, 0, grains});
@@ -128,7 +130,7 @@ int export_vtu(const ExportOptions& o, const io::Run& run, long first, long last
     entries.push_back({f.t, 3, arch});
     if (contacts && k < contacts->size()) {
       const std::string chains = per_frame("chains", k);
-      io::write_file_atomic(dir.file(chains), io::vtu_chains(f, contacts->frame(k), enc), false);
+      io::write_file_atomic(dir.file(chains), io::vtu_chains(f, enc), false);
       entries.push_back({f.t, 4, chains});
     }
     core::throw_if_interrupted();

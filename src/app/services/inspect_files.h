@@ -20,10 +20,14 @@ class TrajectoryFrames : public ui::FrameSource {
   long size() const override { return t_.size(); }
   core::Frame frame(long k) const override {
     core::Frame f = t_.frame(k);
-    if (contacts_) f.contacts = contacts_->frame(k);
+    if (contacts_) {
+      f.contacts = contacts_->frame(k);
+      f.wall_contacts = contacts_->walls(k);
+    }
     return f;
   }
   bool has_contacts() const override { return contacts_ && contacts_->size() > 0; }
+  bool has_contact_forces() const override { return has_contacts() && contacts_->has_geometry(); }
   double time(long k) const override { return t_.time(k); }
   double since_last_exit(long k) const override { return t_.since_last_exit(k); }
   int long_arches(long k) const override { return t_.long_arches(k); }

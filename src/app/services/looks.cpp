@@ -44,15 +44,16 @@ void LookOptions::add_to(CLI::App& cmd) {
                       "original=#444444)"));
   keep("color", cmd.add_option("--color", color,
                                "colour grains by species, speed, force (summed contact force), displacement "
-                               "(since --displacement-from), coordination (contacts per grain) or id")
+                               "(since --displacement-from), coordination (contacts per grain), stress (the "
+                               "pressure of each grain's Love-Weber stress, N/m) or id")
                     ->capture_default_str());
-  keep(
-      "color_max",
-      cmd.add_option(
-          "--color-max", color_max,
-          "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts), or auto (speed and "
-          "force: the 99th percentile of the first 2 s of discharge; displacement: each frame's largest); "
-          "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts), displacement auto"));
+  keep("color_max",
+       cmd.add_option("--color-max", color_max,
+                      "the colour scale, MAX or MIN:MAX in the quantity's unit (m/s, N, m, contacts, N/m), "
+                      "or auto (speed "
+                      "and force: the 99th percentile of the first 2 s of discharge; displacement: each "
+                      "frame's largest); "
+                      "default: fixed scales (0.5 m/s, 20 N, 0-6 contacts, 60 N/m), displacement auto"));
   keep("colormap",
        cmd.add_option("--colormap", colormap, "viridis, magma, inferno or cividis")->capture_default_str());
   keep("displacement_from_s",
@@ -81,6 +82,13 @@ void LookOptions::add_to(CLI::App& cmd) {
   keep("annotate", cmd.add_option("--annotate", annotate,
                                   "T0:T1:X,Y:TEXT: a note in a box with an arrow to the point X,Y (m, the "
                                   "outlet's centre at 0,0), shown from T0 to T1 s (repeatable)"));
+  keep(
+      "arch_forces",
+      cmd.add_option("--arch-forces", arch_forces,
+                     "on or off: arrows of the forces the blocking arch takes from the grains above and from "
+                     "the walls, at their contact points, the largest a member's diameter long (from the "
+                     "solver's contacts; a recording made before contacts kept their points shows none)")
+          ->capture_default_str());
   keep("arch_halo",
        cmd.add_option("--arch-halo", arch_halo, "on or off: the halo and bonds that mark the blocking arch")
            ->capture_default_str());
@@ -131,6 +139,7 @@ void LookOptions::inherit(const toml::table& metadata) {
   text("overlay", overlay);
   text("overlay_at", overlay_at);
   text("arch_halo", arch_halo);
+  text("arch_forces", arch_forces);
   text("force_chains", chains);
   text("force_chain_colormap", chain_colormap);
   list("annotate", annotate);
@@ -204,6 +213,11 @@ Look LookOptions::resolve(const core::Model& model) const {
   if (arch_halo != "on" && arch_halo != "off")
     throw core::InputError("--arch-halo " + arch_halo + ": expected on or off");
   style.show_arch = arch_halo == "on";
+  if (arch_forces != "on" && arch_forces != "off")
+    throw core::InputError("--arch-forces " + arch_forces + ": expected on or off");
+  if (arch_forces == "on" && !style.show_arch)
+    throw core::InputError("--arch-forces on draws on the arch: it needs --arch-halo on");
+  style.arch_forces = arch_forces == "on";
   if (!(font_scale >= 0.5 && font_scale <= 4))
     throw core::InputError("--font-scale " + core::format_g(font_scale, 6) + ": allowed range is 0.5 to 4");
   look.overlay.font_scale = font_scale;
@@ -281,6 +295,7 @@ io::Facts LookOptions::facts(const Look& look) const {
           {"overlay_at", overlay_at},
           {"annotate", annotate},
           {"arch_halo", arch_halo},
+          {"arch_forces", arch_forces},
           {"force_chains", chains},
           {"force_chain_colormap", chain_colormap},
           {"transparent", transparent}};

@@ -62,6 +62,7 @@ struct LookOptions {
   std::string chains;                      // "": off; "MIN" or "MIN:MAX" in N
   std::string chain_colormap;              // "": render::chain_colormap's choice
   std::string arch_halo = "on";            // on | off
+  std::string arch_forces = "off";         // on | off
   bool transparent = false;                // PNG frames without a background
   std::vector<std::string> annotate;       // "T0:T1:X,Y:TEXT"
   std::vector<std::string> species_color;  // "NAME=#rrggbb"

@@ -23,7 +23,7 @@ class TrajectorySink : public Sink {
     const core::StepEvents& e = t.events[world_];
     removals_ += static_cast<int>(e.rule_removed.size());
     writer_.add(t.frames[world_], removals_, e);
-    contacts_.add(t.frames[world_].contacts);
+    contacts_.add(t.frames[world_].contacts, t.frames[world_].wall_contacts);
   }
   // The clogs the run's end closed (censored) go into the trajectory's events too.
   void finished(const std::vector<core::StepEvents>& closed) override { writer_.add_events(closed[world_]); }

@@ -31,10 +31,12 @@ def type_shapes(trajectory):
     return shapes
 
 
-def write_gsd(trajectory, path, first=0, last=None, box=None):
+def write_gsd(trajectory, path, first=0, last=None, box=None, contacts=None):
     """Frames first..last (inclusive) of `trajectory` into the GSD file `path`. `box`: (x0, y0, x1, y1) of the
     container, m; positions are shifted so that its centre is the box's origin (HOOMD's convention), the shift
-    is logged as siloscope/origin."""
+    is logged as siloscope/origin. `contacts` (read_contacts' DataFrame): each frame's grain pairs in contact
+    become its bonds (type "contact"), their forces the bond properties log/bonds/normal_force_N and (a
+    version-2 file's) log/bonds/tangential_force_N, which OVITO loads as bond properties."""
     try:
         import gsd.hoomd
     except ImportError:
@@ -48,6 +50,12 @@ def write_gsd(trajectory, path, first=0, last=None, box=None):
     lx, ly = (x1 - x0) * 1.02 + 1e-6, (y1 - y0) * 1.02 + 1e-6
     shapes = type_shapes(trajectory)
     n = trajectory.n
+    by_frame = {}
+    if contacts is not None and len(contacts):
+        pairs = contacts[contacts["a"] >= 0]  # grain pairs: a wall is no particle
+        starts = np.searchsorted(pairs["frame"].to_numpy(), np.arange(first, last + 2))
+        for k in range(first, last + 1):
+            by_frame[k] = pairs.iloc[starts[k - first]:starts[k - first + 1]]
     with gsd.hoomd.open(path, "wb") as f:
         for k in range(first, last + 1):
             fr = trajectory.frames[k]
@@ -75,5 +83,15 @@ def write_gsd(trajectory, path, first=0, last=None, box=None):
             s.log["siloscope/time_s"] = np.array([float(fr["t"])])
             s.log["siloscope/origin_m"] = np.array([cx, cy])
             s.log["siloscope/force_N"] = np.asarray(fr["force"], dtype=np.float32)
+            if contacts is not None:
+                c = by_frame.get(k, contacts.iloc[0:0])
+                s.bonds.N = len(c)
+                s.bonds.types = ["contact"]
+                s.bonds.typeid = np.zeros(len(c), dtype=np.uint32)
+                s.bonds.group = np.stack([c["a"].to_numpy(), c["b"].to_numpy()], axis=1).astype(np.uint32) \
+                    .reshape(len(c), 2)
+                s.log["bonds/normal_force_N"] = c["force_N"].to_numpy(dtype=np.float32)
+                if "ft_N" in c:
+                    s.log["bonds/tangential_force_N"] = c["ft_N"].to_numpy(dtype=np.float32)
             f.append(s)
     return path

@@ -234,7 +234,9 @@ class Simulation:
 
     @property
     def contacts(self):
-        """Grain pairs in contact now, with the normal force over the last step: DataFrame a, b, force (N)."""
+        """Grain pairs in contact now, with their forces over the last step: DataFrame a, b, force (normal, N),
+        ft (tangential, N, signed along (ny, -nx)), x, y (where they touch, m), nx, ny (unit normal from a to
+        b)."""
         import pandas as pd
         return pd.DataFrame(self._s.contacts())
 
