@@ -36,7 +36,8 @@ double polygon_extent(int sides);
 // Whether two grains are close enough to touch: their circumscribed circles, 10% enlarged, overlap.
 bool within_reach(const Particle& a, const Particle& b);
 
-// A contact and its force as the solver applied it in the last step (impulses over dt), as recordings keep
+// A contact and its force as the solver applied it (impulses over dt: the last step's, or their mean over the
+// frame interval in a recording's frames, sim::Silo::average_forces), as recordings keep
 // it: `b` is a grain; `a` a grain, or a wall (-1 - its core::Wall index) in Frame::wall_contacts. On b the
 // force is force * n + ft * (ny, -nx) (on a, the opposite); n is the unit normal from a towards b, (px, py)
 // where they touch (world frame, m). A version-1 contacts file (io/contacts.h) carries the normal force only

@@ -210,6 +210,7 @@ void Silo::drive_container() {
 const core::StepEvents& Silo::step() {
   last_.clear();
   integrate_step();
+  if (averaging_) accumulate_impulses();
   last_.rule_due_in = open_ ? clogs_.rule_due_in(t_) : INFINITY;
   if (!last_.empty()) pending_.append(last_);
   pending_.rule_due_in = last_.rule_due_in;
@@ -516,16 +517,16 @@ core::Frame Silo::frame(bool with_forces) const {
   }
   f.container_x = offset_.x;
   f.container_y = offset_.y;
-  // Contact forces from the last step's normal impulses (internal units: impulse * L).
+  // Contact forces from the last step's impulses, or their mean over the frame (average_forces; internal
+  // units: impulse * L).
   const double to_newton = 1.0 / (L_ * scene_.dt);
   for (const b2Contact* c = with_forces ? world_->GetContactList() : nullptr; c; c = c->GetNext()) {
     if (!c->IsTouching()) continue;
     const b2Manifold* m = c->GetManifold();
-    double impulse = 0, tangential = 0;
-    for (int k = 0; k < m->pointCount; ++k)
-      impulse += m->points[k].normalImpulse, tangential += m->points[k].tangentImpulse;
-    float force = static_cast<float>(impulse * to_newton);
     int a = decode(c->GetFixtureA()), b = decode(c->GetFixtureB());
+    const Impulses impulse = impulses(c, a, b);  // the last step's, or the mean over the frame
+    const double tangential = impulse.tangent;
+    float force = static_cast<float>(impulse.normal * to_newton);
     // A grain re-injected at the top after the step still has its contact with the grain it touched below
     // the outlet: the pair no longer touches in this frame's positions, so the frame does not list it.
     if (a >= 0 && b >= 0 && !core::within_reach(f.particles[a], f.particles[b])) continue;

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "core/arch.h"
@@ -31,6 +32,7 @@
 class b2World;
 class b2Body;
 class b2Fixture;
+class b2Contact;
 
 namespace sim {
 
@@ -67,6 +69,13 @@ class Silo {
   // (no detection here). Work nobody will look at is skipped: with_forces sums contact impulses into
   // per-disk forces and lists the contacts (needed to colour by force or draw chains).
   core::Frame frame(bool with_forces = true) const;
+  // Forces in frames averaged over the steps since restart_force_average() (a frame interval), not the last
+  // step's alone: a contact that touches at the frame gets its impulses' mean over the window, the steps it
+  // did not touch counted as 0 (a kick's spike is spread over the frame as the solver spread it over time).
+  // Off by default (frames then hold the last step's); a run that records contacts turns it on.
+  void average_forces(bool on);
+  bool averaging_forces() const { return averaging_; }
+  void restart_force_average();
   // The arch Box2D's contacts hold now, left to right (empty when none): what the rule removes. Pictures
   // show the open clog's arch instead (clog().arch).
   std::vector<int> current_arch() const;
@@ -238,6 +247,16 @@ class Silo {
   bool still_since_last_kick();
   void start_skip();
   void skipped_step(bool kick_due);
+  void accumulate_impulses();
+  // The averaged normal and tangential impulse of contact (a, b) (decoded fixtures), in Box2D's units; the
+  // last step's when not averaging.
+  struct Impulses {
+    double normal = 0, tangent = 0;
+  };
+  Impulses impulses(const b2Contact* c, int a, int b) const;
+  bool averaging_ = false;
+  long averaged_steps_ = 0;
+  std::unordered_map<std::uint64_t, Impulses> impulse_sums_;
   void sample_airborne();
   void reinject(int id);
   void park(int id);  // drain: an exit leaves the world (disabled, 2 H + 1 m below the outlet)

@@ -46,6 +46,51 @@ std::vector<core::ContactForce> Silo::contact_forces() const {
   return out;
 }
 
+namespace {
+std::uint64_t pair_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+}  // namespace
+
+void Silo::average_forces(bool on) {
+  averaging_ = on;
+  restart_force_average();
+}
+
+void Silo::restart_force_average() {
+  impulse_sums_.clear();
+  averaged_steps_ = 0;
+}
+
+void Silo::accumulate_impulses() {
+  ++averaged_steps_;
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching()) continue;
+    const b2Manifold* m = c->GetManifold();
+    Impulses sum;
+    for (int k = 0; k < m->pointCount; ++k)
+      sum.normal += m->points[k].normalImpulse, sum.tangent += m->points[k].tangentImpulse;
+    Impulses& acc =
+        impulse_sums_[pair_key(internal::decode(c->GetFixtureA()), internal::decode(c->GetFixtureB()))];
+    acc.normal += sum.normal, acc.tangent += sum.tangent;
+  }
+}
+
+Silo::Impulses Silo::impulses(const b2Contact* c, int a, int b) const {
+  Impulses out;
+  if (averaging_ && averaged_steps_ > 0) {
+    const auto it = impulse_sums_.find(pair_key(a, b));
+    if (it != impulse_sums_.end())
+      out = {it->second.normal / static_cast<double>(averaged_steps_),
+             it->second.tangent / static_cast<double>(averaged_steps_)};
+    return out;
+  }
+  const b2Manifold* m = c->GetManifold();
+  for (int k = 0; k < m->pointCount; ++k)
+    out.normal += m->points[k].normalImpulse, out.tangent += m->points[k].tangentImpulse;
+  return out;
+}
+
 std::vector<core::Vec2> Silo::weights() const {
   std::vector<core::Vec2> w(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -165,4 +166,43 @@ TEST_CASE("the kick that breaks an arrested clog: bracketed by bisection, the sa
   const sim::BreakResult random = sim::break_clog(model, c, row, law);
   CHECK(random.arch == r.arch);
   CHECK((random.outcome == "broken" || random.outcome == "held"));
+}
+
+TEST_CASE("forces averaged over a frame: each contact's mean over the steps since the last frame",
+          "[sim][forces]") {
+  core::Scene scene =
+      core::load_scene(std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/paper-vibrated.toml");
+  sim::Silo h(core::compile(scene));
+  h.advance_to(1.0);  // flowing, shaken: forces change from step to step
+  h.average_forces(true);
+  std::map<std::pair<int, int>, double> normal, tangent;
+  const int steps = 25;
+  for (int k = 0; k < steps; ++k) {
+    h.step();
+    for (const auto& c : h.contact_forces()) {
+      normal[{c.a, c.b}] += c.fn / steps;
+      tangent[{c.a, c.b}] += c.ft / steps;
+    }
+  }
+  const core::Frame f = h.frame(true);
+  REQUIRE(f.contacts.size() > 100);
+  int differs = 0;  // from the last step's: the average is not the last step again
+  const auto last = h.contact_forces();
+  for (const auto* list : {&f.contacts, &f.wall_contacts})
+    for (const auto& c : *list) {
+      CAPTURE(c.a, c.b);
+      CHECK(c.force == Approx(normal[{c.a, c.b}]).margin(1e-5));
+      CHECK(c.ft == Approx(tangent[{c.a, c.b}]).margin(1e-5));
+      for (const auto& l : last)
+        if (l.a == c.a && l.b == c.b) differs += std::abs(l.fn - c.force) > 1e-3 * (1 + l.fn);
+    }
+  CHECK(differs > 10);
+  // A new window: the next frame averages the next steps only.
+  h.restart_force_average();
+  h.step();
+  const core::Frame g = h.frame(true);
+  const auto now = h.contact_forces();
+  for (const auto& c : g.contacts)
+    for (const auto& l : now)
+      if (l.a == c.a && l.b == c.b) CHECK(c.force == Approx(l.fn).margin(1e-5));
 }

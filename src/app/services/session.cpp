@@ -145,6 +145,10 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
     per_step = per_step || s->wants_steps();
   }
   const bool frames = clock.steps > 0 || !clock.at.empty();
+  // Frames that carry forces carry each contact's mean over the frame interval, not one step's.
+  if (forces && frames)
+    for (const auto& w : worlds_)
+      if (!w->averaging_forces()) w->average_forces(true);
   size_t listed = 0;  // the next of clock.at
   while (listed < clock.at.size() && clock.at[listed] < step()) ++listed;
   // A frame is taken while its time is at most the end less half a frame interval (the first always).
@@ -166,6 +170,7 @@ bool Session::run(double end, const FrameClock& clock, const std::vector<Sink*>&
       tick.step = s;
       for (const auto& w : worlds_) {
         if (want_frames) tick.frames.push_back(w->frame(forces));
+        if (w->averaging_forces()) w->restart_force_average();
         tick.events.push_back(w->take_events());
         tick.worlds.push_back(w.get());
       }
