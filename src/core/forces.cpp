@@ -56,6 +56,24 @@ ArchBalance arch_balance(const std::vector<ContactForce>& forces, const std::vec
   return b;
 }
 
+std::vector<ArchBalance> member_balances(const std::vector<ContactForce>& forces,
+                                         const std::vector<int>& members) {
+  auto index = [&](int i) -> long {
+    const auto it = i >= 0 ? std::find(members.begin(), members.end(), i) : members.end();
+    return it == members.end() ? -1 : it - members.begin();
+  };
+  std::vector<ArchBalance> out(members.size());
+  for (const ContactForce& c : forces) {
+    const long ka = index(c.a), kb = index(c.b);
+    if ((ka >= 0) == (kb >= 0)) continue;  // inside the arch, or not touching it
+    const Vec2 on_member = kb >= 0 ? c.on_b() : minus(c.on_b());
+    ArchBalance& m = out[static_cast<size_t>(kb >= 0 ? kb : ka)];
+    Vec2& sum = (kb >= 0 ? c.a : c.b) < 0 ? m.from_walls : m.from_grains;
+    sum = sum + on_member;
+  }
+  return out;
+}
+
 Vec2 wall_reaction(const std::vector<ContactForce>& forces) {
   Vec2 sum;
   for (const ContactForce& c : forces)

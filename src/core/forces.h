@@ -41,6 +41,11 @@ std::vector<ContactForce> contact_forces(const Frame& f);
 // radius): empty when the frame's contacts carry no geometry.
 std::vector<double> pressures(const Frame& f);
 
+// The same split member by member (in `members`' order; weights left 0): what each member takes from grains
+// outside the arch and from the walls. Their sums are arch_balance's from_grains and from_walls.
+std::vector<ArchBalance> member_balances(const std::vector<ContactForce>& forces,
+                                         const std::vector<int>& members);
+
 // The resultant of the forces the walls exert on the grains, N: at rest, minus their total weight.
 Vec2 wall_reaction(const std::vector<ContactForce>& forces);
 

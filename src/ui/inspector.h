@@ -243,6 +243,9 @@ class Inspector {
   ColorMins color_mins_{};
   // Switches `st` to colouring m, its "from" restored from `mins` and the one it leaves kept there.
   static void switch_color(render::Style& st, render::ColorMode m, ColorMins& mins);
+  // Throws core::InputError naming `what` when the frames' contacts carry no forces' geometry (stress,
+  // arrows).
+  void require_contact_forces(const char* what) const;
   std::vector<std::string> history_;
   std::vector<std::string> recorded_;  // state_lines() as history_ last left it (sync_history)
   bool synced_tail_ = false;           // history_'s last line came from sync_history (it may be merged)

@@ -1,6 +1,5 @@
 // Grains and arches the inspector can be asked about: the grain under a click, its details, and the arch of
 // the current frame member by member (ui/inspector.h).
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -151,20 +150,10 @@ std::vector<ArchMember> Inspector::arch_table() const {
   const double gn = std::hypot(g.x, g.y);
   if (!forces.empty() && gn > 0) {
     const core::Vec2 down{g.x / gn, g.y / gn};
-    for (ArchMember& m : rows) {
-      core::Vec2 from_grains, from_walls;
-      for (const core::ContactForce& c : forces) {
-        if (c.a != m.id && c.b != m.id) continue;
-        const int other = c.b == m.id ? c.a : c.b;
-        const core::Vec2 on_b = c.on_b();
-        const core::Vec2 on_m = c.b == m.id ? on_b : core::Vec2{-on_b.x, -on_b.y};
-        if (other < 0)
-          from_walls = from_walls + on_m;
-        else if (std::find(f.arch.begin(), f.arch.end(), other) == f.arch.end())
-          from_grains = from_grains + on_m;
-      }
-      m.load = from_grains.x * down.x + from_grains.y * down.y;
-      m.wall_force = std::hypot(from_walls.x, from_walls.y);
+    const std::vector<core::ArchBalance> members = core::member_balances(forces, f.arch);
+    for (size_t k = 0; k < rows.size(); ++k) {
+      rows[k].load = members[k].load(down);
+      rows[k].wall_force = std::hypot(members[k].from_walls.x, members[k].from_walls.y);
     }
   }
   return rows;

@@ -170,11 +170,7 @@ bool Inspector::look_command(const std::vector<std::string>& a, const std::strin
   if (cmd == "arch") {
     // arch on|off: the halo and bonds; arch forces on|off: the arrows of the forces on it from outside.
     if (a.size() == 3 && a[1] == "forces" && (a[2] == "on" || a[2] == "off")) {
-      if (a[2] == "on" && !traj_.has_contact_forces())
-        throw core::InputError(
-            "arch forces: this trajectory has no contact forces beside it (contacts.sscon of version 2: "
-            "record "
-            "and run --trajectory-fps write one; runs made before have normal forces only, or none)");
+      if (a[2] == "on") require_contact_forces("arch forces");
       style.arch_forces = a[2] == "on";
       return log(line), true;
     }
@@ -194,6 +190,14 @@ bool Inspector::look_command(const std::vector<std::string>& a, const std::strin
   return false;
 }
 
+void Inspector::require_contact_forces(const char* what) const {
+  if (!traj_.has_contact_forces())
+    throw core::InputError(std::string(what) +
+                           ": this trajectory has no contact forces beside it (contacts.sscon of version 2, "
+                           "with each contact's point and its walls' contacts: record and run "
+                           "--trajectory-fps write one; runs made before have normal forces only, or none)");
+}
+
 void Inspector::color_command(const std::vector<std::string>& a, const std::string& line) {
   // color MODE [MAX|MIN:MAX|auto] [from T]: the mode, the scale's range (auto: each frame's largest
   // displacement; speed and force keep their defaults) and, for displacement, the reference time.
@@ -201,11 +205,7 @@ void Inspector::color_command(const std::vector<std::string>& a, const std::stri
       "color species|speed|force|displacement|coordination|stress|id [MAX|MIN:MAX|auto] [from T]";
   if (a.size() < 2 || a.size() > 5) throw core::InputError(std::string("usage: ") + usage);
   const render::ColorMode m = render::parse_color_mode(a[1]);
-  if (m == render::ColorMode::Stress && !traj_.has_contact_forces())
-    throw core::InputError(
-        "color stress: this trajectory has no contact forces beside it (contacts.sscon of version 2, with "
-        "each contact's point and its walls' contacts: record and run --trajectory-fps write one; runs made "
-        "before have normal forces only, or none)");
+  if (m == render::ColorMode::Stress) require_contact_forces("color stress");
   size_t k = 2;
   render::Style next = style;
   ColorMins mins = color_mins_;  // kept only if the line is taken
