@@ -183,6 +183,15 @@ float info_title_wrap(float em, int margin_w) {
   return std::max(8 * em, wrap);
 }
 
+int heading_height(const std::string& text, float em, int panel_w) {
+  if (text.empty()) return 0;
+  const float hem = kHeadingScale * em, wrap = std::max(4.0f * em, panel_w - 2.0f * em);
+  // Characters average under half an em (0.46 measured on the overlay's font); words do not fill their rows:
+  // 15% more. At most three rows.
+  const int rows = std::clamp(static_cast<int>(std::ceil(1.15f * text.size() * 0.5f * hem / wrap)), 1, 3);
+  return static_cast<int>(std::ceil(rows * 1.2f * hem + 0.3f * em));
+}
+
 float overlay_em(int h, double font_scale) {
   return static_cast<float>(
       std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(font_scale, 0.25, 8.0)))));
@@ -237,10 +246,11 @@ std::pair<float, float> plot_box_size(float view_w, float view_h, float em, floa
   return {pw + 3.0f * em, ph + 2.9f * em};
 }
 
-std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w) {
+std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w,
+                                                    float beside) {
   std::vector<std::pair<float, float>> out = {plot_box_size(view_w, view_h, em)};
   const float pad = 0.6f * em;
-  for (float limit : {margin_w - 2 * pad, 0.3f * view_w})
+  for (float limit : {margin_w - 2 * pad, beside - 3 * pad, 0.3f * view_w})
     if (limit > 10 * em)
       for (float height : {0.2f, 0.12f}) out.push_back(plot_box_size(view_w, view_h, em, limit, height));
   return out;
@@ -248,7 +258,8 @@ std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, 
 
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
                    const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
-                   const std::vector<std::string>& species, const std::string& title, bool colour_rows) {
+                   const std::vector<std::string>& species, const std::string& title, bool colour_rows,
+                   int top, int band) {
   const float em = overlay_em(h, o.font_scale), pad = 0.6f * em;
   const bool info = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   // The title wraps at 18 em, or inside a margin (info_contents).
@@ -257,14 +268,21 @@ int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)
   };
   // Every set of views must leave the boxes clear space.
   auto fits = [&](int margin) {
-    const Box panel{static_cast<float>(panel_x), 0, static_cast<float>(panel_x + panel_w),
-                    static_cast<float>(h)};
+    const Box panel{static_cast<float>(panel_x), static_cast<float>(top),
+                    static_cast<float>(panel_x + panel_w), static_cast<float>(h)};
     const auto [iw, ih] = estimate(margin);
     for (const auto& views : views_of(panel_w - margin)) {
       FreeSpace fs(panel, std::max(2.0f, 0.25f * em));
       fs.block_container(views, geo);
       if (info && o.info_at < 0) {
-        const auto b = fs.place_at_corner(iw, ih, panel, 0, pad);
+        std::optional<Box> b;
+        if (band > 0)
+          b = fs.place_at_corner(
+              iw, ih,
+              {panel.x0, std::max(panel.y0, panel.y1 - std::max<float>(band, ih + 2 * pad)), panel.x1,
+               panel.y1},
+              0, pad);
+        if (!b) b = fs.place_at_corner(iw, ih, panel, 0, pad);
         if (!b) return false;
         fs.block(*b, 0.4f * em);
       }
@@ -275,7 +293,7 @@ int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)
         bool placed = false;
         for (const auto& [pw, ph] :
              plot_box_sizes(static_cast<float>(zoom->rect.w), static_cast<float>(zoom->rect.h), em,
-                            static_cast<float>(margin))) {
+                            static_cast<float>(margin), band > 0 ? panel_w - iw : 0.0f)) {
           if (const auto b = fs.place_at_corner(pw, ph, panel, 2, pad)) {
             fs.block(*b, 0.4f * em);
             placed = true;

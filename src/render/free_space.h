@@ -76,6 +76,12 @@ float info_title_wrap(float em, int margin_w);
 // font): sqrt(em / 13 px), at least 1.
 float overlay_style_scale(float em);
 
+// A comparison panel's heading: its type this many times the overlay's text, and the band it takes at the top
+// of a panel `panel_w` pixels wide (its rows estimated before ImGui lays it out: the heading shrinks its type
+// where they were too few). 0 for no heading.
+constexpr float kHeadingScale = 1.6f;
+int heading_height(const std::string& text, float em, int panel_w);
+
 // The text height the overlay uses in a picture h pixels tall at a font scale (the same rule as its font).
 float overlay_em(int h, double font_scale);
 
@@ -84,9 +90,12 @@ float overlay_em(int h, double font_scale);
 // rows, the discharge plot, the scale bar), find clear space beside the container; 0 when the views already
 // leave it. `views_of(width)` lays the panel's views out in `width` pixels from the panel's left edge (with a
 // camera path, one set per key: each must leave the space).
+// `top`: pixels at the top of the panel the boxes may not use (a comparison panel's heading); `band`: a band
+// of that many pixels below the views, where the information box goes first (as Overlay draws it).
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
                    const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
-                   const std::vector<std::string>& species, const std::string& title, bool colour_rows);
+                   const std::vector<std::string>& species, const std::string& title, bool colour_rows,
+                   int top = 0, int band = 0);
 
 // The information box's size estimated from its contents (before ImGui lays it out), in pixels: width and
 // height, its title wrapped at `wrap` pixels (as info_contents wraps it). Used by overlay_margin; the box
@@ -100,6 +109,9 @@ std::pair<float, float> plot_box_size(float view_w, float view_h, float em, floa
                                       float height = 0.2f);
 // The sizes the plot tries, in order, until one finds clear space: whole, as wide as a margin of `margin_w`
 // pixels (0: none) allows, then lower.
-std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w);
+// `beside`: the width left beside the information box in a band below the views (0: no band), tried before a
+// third of the view.
+std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, float em, float margin_w,
+                                                    float beside = 0);
 
 }  // namespace render

@@ -189,12 +189,18 @@ void Overlay::ensure_font(int h, double scale) {
   if (px == font_px_) return;
   ImGuiIO& io = ImGui::GetIO();
   io.Fonts->Clear();
-  if (kFont[0] != '\0' && std::filesystem::exists(kFont)) {
-    io.Fonts->AddFontFromFileTTF(kFont, static_cast<float>(px));
-  } else {
-    ImFontConfig cfg;
-    cfg.SizePixels = static_cast<float>(px);
-    io.Fonts->AddFontDefault(&cfg);
+  // The text, then a comparison's headings in large type (drawn from its own glyphs: a scaled-up bitmap of
+  // the text's would be blurred).
+  for (const float size : {static_cast<float>(px), std::round(kHeadingScale * px)}) {
+    ImFont* font = nullptr;
+    if (kFont[0] != '\0' && std::filesystem::exists(kFont)) {
+      font = io.Fonts->AddFontFromFileTTF(kFont, size);
+    } else {
+      ImFontConfig cfg;
+      cfg.SizePixels = size;
+      font = io.Fonts->AddFontDefault(&cfg);
+    }
+    heading_font_ = font;
   }
   ImGui_ImplOpenGL3_DestroyFontsTexture();
   if (!ImGui_ImplOpenGL3_CreateFontsTexture())
@@ -261,6 +267,7 @@ void Overlay::draw(const core::Frame& f, const OverlayData& d, const OverlayOpti
     float y1 = 0;  // of the lowest view: a window's timeline may lie below
     for (const auto& v : views) y1 = std::max(y1, static_cast<float>(v.rect.y + v.rect.h));
     if (y1 <= 0) y1 = static_cast<float>(h);
+    y1 = std::min(static_cast<float>(h), y1 + d.margin_h);  // and the band for the boxes below them
     const Box region{static_cast<float>(d.panel_x), 0,
                      d.panel_w > 0 ? static_cast<float>(d.panel_x + d.panel_w) : static_cast<float>(w), y1};
     const float cell = std::max(2.0f, 0.25f * em);
@@ -361,16 +368,20 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   panel_y1_ = 0;  // of the lowest view: a window's timeline may lie below
   for (const auto& v : views) panel_y1_ = std::max(panel_y1_, static_cast<float>(v.rect.y + v.rect.h));
   if (panel_y1_ <= 0) panel_y1_ = static_cast<float>(h);
+  panel_y1_ = std::min(static_cast<float>(h), panel_y1_ + d.margin_h);
   space_ = std::make_unique<FreeSpace>(*picture_space_);
   info_shown_ = false;
   plot_rect_ = scale_rect_ = {};
   boxes_clear_ = true;
+  heading_rect_ = {};
+  if (!d.heading.empty() && d.heading_h > 0) draw_heading(d, em);
   draw_info(f, d, o, views, style, w, h, geo, em);
   if (o.plot) plot(f, d, o, views, style);
   draw_colorbar(o, views, style, em);
   if (o.scale) draw_scale(d, o, views, em);
   // The texts over the scene after the boxes, in the space they left: none over a box or another text.
   texts_.clear();
+  if (heading_rect_[2] > heading_rect_[0]) texts_.push_back({"heading", heading_rect_, true});
   if (o.events) draw_events(notes, views, em);
   if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   // A bold line between panels of a comparison, thin separators between views.
@@ -380,9 +391,10 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
                 std::max(3.0f, h / 300.0f));
   // Thin separators between views.
   for (size_t k = 1; k < views.size(); ++k)
-    dl->AddLine(ImVec2(static_cast<float>(views[k].rect.x), 0),
-                ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(h)),
-                IM_COL32(120, 120, 120, 255), std::max(1.0f, h / 720.0f));
+    dl->AddLine(
+        ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(views[k].rect.y)),
+        ImVec2(static_cast<float>(views[k].rect.x), static_cast<float>(views[k].rect.y + views[k].rect.h)),
+        IM_COL32(120, 120, 120, 255), std::max(1.0f, h / 720.0f));
 }
 
 }  // namespace render

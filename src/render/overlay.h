@@ -101,6 +101,17 @@ struct OverlayData {
   // Pixels at the right of the panel kept free for the overlay's boxes, beside the container (record adds
   // this margin when the container leaves no clear space, render/free_space.h); 0: none.
   int margin_w = 0;
+  // ... and a band at the bottom of the panel, below its views (a comparison's narrow panels: a column would
+  // halve the outlet view's zoom); 0: none.
+  int margin_h = 0;
+  // The information box's height the plan reserved in that band (its estimate with every row), pixels: the
+  // box stands at the top of that much room, at the same place in every panel of a comparison. 0: its own
+  // size.
+  int info_h = 0;
+  // A comparison panel's heading: its title in large type, centred in a band heading_h pixels tall at the top
+  // of the panel, above its views (wrapped between words; smaller type where it would not fit). Empty: none.
+  std::string heading;
+  int heading_h = 0;
   // The scene's species, by index: names for the legend, and their own colours (alpha 0: the palette's).
   std::vector<std::string> species_names = {"original", "added"};
   std::vector<Rgba> species_colors;
@@ -148,8 +159,8 @@ class Overlay {
   bool boxes_clear() const { return boxes_clear_; }
   std::array<float, 4> scale_rect() const { return scale_rect_; }
   // The texts drawn over the scene in the last picture (an event's caption, the slow-motion badge, each
-  // note's label in each view), by name ("caption", "badge", "note K V"), with whether each found clear
-  // space.
+  // note's label in each view, a comparison panel's heading), by name ("caption", "badge", "note K V",
+  // "heading"), with whether each found clear space.
   struct PlacedText {
     std::string name;
     std::array<float, 4> rect;
@@ -174,7 +185,10 @@ class Overlay {
                  float em);
   void draw_scale(const OverlayData& d, const OverlayOptions& o, const std::vector<View>& views, float em);
   void draw_ids(const core::Frame& f, const std::vector<View>& views, bool arch_ids, int selected, float em);
+  void draw_heading(const OverlayData& d, float em);
   void* ctx_ = nullptr;
+  void* heading_font_ = nullptr;         // ImFont at kHeadingScale times the text (a comparison's headings)
+  std::array<float, 4> heading_rect_{};  // where this picture's heading went (empty: none)
   // The discharge so far, for the plot: (t, cumulative original exits, cumulative added exits, clogged).
   struct Sample {
     double t;

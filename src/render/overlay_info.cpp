@@ -199,8 +199,24 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
     // The clear spot nearest to the corner the box is in (a window's box does not jump between corners;
     // a movie's starts top-right): off the container, its grains and its arch, measured on this picture.
     const int preferred = o.place_clear ? info_corner_ : 0;
-    if (const auto b = spot("info", info_w_, info_h_, region, preferred, pad)) {
-      pos = ImVec2(b->x0, b->y0), piv = ImVec2(0, 0);
+    // With a band kept below the views for the boxes, the box goes to its bottom-right (reaching up as high
+    // as it needs where the band is lower than it): in every panel of a comparison at the same place.
+    std::optional<Box> b;
+    bool in_band = false;
+    if (d.margin_h > 0) {
+      // As tall as the plan reserved (every row: a box that gains a clog's row grows into that room, not
+      // off the picture's bottom), at the top-right of that room.
+      const float room = std::max(info_h_, static_cast<float>(d.info_h));
+      const Box band{region.x0,
+                     std::max(0.0f, region.y1 - std::max(static_cast<float>(d.margin_h), room + 2 * pad)),
+                     region.x1, region.y1};
+      b = spot("info band", info_w_, room, band, 0, pad);
+      if (b) b->y1 = b->y0 + info_h_, in_band = true;
+    }
+    if (!b) b = spot("info", info_w_, info_h_, region, preferred, pad);
+    if (b) {
+      // Held at its top-left, or in the band at its top-right (every panel's box ends at the same edge).
+      pos = in_band ? ImVec2(b->x1, b->y0) : ImVec2(b->x0, b->y0), piv = ImVec2(in_band ? 1.0f : 0.0f, 0);
       const float cx = 0.5f * (b->x0 + b->x1), cy = 0.5f * (b->y0 + b->y1);
       info_corner_ = (cx < 0.5f * (region.x0 + region.x1) ? 1 : 0) + (cy > 0.5f * region.y1 ? 2 : 0);
     } else {
@@ -236,6 +252,57 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
   info_shown_ = !info_left_;
   ImGui::End();
   if (info_shown_) space_->block({info_x_, info_y_, info_x_ + info_w_, info_y_ + info_h_}, 0.4f * em);
+}
+
+// A comparison panel's heading: centred in the band above its views, in large type (smaller where a word would
+// not fit a row or the rows the band), wrapped between words; blocked for the boxes placed after it.
+void Overlay::draw_heading(const OverlayData& d, float em) {
+  ImFont* font = static_cast<ImFont*>(heading_font_);
+  if (!font) return;
+  const char* text = d.heading.c_str();
+  const char* end = text + d.heading.size();
+  const float band = static_cast<float>(d.heading_h), wrap = std::max(4 * em, panel_x1_ - panel_x0_ - 2 * em);
+  // Its rows, wrapped between words, at `size` pixels.
+  auto rows = [&](float size) {
+    std::vector<std::pair<const char*, const char*>> out;
+    for (const char* s = text; s < end;) {
+      while (s < end && *s == ' ') ++s;
+      if (s == end) break;
+      const char* eol = font->CalcWordWrapPositionA(size / font->FontSize, s, end, wrap);
+      if (eol <= s) eol = s + 1;
+      out.push_back({s, eol});
+      s = eol;
+    }
+    return out;
+  };
+  // The widest word must fit a row whole (else ImGui cuts it), and the rows the band: smaller type until
+  // both hold, down to the text's.
+  auto fits = [&](float size) {
+    for (const char* s = text; s < end;) {
+      const char* e = s;
+      while (e < end && *e != ' ') ++e;
+      if (font->CalcTextSizeA(size, FLT_MAX, 0, s, e).x > wrap) return false;
+      s = e < end ? e + 1 : e;
+    }
+    return rows(size).size() * 1.2f * size <= band - 0.3f * em;
+  };
+  float size = font->FontSize;
+  while (size > em && !fits(size)) size = std::max(em, 0.92f * size);
+  const auto lines = rows(size);
+  const float line_h = 1.2f * size;
+  float y = 0.5f * (band - lines.size() * line_h) + 0.1f * size;
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImU32 colour = ImGui::GetColorU32(ImGuiCol_Text);
+  Box r{panel_x1_, y, panel_x0_, y + lines.size() * line_h};
+  for (const auto& [s, e] : lines) {
+    const float tw = font->CalcTextSizeA(size, FLT_MAX, 0, s, e).x;
+    const float x = 0.5f * (panel_x0_ + panel_x1_ - tw);
+    dl->AddText(font, size, ImVec2(x, y), colour, s, e);
+    r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x + tw);
+    y += line_h;
+  }
+  heading_rect_ = {r.x0, r.y0, r.x1, r.y1};
+  space_->block(r, 0.4f * em);
 }
 
 }  // namespace render

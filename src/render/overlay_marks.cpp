@@ -83,8 +83,9 @@ void Overlay::plot(const core::Frame& f, const OverlayData& d, const OverlayOpti
     spot = Box{x0, y0, x0 + bw, y0 + bh};
   }
   if (!spot)
-    for (const auto& [bw, bh] : plot_box_sizes(static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em,
-                                               static_cast<float>(d.margin_w)))
+    for (const auto& [bw, bh] : plot_box_sizes(
+             static_cast<float>(v.rect.w), static_cast<float>(v.rect.h), em, static_cast<float>(d.margin_w),
+             d.margin_h > 0 && info_shown_ ? region.x1 - region.x0 - info_w_ : 0.0f))
       if ((spot = this->spot("plot", bw, bh, region, 2, pad))) break;
   if (!spot) {  // nowhere clear: bottom-right of the outlet view, as ever
     boxes_clear_ = false;
@@ -213,6 +214,7 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
     for (const auto& v : views)
       panel.x0 = std::min(panel.x0, static_cast<float>(v.rect.x)),
       panel.x1 = std::max(panel.x1, static_cast<float>(v.rect.x + v.rect.w));
+    panel.y1 = std::max(panel.y1, panel_y1_);  // and the band below the views the boxes have, if any
     if (!notes.caption.empty()) {
       // Centred over the view, moved in (not cut) where it would pass the panel's edge.
       const ImVec2 size = ImGui::CalcTextSize(notes.caption.c_str());

@@ -34,8 +34,8 @@ struct Tally {
   long not_clear = 0;  // pictures in which the overlay says a box found no clear space
   // Texts over the scene (an event's caption, the slow-motion badge, two notes): drawn on every fifth frame
   // with the boxes, each checked against every box and text of its panel from the layout's own rectangles.
-  long texts = 0, texts_overlap = 0, texts_not_clear = 0;
-  std::string first_overlap, first_not_clear;
+  long texts = 0, texts_overlap = 0, texts_not_clear = 0, headings = 0;
+  std::string first_overlap, first_not_clear, first_outside, first_differ;
 };
 
 bool overlap(const std::array<float, 4>& a, const std::array<float, 4>& b) {
@@ -77,6 +77,13 @@ void check_texts(std::vector<render::PanelInput> in, const std::vector<app::Pane
                                                                        {"colorbar", ov->colorbar_rect()}};
     for (const auto& t : ov->texts()) {
       ++tally.texts;
+      if (t.name == "heading") {  // a comparison panel's: inside its panel, above its views
+        ++tally.headings;
+        const float x0 = static_cast<float>(panels[i].odata.panel_x);
+        CHECK(t.rect[0] >= x0);
+        CHECK(t.rect[2] <= x0 + panels[i].odata.panel_w);
+        CHECK(t.rect[3] <= panels[i].odata.heading_h);
+      }
       tally.texts_not_clear += !t.clear;
       if (!t.clear && tally.first_not_clear.empty()) tally.first_not_clear = t.name;
       for (const auto& [name, r] : boxes)
@@ -92,7 +99,7 @@ void check_texts(std::vector<render::PanelInput> in, const std::vector<app::Pane
 // Record-plan `o`, simulate its panels over `seconds` of discharge and draw `frames` frames each way. The
 // frames are simulated once per scene: `cache` keeps them for the next size and text scale.
 Tally check_movie(app::RecordOptions o, int frames, double seconds,
-                  std::vector<std::vector<core::Frame>>& cache) {
+                  std::vector<std::vector<core::Frame>>& cache, int every = 1) {
   context();
   std::vector<app::Panel> panels = app::make_panels(o);
   const app::Plan plan = app::plan_recording(o, panels);
@@ -126,7 +133,7 @@ Tally check_movie(app::RecordOptions o, int frames, double seconds,
     if (p.odata.panel_x > 0) mark_border(p.odata.panel_x);
     for (size_t k = 1; k < p.views.size(); ++k) mark_border(p.views[k].rect.x);
   }
-  for (int k = 0; k < frames; ++k) {
+  for (int k = 0; k < frames; k += every) {
     const double t = seconds * (k + 1) / frames;
     const std::vector<core::Frame>& fs = cache[static_cast<size_t>(k)];
     std::vector<render::PanelInput> in;
@@ -151,7 +158,7 @@ Tally check_movie(app::RecordOptions o, int frames, double seconds,
         }
       }
     tally.on_subject += bad;
-    if (k % 5 == 0) check_texts(in, panels, plan, overlay, w, h, tally);
+    if (k % (5 * every) == 0) check_texts(in, panels, plan, overlay, w, h, tally);
     // Every box whole inside its panel (no legend row cut off), and at the same place in every panel.
     for (size_t i = 0; i < panels.size(); ++i) {
       const render::Overlay* ov = with.overlay(i);
@@ -159,12 +166,23 @@ Tally check_movie(app::RecordOptions o, int frames, double seconds,
       const float px0 = static_cast<float>(panels[i].odata.panel_x);
       const float px1 = panels[i].odata.panel_w > 0 ? px0 + panels[i].odata.panel_w : static_cast<float>(w);
       for (const auto& r : {ov->info_rect(), ov->plot_rect(), ov->scale_rect()})
-        if (r[2] > r[0] && !(r[0] >= px0 && r[2] <= px1 && r[1] >= 0 && r[3] <= h)) ++tally.boxes_outside;
-      // The same corner: the boxes' right edges and tops (a longer panel title makes a wider box).
+        if (r[2] > r[0] && !(r[0] >= px0 && r[2] <= px1 && r[1] >= 0 && r[3] <= h)) {
+          if (tally.boxes_outside++ == 0)
+            tally.first_outside = "(" + std::to_string(r[0]) + ", " + std::to_string(r[1]) + ") to (" +
+                                  std::to_string(r[2]) + ", " + std::to_string(r[3]) + ")";
+        }
+      // The same place: the boxes' right edges and tops, to within a cell of the layout's grid (a quarter of
+      // the text's height: a falling grain can move a box in a band a cell aside).
       const auto a = with.overlay(0)->info_rect(), b = ov->info_rect();
-      if (i > 0 &&
-          (std::abs((a[2] - panels[0].odata.panel_x) - (b[2] - px0)) > 1 || std::abs(a[1] - b[1]) > 1))
-        ++tally.panels_differ;
+      const float cell = std::max(2.0f, 0.25f * render::overlay_em(h, o.looks.font_scale));
+      if (i > 0 && (std::abs((a[2] - panels[0].odata.panel_x) - (b[2] - px0)) > cell ||
+                    std::abs(a[1] - b[1]) > cell)) {
+        if (tally.panels_differ++ == 0)
+          tally.first_differ =
+              "t = " + std::to_string(t) + " s: x1 " + std::to_string(a[2] - panels[0].odata.panel_x) + " " +
+              std::to_string(b[2] - px0) + " y " + std::to_string(a[1]) + "-" + std::to_string(a[3]) +
+              " against " + std::to_string(b[1]) + "-" + std::to_string(b[3]);
+      }
     }
   }
   return tally;
@@ -192,26 +210,31 @@ TEST_CASE(
                                            "silo-obstacle.toml", "vibrated-silo.toml",  "tilted-silo.toml"};
   for (const auto& scene : scenes) {
     std::vector<std::vector<core::Frame>> frames;
-    for (const char* size : {"1280x720", "1920x1080"})
+    for (const char* size : {"1280x720", "1920x1080", "3840x2160"})
       for (double font : {1.0, 2.0}) {
-        const Tally t = check_movie(options(scene, size, font), 50, 10.0, frames);
+        // 4K: the frames of the 720p run, every fifth (a picture nine times as large).
+        const bool uhd = std::string(size) == "3840x2160";
+        const Tally t = check_movie(options(scene, size, font), 50, 10.0, frames, uhd ? 5 : 1);
         INFO(scene << " at " << size << ", font scale " << font << ": " << t.on_subject
                    << " overlay pixels on the subject in " << t.frames << " frames (first at " << t.first_bad
+                   << "), " << t.boxes_outside << " boxes outside the picture (first " << t.first_outside
                    << ")");
         CHECK(t.not_clear == 0);
-        CHECK(t.frames == 50);
+        CHECK(t.frames == (uhd ? 10 : 50));
         CHECK(t.overlay_px > 0);
         CHECK(t.on_subject == 0);
         CHECK(t.boxes_outside == 0);
         INFO(t.texts << " texts placed, " << t.texts_overlap
                      << " over a box or a text (first: " << t.first_overlap << "), " << t.texts_not_clear
                      << " without clear space (first: " << t.first_not_clear << ")");
-        CHECK(t.texts >= 10 * 4);
+        CHECK(t.texts >= (uhd ? 2 : 10) * 4);
         CHECK(t.texts_overlap == 0);
         // At 2x every box, the plot, the caption, the badge and two notes do not all fit beside the grains
         // (issue 57: the record plan's margin does not count the texts yet): there, only nothing over
         // anything.
-        if (font == 1.0) CHECK(t.texts_not_clear == 0);
+        // At 4K a note on a grain in the packed column of the flat silo with an obstacle finds no clear spot
+        // in 2 of 8 texts (the outlet view is larger there): counted, not yet held.
+        if (font == 1.0 && !uhd) CHECK(t.texts_not_clear == 0);
       }
   }
 }
@@ -231,25 +254,35 @@ TEST_CASE(
     CHECK(t.on_subject > 0);
     CHECK(t.not_clear == t.frames);
   }
+  // Headed by long titles (two rows at 720p), at 720p, 1080p and 4K: the headings, the boxes, the caption,
+  // the badge and the notes none over another, in every panel.
   std::vector<std::vector<core::Frame>> frames;
-  for (const char* size : {"1280x720", "1920x1080"})
+  for (const char* size : {"1280x720", "1920x1080", "3840x2160"})
     for (double font : {1.0}) {
       app::RecordOptions o = options("paper.toml", size, font);
       o.compare = {"mu=0", "mu=2.2"};
-      const Tally t = check_movie(o, 50, 10.0, frames);
+      o.panel_titles = {"no magnetic repulsion between the added disks",
+                        "magnetic repulsion, mu = 2.2 A m^2"};
+      const bool uhd = std::string(size) == "3840x2160";
+      const Tally t = check_movie(o, 50, 10.0, frames, uhd ? 5 : 1);
       INFO("two panels at " << size << ", font scale " << font << ": " << t.on_subject
                             << " overlay pixels on the subject in " << t.frames << " frames (first at "
                             << t.first_bad << "), " << t.boxes_outside << " boxes outside their panel, "
-                            << t.panels_differ << " frames with the panels' boxes apart");
+                            << t.panels_differ << " frames with the panels' boxes apart (first "
+                            << t.first_differ << ")");
       CHECK(t.not_clear == 0);
-      CHECK(t.frames == 50);
+      CHECK(t.frames == (uhd ? 10 : 50));
       CHECK(t.on_subject == 0);
       CHECK(t.boxes_outside == 0);
       CHECK(t.panels_differ == 0);
       INFO(t.texts << " texts placed, " << t.texts_overlap
                    << " over a box or a text (first: " << t.first_overlap << "), " << t.texts_not_clear
                    << " without clear space (first: " << t.first_not_clear << ")");
+      CHECK(t.headings == (uhd ? 2 : 10) * 2);
       CHECK(t.texts_overlap == 0);
+      // With the plot in the band below, a note on a grain in the packed column finds no spot off the grains
+      // at 1080p and 4K (the plan's room counts the boxes, not the texts): there, only nothing over anything.
+      if (!uhd && std::string(size) == "1280x720") CHECK(t.texts_not_clear == 0);
     }
 }
 
@@ -354,4 +387,40 @@ TEST_CASE("a camera following an arch member holds through the rule's removal, s
     CHECK(std::hypot(c.x - there.x, c.y - there.y) < model.setup.geo.grain_diameter);
   }
   CHECK(track.at(removal.t + 2.5).y > there.y + 0.5);
+}
+
+TEST_CASE(
+    "a two-panel comparison at 720p shows the outlet's grains at least 50 pixels across, under headings",
+    "[app][pictures]") {
+  // Issue 57: the panels' outlet views were barely zoomed (19 px a grain at 720p against 72 in a single
+  // movie): each panel's boxes took a column beside its container. Now the panel is headed by its title and
+  // the boxes take a band below the views where that leaves them more zoom.
+  for (const std::string scene : {"paper.toml", "paper-vibrated.toml", "three-species.toml"})
+    for (const char* size : {"1280x720", "1920x1080"}) {
+      app::RecordOptions o = options(scene, size, 1.0);
+      o.looks.overlay = "all";
+      o.compare = {"seed=4", "seed=5"};
+      o.panel_titles = {"one filling", "another filling"};
+      std::vector<app::Panel> panels = app::make_panels(o);
+      const app::Plan plan = app::plan_recording(o, panels);
+      REQUIRE(panels.size() == 2);
+      const int h = plan.video.height;
+      for (size_t k = 0; k < panels.size(); ++k) {
+        const app::Panel& p = panels[k];
+        CHECK(p.odata.heading == o.panel_titles[k]);
+        CHECK(p.odata.heading_h >= render::overlay_em(h, 1.0) * render::kHeadingScale);
+        CHECK(p.odata.title.empty());  // the heading names the panel; the box does not repeat it
+        const render::View* outlet = nullptr;
+        for (const auto& v : p.views) {
+          if (v.name == "outlet") outlet = &v;
+          CHECK(v.rect.y >= p.odata.heading_h);  // the views below the heading
+          CHECK(v.rect.y + v.rect.h <= h - p.odata.margin_h);
+        }
+        REQUIRE(outlet != nullptr);
+        const double grain_px = 2 * p.model.setup.reference_radius * outlet->px_per_m();
+        INFO(scene << " at " << size << ", panel " << k << ": a grain " << std::to_string(grain_px)
+                   << " px across");
+        CHECK(grain_px >= 50 * h / 720.0);
+      }
+    }
 }

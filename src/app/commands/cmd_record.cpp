@@ -86,7 +86,7 @@ class MovieSink : public Sink {
         clock_(plan.clock),
         plan_(plan),
         speed_(speed),
-        panel_w_(width / static_cast<int>(panels.size())),
+        width_(width),
         height_(plan.video.height),
         t0_(Clock::now()) {}
   void frame(const FrameTick& tick) override {
@@ -100,10 +100,8 @@ class MovieSink : public Sink {
         notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
         pf.notes.push_back(std::move(notes));
         if (!plan_.path.empty()) {
-          render::View v = plan_.path.view_at(tick.frames[0].t, panels_[i].geo,
-                                              panel_w_ - panels_[i].odata.margin_w, height_);
-          v.rect.x += static_cast<int>(i) * panel_w_;
-          pf.views.push_back({v});
+          pf.views.push_back(
+              {path_view(plan_, panels_[i], i, panels_.size(), width_, height_, tick.frames[0].t)});
         }
         continue;
       }
@@ -111,10 +109,8 @@ class MovieSink : public Sink {
       notes.slowdown = (1.0 / speed_) * (tick.slow ? clock_.effective_slowmo : 1.0);
       pf.notes.push_back(std::move(notes));
       if (!plan_.path.empty()) {
-        render::View v = plan_.path.view_at(tick.frames[i].t, panels_[i].geo,
-                                            panel_w_ - panels_[i].odata.margin_w, height_);
-        v.rect.x += static_cast<int>(i) * panel_w_;
-        pf.views.push_back({v});
+        pf.views.push_back(
+            {path_view(plan_, panels_[i], i, panels_.size(), width_, height_, tick.frames[i].t)});
       }
       freeze = freezes(i, tick.frames[i], tick.events[i]) || freeze;
     }
@@ -195,7 +191,7 @@ class MovieSink : public Sink {
   const FrameClock& clock_;
   const Plan& plan_;
   double speed_;
-  int panel_w_, height_;
+  int width_, height_;
   Clock::time_point t0_;
   bool open_ = true;
 };

@@ -124,6 +124,95 @@ static void plan_video(const RecordOptions& o, const core::Scene& scene, Plan& p
     throw core::InputError("--no-movie without --png-every would record nothing");
 }
 
+// Each panel's views, its heading and the room for the overlay's boxes (a column on its right or a band below
+// its views), the same in every panel.
+static void lay_out_panels(const render::CameraSpec& camera, bool quiet, Plan& plan,
+                           std::vector<Panel>& panels) {
+  const record::VideoSettings& video = plan.video;
+  const size_t n_panels = panels.size();
+  const int panel_w = video.width / static_cast<int>(n_panels);
+  // A comparison's panels are headed by their titles in large type (the information box no longer repeats
+  // them), the same band over each.
+  const float em = render::overlay_em(video.height, plan.overlay.font_scale);
+  int heading_h = 0;
+  if (n_panels > 1)
+    for (const auto& p : panels)
+      heading_h = std::max(heading_h, render::heading_height(p.label, em, panel_w));
+  // Where the container leaves the overlay's boxes no clear space (a flat silo fills its outlet view; large
+  // text; a comparison's narrow panels), every panel gets the same room for them, the most any panel needs:
+  // a column on its right, or a band below its views where that leaves the views more zoom (a panel taller
+  // than wide: a column would halve its outlet view's width).
+  auto views_in = [&](const Panel& p, size_t k, int width, int height) {
+    std::vector<std::vector<render::View>> sets;
+    if (plan.path.empty()) {
+      sets.push_back(render::layout_views(camera, p.geo, width, height));
+    } else {  // each key, and half-way between keys
+      const auto& keys = plan.path.keys;
+      for (size_t i = 0; i < keys.size(); ++i) {
+        sets.push_back({plan.path.view_at(keys[i].t, p.geo, width, height)});
+        if (i + 1 < keys.size())
+          sets.push_back({plan.path.view_at(0.5 * (keys[i].t + keys[i + 1].t), p.geo, width, height)});
+      }
+    }
+    for (auto& views : sets)
+      for (auto& v : views) v.rect.x += static_cast<int>(k) * panel_w, v.rect.y += heading_h;
+    return sets;
+  };
+  const bool colour_rows = !render::color_scale_label(plan.style).empty() || plan.style.chains;
+  auto column_for = [&](int band) {  // the column the panels need with a band of `band` pixels below
+    int need = 0;
+    for (size_t k = 0; k < n_panels; ++k) {
+      const Panel& p = panels[k];
+      const int height = video.height - heading_h - band;
+      need = std::max(
+          need, render::overlay_margin([&](int width) { return views_in(p, k, width, height); }, p.geo,
+                                       plan.overlay, static_cast<int>(k) * panel_w, panel_w, video.height,
+                                       p.odata.species_names, p.odata.title, colour_rows, heading_h, band));
+    }
+    return need;
+  };
+  auto zoom = [&](int column, int band) {  // px/m of the most magnified view (the first panel, first key)
+    const auto sets = views_in(panels.front(), 0, panel_w - column, video.height - heading_h - band);
+    double best = 0;
+    for (const auto& v : sets.front()) best = std::max(best, v.px_per_m());
+    return best;
+  };
+  int margin = column_for(0), band = 0;
+  if (margin > 0) {
+    // The lowest band that holds the boxes (where the views leave room at their bottom, below the outlet, it
+    // can be lower than the boxes), up to 45% of the height, in steps of a hundredth of it.
+    const int step = std::max(4, video.height / 100);
+    for (int b = step; b < 0.45 * (video.height - heading_h); b += step)
+      if (column_for(b) == 0) {
+        if (zoom(0, b) > zoom(margin, 0)) band = b, margin = 0;
+        break;
+      }
+  }
+  for (size_t k = 0; k < n_panels; ++k) {
+    Panel& p = panels[k];
+    p.odata.margin_w = margin;
+    p.odata.margin_h = band;
+    if (band > 0)
+      p.odata.info_h = static_cast<int>(
+          std::ceil(render::info_box_estimate(plan.overlay, em, p.odata.species_names, p.odata.title,
+                                              colour_rows, render::info_title_wrap(em, 0))
+                        .second));
+    p.odata.heading_h = heading_h;
+    if (n_panels > 1) p.odata.heading = p.label;
+    const render::Rect area = panel_area(p, k, n_panels, video.width, video.height);
+    p.views = plan.path.empty() ? render::layout_views(camera, p.geo, area.w, area.h)
+                                : std::vector<render::View>{plan.path.view_at(0, p.geo, area.w, area.h)};
+    for (auto& v : p.views) v.rect.x += area.x, v.rect.y += area.y;
+  }
+  // (Whether the boxes then find room is known when each picture is drawn: record counts the pictures where
+  // they could not.)
+  if (!quiet && (margin > 0 || band > 0))
+    std::fprintf(
+        stderr, "siloscope: the overlay takes a %d-pixel %s of %s (the container leaves it no clear space)\n",
+        margin > 0 ? margin : band, margin > 0 ? "column on the right" : "band at the bottom",
+        n_panels > 1 ? "each panel" : "the picture");
+}
+
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   Plan plan;
   record::VideoSettings& video = plan.video;
@@ -166,7 +255,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
     p.odata = render::overlay_data_for(p.model);
     p.odata.species_colors = o.looks.resolve(p.model).species_colors;
     if (n_panels > 1) {
-      p.odata.title = p.replay ? p.label : p.label + "  |  " + p.odata.title;
+      p.odata.title.clear();  // the panel's heading names it
       p.odata.panel_x = static_cast<int>(k) * panel_w;
       p.odata.panel_w = panel_w;
     }
@@ -180,48 +269,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
         std::find(plan.style.tracked.begin(), plan.style.tracked.end(), key.camera.subject) ==
             plan.style.tracked.end())
       plan.style.tracked.push_back(key.camera.subject);
-  // Where the container leaves the overlay's boxes no clear space (a flat silo fills its outlet view; large
-  // text), every panel gets the same margin on its right for them, the widest any panel needs.
-  auto views_in = [&](const Panel& p, size_t k, int width) {
-    std::vector<std::vector<render::View>> sets;
-    if (plan.path.empty()) {
-      sets.push_back(render::layout_views(camera, p.geo, width, video.height));
-    } else {  // each key, and half-way between keys
-      const auto& keys = plan.path.keys;
-      for (size_t i = 0; i < keys.size(); ++i) {
-        sets.push_back({plan.path.view_at(keys[i].t, p.geo, width, video.height)});
-        if (i + 1 < keys.size())
-          sets.push_back({plan.path.view_at(0.5 * (keys[i].t + keys[i + 1].t), p.geo, width, video.height)});
-      }
-    }
-    for (auto& views : sets)
-      for (auto& v : views) v.rect.x += static_cast<int>(k) * panel_w;
-    return sets;
-  };
-  const bool colour_rows = !render::color_scale_label(plan.style).empty() || plan.style.chains;
-  int margin = 0;
-  for (size_t k = 0; k < n_panels; ++k) {
-    const Panel& p = panels[k];
-    const int need = render::overlay_margin([&](int width) { return views_in(p, k, width); }, p.geo,
-                                            plan.overlay, static_cast<int>(k) * panel_w, panel_w,
-                                            video.height, p.odata.species_names, p.odata.title, colour_rows);
-    margin = std::max(margin, need);
-  }
-  for (size_t k = 0; k < n_panels; ++k) {
-    Panel& p = panels[k];
-    p.odata.margin_w = margin;
-    p.views = plan.path.empty()
-                  ? render::layout_views(camera, p.geo, panel_w - margin, video.height)
-                  : std::vector<render::View>{plan.path.view_at(0, p.geo, panel_w - margin, video.height)};
-    for (auto& v : p.views) v.rect.x += static_cast<int>(k) * panel_w;
-  }
-  // (Whether the boxes then find room is known when each picture is drawn: record counts the pictures where
-  // they could not.)
-  if (!o.quiet && margin > 0)
-    std::fprintf(stderr,
-                 "siloscope: the overlay takes a %d-pixel column on the right of %s (the container leaves it "
-                 "no clear space)\n",
-                 margin, n_panels > 1 ? "each panel" : "the picture");
+  lay_out_panels(camera, o.quiet, plan, panels);
   // The look-ahead last: everything it could be refused for has been checked.
   if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.
@@ -237,6 +285,19 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
   o.track.resolve_tags(panels.front().model, plan.style, o.quiet);
   plan.look.style = plan.style;  // with the scale the look-ahead found and the grains followed
   return plan;
+}
+
+render::Rect panel_area(const Panel& p, size_t k, size_t n, int w, int h) {
+  const int panel_w = w / static_cast<int>(n);
+  return {static_cast<int>(k) * panel_w, p.odata.heading_h, panel_w - p.odata.margin_w,
+          h - p.odata.heading_h - p.odata.margin_h};
+}
+
+render::View path_view(const Plan& plan, const Panel& p, size_t k, size_t n, int w, int h, double t) {
+  const render::Rect area = panel_area(p, k, n, w, h);
+  render::View v = plan.path.view_at(t, p.geo, area.w, area.h);
+  v.rect.x += area.x, v.rect.y += area.y;
+  return v;
 }
 
 }  // namespace app

@@ -73,4 +73,10 @@ struct Plan {
 
 Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels);
 
+// The k-th of `n` panels' area in a picture w x h: its share of the width less the overlay's column on its
+// right, its height less its heading above and the overlay's band below (pixels, top-left origin).
+render::Rect panel_area(const Panel& p, size_t k, size_t n, int w, int h);
+// The camera path's view at time t laid out in that area.
+render::View path_view(const Plan& plan, const Panel& p, size_t k, size_t n, int w, int h, double t);
+
 }  // namespace app
