@@ -468,8 +468,8 @@ void define_record_command(CLI::App& command, Action& action) {
   cmd->add_flag("--no-movie", o->no_movie, "PNG frames only");
   cmd->add_flag("--force", o->force, "replace existing outputs");
   cmd->add_option("--panel-title", o->panel_titles,
-                  "each panel's title, first in its information box, in order (repeatable, one per panel; "
-                  "default: the --compare keys, the scene's name, or the run's)");
+                  "each panel's title, a heading in large type above it, in order (repeatable, one per "
+                  "panel; default: the --compare keys, the scene's name, or the run's)");
   cmd->add_option("--compare-run", o->compare_run,
                   "a recorded or imported run (an experiment from siloscope import) played back beside the "
                   "simulation, on one clock from the opening; its container must be the scene's")
