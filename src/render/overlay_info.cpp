@@ -254,8 +254,8 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
   if (info_shown_) space_->block({info_x_, info_y_, info_x_ + info_w_, info_y_ + info_h_}, 0.4f * em);
 }
 
-// A comparison panel's heading: centred in the band above its views, in large type (smaller where a word would
-// not fit a row or the rows the band), wrapped between words; blocked for the boxes placed after it.
+// A comparison panel's heading: centred in the band above its views, in large type (smaller where a word
+// would not fit a row or the rows the band), wrapped between words; blocked for the boxes placed after it.
 void Overlay::draw_heading(const OverlayData& d, float em) {
   ImFont* font = static_cast<ImFont*>(heading_font_);
   if (!font) return;
