@@ -202,8 +202,8 @@ app::RecordOptions options(const std::string& scene, const std::string& size, do
 }  // namespace
 
 TEST_CASE(
-    "the overlay's boxes never cover a grain, a wall, an obstacle or an arch: every preset, 720p and "
-    "1080p, text at 1x and 2x",
+    "the overlay's boxes never cover a grain, a wall, an obstacle or an arch: every preset, 720p, 1080p "
+    "and 4K, text at 1x and 2x",
     "[app][pictures][slow]") {
   const std::vector<std::string> scenes = {"paper.toml",         "paper-vibrated.toml", "pure.toml",
                                            "three-species.toml", "hopper-drain.toml",   "pentagons.toml",
