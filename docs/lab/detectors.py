@@ -9,7 +9,7 @@ second. HoughCircles' and blob_log's main thresholds are chosen on the first ten
 small grid) and measured on the rest (blob_log, at seconds a frame, on every fourth); siloscope runs with its
 defaults.
 
-    /usr/bin/python3 docs/lab/detectors.py --binary build/siloscope --work /tmp/det [--duration 6] [--csv F]
+    python3 docs/lab/detectors.py --binary build/siloscope --work WORKDIR [--duration 6] [--csv F]
 
 Needs python3-opencv and python3-skimage (Debian). Prints a table; --csv writes it.
 """
