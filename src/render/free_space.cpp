@@ -256,6 +256,10 @@ std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, 
   return out;
 }
 
+Box info_band(const Box& panel, float band, float box_h, float pad) {
+  return {panel.x0, std::max(panel.y0, panel.y1 - std::max(band, box_h + 2 * pad)), panel.x1, panel.y1};
+}
+
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
                    const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
                    const std::vector<std::string>& species, const std::string& title, bool colour_rows,
@@ -277,11 +281,7 @@ int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)
       if (info && o.info_at < 0) {
         std::optional<Box> b;
         if (band > 0)
-          b = fs.place_at_corner(
-              iw, ih,
-              {panel.x0, std::max(panel.y0, panel.y1 - std::max<float>(band, ih + 2 * pad)), panel.x1,
-               panel.y1},
-              0, pad);
+          b = fs.place_at_corner(iw, ih, info_band(panel, static_cast<float>(band), ih, pad), 0, pad);
         if (!b) b = fs.place_at_corner(iw, ih, panel, 0, pad);
         if (!b) return false;
         fs.block(*b, 0.4f * em);

@@ -90,6 +90,11 @@ float overlay_em(int h, double font_scale);
 // rows, the discharge plot, the scale bar), find clear space beside the container; 0 when the views already
 // leave it. `views_of(width)` lays the panel's views out in `width` pixels from the panel's left edge (with a
 // camera path, one set per key: each must leave the space).
+// Where the information box goes in a band of `band` pixels at the bottom of `panel` (a comparison's, below
+// its views): the band, or more of the panel above it where the box (`box_h` tall, with `pad` around it)
+// needs more; the box at its top-right. The plan (overlay_margin) and the overlay (Overlay::draw_info) both.
+Box info_band(const Box& panel, float band, float box_h, float pad);
+
 // `top`: pixels at the top of the panel the boxes may not use (a comparison panel's heading); `band`: a band
 // of that many pixels below the views, where the information box goes first (as Overlay draws it).
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,

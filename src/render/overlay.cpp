@@ -191,17 +191,14 @@ void Overlay::ensure_font(int h, double scale) {
   io.Fonts->Clear();
   // The text, then a comparison's headings in large type (drawn from its own glyphs: a scaled-up bitmap of
   // the text's would be blurred).
-  for (const float size : {static_cast<float>(px), std::round(kHeadingScale * px)}) {
-    ImFont* font = nullptr;
-    if (kFont[0] != '\0' && std::filesystem::exists(kFont)) {
-      font = io.Fonts->AddFontFromFileTTF(kFont, size);
-    } else {
-      ImFontConfig cfg;
-      cfg.SizePixels = size;
-      font = io.Fonts->AddFontDefault(&cfg);
-    }
-    heading_font_ = font;
-  }
+  auto add = [&](float size) {
+    if (kFont[0] != '\0' && std::filesystem::exists(kFont)) return io.Fonts->AddFontFromFileTTF(kFont, size);
+    ImFontConfig cfg;
+    cfg.SizePixels = size;
+    return io.Fonts->AddFontDefault(&cfg);
+  };
+  add(static_cast<float>(px));  // the first font added is ImGui's default
+  heading_font_ = add(std::round(kHeadingScale * px));
   ImGui_ImplOpenGL3_DestroyFontsTexture();
   if (!ImGui_ImplOpenGL3_CreateFontsTexture())
     throw core::RuntimeFault("ImGui: cannot create the font texture");

@@ -199,18 +199,16 @@ void Overlay::draw_info(const core::Frame& f, const OverlayData& d, const Overla
     // The clear spot nearest to the corner the box is in (a window's box does not jump between corners;
     // a movie's starts top-right): off the container, its grains and its arch, measured on this picture.
     const int preferred = o.place_clear ? info_corner_ : 0;
-    // With a band kept below the views for the boxes, the box goes to its bottom-right (reaching up as high
-    // as it needs where the band is lower than it): in every panel of a comparison at the same place.
+    // With a band kept below the views for the boxes, the box goes to its top-right (reaching up as high as
+    // it needs where the band is lower than it): in every panel of a comparison at the same place.
     std::optional<Box> b;
     bool in_band = false;
     if (d.margin_h > 0) {
       // As tall as the plan reserved (every row: a box that gains a clog's row grows into that room, not
       // off the picture's bottom), at the top-right of that room.
       const float room = std::max(info_h_, static_cast<float>(d.info_h));
-      const Box band{region.x0,
-                     std::max(0.0f, region.y1 - std::max(static_cast<float>(d.margin_h), room + 2 * pad)),
-                     region.x1, region.y1};
-      b = spot("info band", info_w_, room, band, 0, pad);
+      b = spot("info band", info_w_, room, info_band(region, static_cast<float>(d.margin_h), room, pad), 0,
+               pad);
       if (b) b->y1 = b->y0 + info_h_, in_band = true;
     }
     if (!b) b = spot("info", info_w_, info_h_, region, preferred, pad);
