@@ -3,7 +3,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
+#include <future>
 #include <random>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <toml++/toml.h>
 
@@ -100,6 +106,67 @@ Calibration two_point_calibration(const std::string& text, const std::string& op
   return c;
 }
 
+namespace {
+
+// Where grains can be, in pixels: the container's width (and a diameter beyond each side, the slack of the
+// filter below) from above its top to the picture's bottom, where exited grains fall; with room for a disk
+// and the background's estimate around it. Its left edge on a multiple of 4, so the background's quarter-size
+// copy sees the same blocks as on the whole picture.
+cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
+  const double slack_px = 2 * rmax + 2 * 1.25 * rmax + 8;
+  const int x0 =
+      std::max(0, static_cast<int>(std::floor(cal.origin_x + geo.x_left / cal.scale - slack_px)) & ~3);
+  const int x1 =
+      std::min(width, static_cast<int>(std::ceil(cal.origin_x + geo.x_right / cal.scale + slack_px)));
+  const int y0 =
+      std::max(0, static_cast<int>(std::floor(cal.origin_y - geo.total_height / cal.scale - slack_px)));
+  if (x1 - x0 < 8 || height - y0 < 8)
+    return cv::Rect(0, 0, width, height);  // off the picture: look everywhere
+  return cv::Rect(x0, y0, x1 - x0, height - y0);
+}
+
+// The walls' pixels (and the obstacle's rim): their edges are not a disk's rim. As wide as 0.8 of the
+// largest radius, from the geometry and the calibration.
+cv::Mat wall_mask(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
+  cv::Mat ignore = cv::Mat::zeros(height, width, CV_8U);
+  auto px = [&](core::Vec2 p) {
+    return cv::Point(static_cast<int>(std::lround(cal.origin_x + p.x / cal.scale)),
+                     static_cast<int>(std::lround(cal.origin_y - p.y / cal.scale)));
+  };
+  const int thick = std::max(3, static_cast<int>(std::lround(0.8 * rmax)));
+  for (core::Wall w :
+       {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
+    cv::line(ignore, px(geo.walls[static_cast<size_t>(w)].a), px(geo.walls[static_cast<size_t>(w)].b), 255,
+             thick);
+  // The obstacle whole, its rim and inside: no grain is there, and its own shading is no disk's.
+  for (int fill : {thick, -1})
+    if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
+      cv::circle(ignore, px(geo.obstacle.centre),
+                 static_cast<int>(std::lround(0.5 * geo.obstacle.width / cal.scale)), 255, fill);
+    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
+      cv::rectangle(ignore,
+                    px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
+                        geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
+                    px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
+                        geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
+                    255, fill);
+  return ignore;
+}
+
+// One frame's disks, in the whole picture's pixels: the camera's effects (the round trip's), the polarity,
+// then detection inside `region` only.
+std::vector<vision::Circle> detect_frame(cv::Mat frame, long k, const DetectJob& job, bool bright,
+                                         const vision::DetectOptions& detect, const cv::Rect& region) {
+  cv::Mat picture = job.camera ? job.camera(frame, k) : frame;
+  cv::Mat inside = picture(region);
+  if (bright) cv::bitwise_not(inside, inside);
+  std::vector<vision::Circle> found = vision::detect_disks(inside, detect);
+  for (vision::Circle& c : found) c.x += region.x, c.y += region.y;
+  return found;
+}
+
+}  // namespace
+
 std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,
                           DetectStats& stats) {
   const core::Geometry& geo = model.setup.geo;
@@ -108,54 +175,33 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
   std::mt19937_64 rng(job.seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::string csv = "frame,particle,x,y,r,t,species\n";
-  cv::Mat frame;
   using Clock = std::chrono::steady_clock;
-  // The walls' pixels (and the obstacle's rim): their edges are not a disk's rim. As wide as 0.4 of the
-  // largest radius, from the geometry and the calibration.
+  const auto t0 = Clock::now();
+#ifdef __GLIBC__
+  // Each frame's pictures (a few MB each) from the allocator's own free memory: by default glibc maps every
+  // block over 128 kB afresh and returns it when freed, and the kernel's page faults on every new map then
+  // took two thirds of detect's time (the tracks are the same either way).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
   double rmax = 0;
   for (double r : job.detect.radius_px) rmax = std::max(rmax, r);
+  cv::Rect region(0, 0, source.width(), source.height());
   vision::DetectOptions detect = job.detect;
-  if (detect.ignore.empty() && source.width() > 0) {
-    detect.ignore = cv::Mat::zeros(source.height(), source.width(), CV_8U);
-    auto px = [&](core::Vec2 p) {
-      return cv::Point(static_cast<int>(std::lround(job.cal.origin_x + p.x / job.cal.scale)),
-                       static_cast<int>(std::lround(job.cal.origin_y - p.y / job.cal.scale)));
-    };
-    const int thick = std::max(3, static_cast<int>(std::lround(0.8 * rmax)));
-    for (core::Wall w :
-         {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
-      cv::line(detect.ignore, px(geo.walls[static_cast<size_t>(w)].a),
-               px(geo.walls[static_cast<size_t>(w)].b), 255, thick);
-    // The obstacle whole, its rim and inside: no grain is there, and its own shading is no disk's.
-    for (int fill : {thick, -1})
-      if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
-        cv::circle(detect.ignore, px(geo.obstacle.centre),
-                   static_cast<int>(std::lround(0.5 * geo.obstacle.width / job.cal.scale)), 255, fill);
-      else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
-        cv::rectangle(detect.ignore,
-                      px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
-                          geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
-                      px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
-                          geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
-                      255, fill);
+  if (source.width() > 0) {
+    region = grain_region(geo, job.cal, rmax, source.width(), source.height());
+    if (detect.ignore.empty()) detect.ignore = wall_mask(geo, job.cal, rmax, source.width(), source.height());
+    detect.ignore = detect.ignore(region).clone();
   }
   bool bright = job.bright;
   bool polarity_known = job.bright_given;
-  for (long k = 0; source.next(frame); ++k) {
-    if (k < job.first) continue;
-    if (job.last >= 0 && k > job.last) break;
-    cv::Mat picture = job.camera ? job.camera(frame, k) : frame;
-    if (!polarity_known) {
-      cv::Mat inverted;
-      cv::bitwise_not(picture, inverted);
-      stats.first_as_dark = static_cast<long>(vision::detect_disks(picture, detect).size());
-      stats.first_as_bright = static_cast<long>(vision::detect_disks(inverted, detect).size());
-      bright = stats.first_as_bright >= 10 && 10 * stats.first_as_bright > 11 * stats.first_as_dark;
-      polarity_known = true;
-    }
-    if (bright) cv::bitwise_not(picture, picture);
-    const auto t0 = Clock::now();
-    std::vector<vision::Circle> found = vision::detect_disks(picture, detect);
+  // Frames decoded here while up to kAhead are detected on other threads; linked in their order.
+  constexpr size_t kAhead = 3;
+  std::deque<std::pair<long, std::future<std::vector<vision::Circle>>>> pending;
+  auto link_next = [&] {
+    const long k = pending.front().first;
+    const std::vector<vision::Circle> found = pending.front().second.get();
+    pending.pop_front();
     std::vector<vision::Circle> kept;
     for (const vision::Circle& c : found) {
       if (job.drop > 0 && u(rng) < job.drop) continue;
@@ -171,7 +217,6 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
       kept.push_back(c);
     }
     const std::vector<long> ids = linker.link(kept);
-    stats.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     const double t = job.cal.fps > 0 ? static_cast<double>(k) / job.cal.fps : static_cast<double>(k);
     for (size_t i = 0; i < kept.size(); ++i) {
       const vision::Circle& c = kept[i];
@@ -182,7 +227,26 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
     stats.detections += static_cast<long>(kept.size());
     ++stats.frames;
     if (job.progress) job.progress(k);
+  };
+  for (long k = 0;; ++k) {
+    cv::Mat frame;  // a fresh buffer each frame: the one before may still be read by a detection
+    if (!source.next(frame)) break;
+    if (k < job.first) continue;
+    if (job.last >= 0 && k > job.last) break;
+    if (!polarity_known) {
+      cv::Mat picture = job.camera ? job.camera(frame, k) : frame, inverted;
+      cv::bitwise_not(picture(region), inverted);
+      stats.first_as_dark = static_cast<long>(vision::detect_disks(picture(region), detect).size());
+      stats.first_as_bright = static_cast<long>(vision::detect_disks(inverted, detect).size());
+      bright = stats.first_as_bright >= 10 && 10 * stats.first_as_bright > 11 * stats.first_as_dark;
+      polarity_known = true;
+    }
+    pending.emplace_back(k, std::async(std::launch::async, detect_frame, frame, k, std::cref(job), bright,
+                                       std::cref(detect), region));
+    if (pending.size() > kAhead) link_next();
   }
+  while (!pending.empty()) link_next();
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   stats.tracks = linker.tracks();
   stats.bright = bright;
   return csv;

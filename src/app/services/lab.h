@@ -38,7 +38,7 @@ struct DetectStats {
   bool bright = false;  // the disks were bright on a dark background (given or found)
   long first_as_dark = 0,
        first_as_bright = 0;  // the first frame's disks either way, when the polarity was found
-  double seconds = 0;        // wall time of detection and linking (not decoding, not the camera's effects)
+  double seconds = 0;        // wall time of the whole pass: decoding, detection (on several threads), linking
 };
 
 struct DetectJob {
