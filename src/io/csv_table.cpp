@@ -66,34 +66,54 @@ std::vector<std::string> split(const std::string& line, char sep, const std::str
 CsvTable CsvTable::read(const std::string& path, const std::string& what) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw core::InputError(path + ": no such file (expected " + what + ")");
-  if (fs::file_size(path, ec) > kMaxBytes)
+  if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) > kMaxBytes)
     throw core::InputError(path + ": larger than " + std::to_string(kMaxBytes >> 20) + " MiB; " + what +
                            " never is");
-  std::ifstream in(path);
-  if (!in) throw core::InputError(path + ": cannot be read (" + what + ")");
+  CsvStream stream(path, what);
   CsvTable t;
-  t.path_ = path;
-  t.what_ = what;
+  stream.next(t, static_cast<std::size_t>(-1));
+  return t;
+}
+
+CsvStream::CsvStream(const std::string& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw core::InputError(path + ": no such file (expected " + what + ")");
+  in_.open(path);
+  if (!in_) throw core::InputError(path + ": cannot be read (" + what + ")");
+  head_.path_ = path;
+  head_.what_ = what;
   std::string line;
-  if (!std::getline(in, line) || line.empty())
+  if (!std::getline(in_, line) || line.empty())
     throw core::InputError(path + ": empty; expected " + what + " with a header line");
   if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  t.separator_ = separator_of(line);
-  t.header_ = split(line, t.separator_, path + ":1");
-  for (long n = 2; std::getline(in, line); ++n) {
+  head_.separator_ = separator_of(line);
+  head_.header_ = split(line, head_.separator_, path + ":1");
+}
+
+bool CsvStream::next(CsvTable& t, std::size_t max_rows) {
+  t.path_ = head_.path_;
+  t.what_ = head_.what_;
+  t.header_ = head_.header_;
+  t.separator_ = head_.separator_;
+  t.cells_.clear();
+  t.lines_.clear();
+  const std::string& path = head_.path_;
+  std::string line;
+  while (t.cells_.size() < max_rows && std::getline(in_, line)) {
+    const long n = ++line_;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     auto row = split(line, t.separator_, path + ":" + std::to_string(n));
     if (row.size() != t.header_.size())
       throw core::InputError(path + ":" + std::to_string(n) + ": " + std::to_string(row.size()) +
                              " fields where the header has " + std::to_string(t.header_.size()) +
-                             " (a truncated or hand-edited " + what + "?)");
+                             " (a truncated or hand-edited " + head_.what_ + "?)");
     t.cells_.push_back(std::move(row));
     t.lines_.push_back(n);
   }
-  return t;
+  return !t.cells_.empty();
 }
 
 bool CsvTable::has(const std::string& name) const {

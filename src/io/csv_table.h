@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -31,12 +32,29 @@ class CsvTable {
   double num(std::size_t row, const std::string& column) const;
 
  private:
+  friend class CsvStream;
   std::size_t column(const std::string& name) const;
   std::string path_, what_;
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> cells_;
   std::vector<long> lines_;
   char separator_ = ',';
+};
+
+// The same file read a slice of rows at a time, for files of any size (a long film's tracks): each slice is a
+// CsvTable with the file's header, its lines numbered as in the file. Checked as CsvTable::read checks, no
+// size limit.
+class CsvStream {
+ public:
+  // Opens `path` and reads its header. Throws core::InputError as CsvTable::read does.
+  CsvStream(const std::string& path, const std::string& what);
+  // The next rows, at most `max_rows`, into `slice` (its rows replaced); false when none were left.
+  bool next(CsvTable& slice, std::size_t max_rows);
+
+ private:
+  std::ifstream in_;
+  CsvTable head_;  // the header, the separator, the names
+  long line_ = 1;  // the file's last line read
 };
 
 }  // namespace io

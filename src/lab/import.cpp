@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/clog.h"
@@ -20,7 +21,7 @@ namespace {
 
 struct Point {
   int frame;
-  Detection d;
+  int index;  // of the detection in its frame (Importer::d)
 };
 struct Track {
   long id;
@@ -90,37 +91,46 @@ namespace {
 // size and path, exits, then clogs and arches frame by frame.
 class Importer {
  public:
-  Importer(const Tracks& tracks, const core::Model& model, const ImportOptions& opt)
+  Importer(Tracks& tracks, const core::Model& model, const ImportOptions& opt)
       : tracks_(tracks), model_(model), geo_(model.setup.geo), opt_(opt), rep_(out_.report) {}
 
   Imported run() {
     frame_times();
     join_tracks();
     grain_sizes();
-    grain_paths();
     measure_noise();
-    park_unseen();
     find_exits();
+    grain_paths();  // the last step that reads the detections: it may release them as it goes
+    park_unseen();
     check_calibration();
+    release();
     clogs_and_arches();
     return std::move(out_);
   }
 
  private:
-  const Tracks& tracks_;
+  Tracks& tracks_;
   const core::Model& model_;
   const core::Geometry& geo_;
   const ImportOptions& opt_;
   Imported out_;
   ImportReport& rep_;
-  int nf_ = 0, n_ = 0;
+  int nf_ = 0;
+  int n_ = 0;   // particles of the run (slots: a grain that left gives its slot to one that comes later)
+  int ng_ = 0;  // grains (tracks after joining)
   double rmax_ = 0;
   std::vector<double> t_;
   std::vector<Track> grains_;
+  std::vector<double> grain_radius_;
+  std::vector<core::Species> grain_species_;
+  std::vector<int> slot_of_;                             // per grain
+  std::vector<std::vector<std::pair<int, long>>> held_;  // per slot: (first frame, file id) of its grains
   std::vector<std::vector<core::Vec2>> pos_;
   std::vector<std::vector<float>> angle_;
   std::vector<std::vector<bool>> present_;
   std::vector<std::vector<int>> exits_at_;
+
+  const Detection& d(const Point& p) const { return tracks_.frames[p.frame].found[p.index]; }
 
   // Times from the first frame, and how regular the intervals are.
   void frame_times() {
@@ -145,14 +155,17 @@ class Importer {
   // where it ended, within max_gap frames: a grain whose id changed.
   void join_tracks() {
     std::map<long, Track> by_id;
-    for (int k = 0; k < nf_; ++k)
-      for (const Detection& d : tracks_.frames[k].found) {
-        Track& tr = by_id[d.id];
-        tr.id = d.id;
-        tr.points.push_back({k, d});
+    for (int k = 0; k < nf_; ++k) {
+      const std::vector<Detection>& found = tracks_.frames[k].found;
+      for (int i = 0; i < static_cast<int>(found.size()); ++i) {
+        Track& tr = by_id[found[i].id];
+        tr.id = found[i].id;
+        tr.points.push_back({k, i});
       }
+    }
     std::vector<Track> all;
-    for (auto& [id, tr] : by_id) split_at_jumps(std::move(tr), all);
+    for (auto it = by_id.begin(); it != by_id.end(); it = by_id.erase(it))
+      split_at_jumps(std::move(it->second), all);
     rep_.tracks = static_cast<long>(all.size());
     std::vector<std::vector<int>> starting(static_cast<size_t>(nf_));
     for (int i = 0; i < static_cast<int>(all.size()); ++i)
@@ -162,7 +175,7 @@ class Importer {
     std::sort(by_end.begin(), by_end.end(), [&](int a, int b) { return all[a].end() < all[b].end(); });
     for (int ia : by_end) {
       Track& a = all[static_cast<size_t>(ia)];
-      while (!a.joined && a.end() < nf_ - 1 && !ends_at_outlet(a.points.back().d, geo_)) {
+      while (!a.joined && a.end() < nf_ - 1 && !ends_at_outlet(d(a.points.back()), geo_)) {
         const int best = best_continuation(all, starting, ia);
         if (best < 0) break;
         Track& b = all[static_cast<size_t>(best)];
@@ -173,8 +186,8 @@ class Importer {
     }
     for (Track& tr : all)
       if (!tr.joined) grains_.push_back(std::move(tr));
-    n_ = static_cast<int>(grains_.size());
-    rep_.grains = n_;
+    ng_ = static_cast<int>(grains_.size());
+    rep_.grains = ng_;
   }
 
   // A track that jumps farther than a grain can move between two of its frames is two grains' (an id kept
@@ -186,8 +199,8 @@ class Importer {
     for (const Point& p : tr.points) {
       if (!piece.points.empty()) {
         const Point& q = piece.points.back();
-        const double reach = std::max(8 * p.d.r, fastest * (t_[p.frame] - t_[q.frame]));
-        if (std::hypot(p.d.x - q.d.x, p.d.y - q.d.y) > reach) {
+        const double reach = std::max(8 * d(p).r, fastest * (t_[p.frame] - t_[q.frame]));
+        if (std::hypot(d(p).x - d(q).x, d(p).y - d(q).y) > reach) {
           out.push_back(std::move(piece));
           piece = Track{tr.id, {}, false};
           ++rep_.split;
@@ -203,50 +216,104 @@ class Importer {
   int best_continuation(const std::vector<Track>& all, const std::vector<std::vector<int>>& starting,
                         int ia) const {
     const Track& a = all[static_cast<size_t>(ia)];
-    const Detection& last = a.points.back().d;
+    const Detection& last = d(a.points.back());
     int best = -1;
     double best_d = opt_.join_distance * 2 * last.r;
     for (int s = a.end() + 1; s <= std::min(nf_ - 1, a.end() + opt_.max_gap + 1); ++s)
       for (int ib : starting[static_cast<size_t>(s)]) {
         const Track& b = all[static_cast<size_t>(ib)];
-        if (b.joined || ib == ia || b.points.front().d.species != last.species) continue;
-        const double dist = std::hypot(b.points.front().d.x - last.x, b.points.front().d.y - last.y);
+        if (b.joined || ib == ia || d(b.points.front()).species != last.species) continue;
+        const double dist = std::hypot(d(b.points.front()).x - last.x, d(b.points.front()).y - last.y);
         if (dist <= best_d) best_d = dist, best = ib;
       }
     return best;
   }
 
-  // Each grain's size (the median of its detections) and species (the most frequent).
+  // Each grain's size (the median of its detections) and species (the most frequent); then its slot.
   void grain_sizes() {
-    out_.radius.resize(static_cast<size_t>(n_));
-    out_.species.resize(static_cast<size_t>(n_));
-    out_.track_id.resize(static_cast<size_t>(n_));
-    for (int g = 0; g < n_; ++g) {
+    grain_radius_.resize(static_cast<size_t>(ng_));
+    grain_species_.resize(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) {
       std::vector<double> r;
       std::vector<int> count(model_.setup.species.size(), 0);
-      for (const Point& p : grains_[g].points) r.push_back(p.d.r), ++count[static_cast<size_t>(p.d.species)];
-      out_.radius[g] = core::median(r);
-      out_.species[g] =
+      for (const Point& p : grains_[g].points)
+        r.push_back(d(p).r), ++count[static_cast<size_t>(d(p).species)];
+      grain_radius_[g] = core::median(r);
+      grain_species_[g] =
           static_cast<core::Species>(std::max_element(count.begin(), count.end()) - count.begin());
-      out_.track_id[g] = grains_[g].id;
-      rmax_ = std::max(rmax_, out_.radius[g]);
+      rmax_ = std::max(rmax_, grain_radius_[g]);
     }
+    assign_slots();
   }
 
-  // Where each grain is at every frame: its detections, gaps of at most max_gap frames interpolated.
-  void grain_paths() {
-    pos_.assign(static_cast<size_t>(nf_), std::vector<core::Vec2>(static_cast<size_t>(n_)));
-    angle_.assign(static_cast<size_t>(nf_), std::vector<float>(static_cast<size_t>(n_), 0.f));
-    present_.assign(static_cast<size_t>(nf_), std::vector<bool>(static_cast<size_t>(n_), false));
-    for (int g = 0; g < n_; ++g) {
-      const auto& pts = grains_[g].points;
-      for (size_t k = 0; k < pts.size(); ++k) {
-        const Point& p = pts[k];
-        pos_[p.frame][g] = {p.d.x, p.d.y};
-        angle_[p.frame][g] = static_cast<float>(p.d.angle);
-        present_[p.frame][g] = true;
-        if (k + 1 < pts.size()) fill_gap(g, p, pts[k + 1]);
+  // The run's particles: as a simulation re-injects a grain that left, a grain that enters takes the slot of
+  // one that left at least two frames before, of its species and its size (within 2%; the slot keeps its
+  // first grain's radius), so a long film holds as many particles as the container does at once, not one per
+  // grain that ever passed. Grains in their order of appearance; the first frame's keep the file's id order.
+  void assign_slots() {
+    std::vector<int> order(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) order[g] = g;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return grains_[a].start() < grains_[b].start(); });
+    slot_of_.assign(static_cast<size_t>(ng_), -1);
+    std::vector<int> free_from;  // per slot: the first frame it may take another grain
+    for (int g : order) {
+      int slot = -1;
+      for (int s = 0; s < static_cast<int>(free_from.size()) && slot < 0; ++s)
+        if (free_from[s] <= grains_[g].start() && out_.species[s] == grain_species_[g] &&
+            std::fabs(grain_radius_[g] / out_.radius[s] - 1) <= 0.02)
+          slot = s;
+      if (slot < 0) {
+        slot = static_cast<int>(free_from.size());
+        free_from.push_back(0);
+        out_.radius.push_back(grain_radius_[g]);
+        out_.species.push_back(grain_species_[g]);
+        out_.track_id.push_back(grains_[g].id);
+        held_.emplace_back();
       }
+      free_from[slot] = grains_[g].end() + 3;
+      slot_of_[g] = slot;
+      held_[slot].push_back({grains_[g].start(), grains_[g].id});
+    }
+    n_ = static_cast<int>(free_from.size());
+    rep_.particles = n_;
+  }
+
+  // The file's id of the grain in `slot` at frame k.
+  long track_at(int slot, int k) const {
+    const auto& h = held_[static_cast<size_t>(slot)];
+    auto it = std::upper_bound(h.begin(), h.end(), std::make_pair(k, std::numeric_limits<long>::max()));
+    return it == h.begin() ? h.front().second : std::prev(it)->second;
+  }
+
+  // Where each grain is at every frame: its detections, gaps of at most max_gap frames interpolated. Frame
+  // by frame, each frame's detections released once placed when the caller asked (a frame's positions take
+  // less room than its detections did).
+  void grain_paths() {
+    std::vector<std::vector<int>> slot_at(static_cast<size_t>(nf_));  // per detection
+    for (int k = 0; k < nf_; ++k) slot_at[k].assign(tracks_.frames[k].found.size(), -1);
+    for (int g = 0; g < ng_; ++g)
+      for (const Point& p : grains_[g].points) slot_at[p.frame][p.index] = slot_of_[g];
+    pos_.resize(static_cast<size_t>(nf_));
+    angle_.resize(static_cast<size_t>(nf_));
+    present_.resize(static_cast<size_t>(nf_));
+    for (int k = 0; k < nf_; ++k) {
+      pos_[k].assign(static_cast<size_t>(n_), {});
+      angle_[k].assign(static_cast<size_t>(n_), 0.f);
+      present_[k].assign(static_cast<size_t>(n_), false);
+      std::vector<Detection>& found = tracks_.frames[k].found;
+      for (size_t i = 0; i < found.size(); ++i) {
+        const int s = slot_at[k][i];
+        pos_[k][s] = {found[i].x, found[i].y};
+        angle_[k][s] = static_cast<float>(found[i].angle);
+        present_[k][s] = true;
+      }
+      std::vector<int>().swap(slot_at[k]);
+      if (opt_.release_detections) std::vector<Detection>().swap(found);
+    }
+    for (int g = 0; g < ng_; ++g) {
+      const auto& pts = grains_[g].points;
+      for (size_t k = 0; k + 1 < pts.size(); ++k) fill_gap(slot_of_[g], pts[k], pts[k + 1]);
       if (grains_[g].start() > 0) ++rep_.entered;
     }
   }
@@ -259,14 +326,17 @@ class Importer {
   // hundred grains near the outlet must pass: 6 sigma is its 1 - 1e-4 quantile).
   void measure_noise() {
     std::vector<double> dd;
+    size_t points = 0;
+    for (const Track& tr : grains_) points += tr.points.size();
+    dd.reserve(points);
     for (const Track& tr : grains_)
       for (size_t k = 1; k + 1 < tr.points.size(); ++k) {
         const Point &a = tr.points[k - 1], &b = tr.points[k], &c = tr.points[k + 1];
         if (b.frame - a.frame == 1 && c.frame - b.frame == 1)
-          dd.push_back(std::fabs(a.d.x - 2 * b.d.x + c.d.x));
+          dd.push_back(std::fabs(d(a).x - 2 * d(b).x + d(c).x));
       }
     if (dd.empty()) return;
-    rep_.noise = core::median(dd) / (0.6745 * std::sqrt(6.0));
+    rep_.noise = core::median(std::move(dd)) / (0.6745 * std::sqrt(6.0));
     if (!opt_.arrest_shift_given) rep_.arrest_floor = 6 * rep_.noise;
   }
 
@@ -278,8 +348,9 @@ class Importer {
     }
     for (int f = p.frame + 1; f < q.frame; ++f) {
       const double w = (t_[f] - t_[p.frame]) / std::max(1e-12, t_[q.frame] - t_[p.frame]);
-      pos_[f][g] = {p.d.x + w * (q.d.x - p.d.x), p.d.y + w * (q.d.y - p.d.y)};
-      angle_[f][g] = static_cast<float>(p.d.angle + w * (q.d.angle - p.d.angle));
+      const core::Vec2 a = pos_[p.frame][g], b = pos_[q.frame][g];
+      pos_[f][g] = {a.x + w * (b.x - a.x), a.y + w * (b.y - a.y)};
+      angle_[f][g] = static_cast<float>(angle_[p.frame][g] + w * (angle_[q.frame][g] - angle_[p.frame][g]));
       present_[f][g] = true;
       ++rep_.interpolated;
     }
@@ -294,7 +365,9 @@ class Importer {
     const long rows = static_cast<long>(7 * size / pitch);
     if (n_ > cols * rows)
       throw core::InputError(
-          tracks_.source + ": " + std::to_string(n_) + " grains (tracks) where a run holds at most " +
+          tracks_.source + ": " + std::to_string(n_) +
+          " particles (grains in view at once, or tracks that "
+          "never end) where a run holds at most " +
           std::to_string(cols * rows) +
           " for this container: join broken tracks (--join-distance, --max-gap) or import a "
           "shorter stretch");
@@ -310,15 +383,15 @@ class Importer {
   // Exits: the centre wholly below the outlet line, or a track that ends inside the outlet.
   void find_exits() {
     exits_at_.assign(static_cast<size_t>(nf_), {});
-    for (int g = 0; g < n_; ++g) {
+    for (int g = 0; g < ng_; ++g) {
       int exit_frame = -1;
       for (const Point& p : grains_[g].points)
-        if (p.d.y < -out_.radius[g]) {
+        if (d(p).y < -grain_radius_[g]) {
           exit_frame = p.frame;
           ++rep_.exits_below;
           break;
         }
-      const Detection& last = grains_[g].points.back().d;
+      const Detection& last = d(grains_[g].points.back());
       if (exit_frame < 0 && grains_[g].end() < nf_ - 1) {
         if (ends_at_outlet(last, geo_)) {
           exit_frame = grains_[g].end() + 1;
@@ -327,7 +400,7 @@ class Importer {
           ++rep_.left_view;
         }
       }
-      if (exit_frame >= 0) exits_at_[static_cast<size_t>(exit_frame)].push_back(g);
+      if (exit_frame >= 0) exits_at_[static_cast<size_t>(exit_frame)].push_back(slot_of_[g]);
     }
   }
 
@@ -349,12 +422,12 @@ class Importer {
             " grains leave through the outlet at once (at t = " + core::format_g(t_[k], 4) +
             " s); a discharge lets a few through a frame" + fix);
     }
-    if (tracks_.has_radius && n_ > 0) {
+    if (tracks_.has_radius && ng_ > 0) {
       std::vector<double> size;
-      for (int g = 0; g < n_; ++g)
+      for (int g = 0; g < ng_; ++g)
         size.push_back(
-            out_.radius[g] /
-            model_.setup.species[static_cast<size_t>(core::species_index(out_.species[g]))].radius);
+            grain_radius_[g] /
+            model_.setup.species[static_cast<size_t>(core::species_index(grain_species_[g]))].radius);
       const double m = core::median(size);
       if (m < 0.5 || m > 2)
         throw core::InputError(tracks_.source + ": the grains measure " + core::format_g(m, 3) +
@@ -384,6 +457,9 @@ class Importer {
           "give about 1)" +
           fix);
   }
+
+  // The grains' tracks are not needed past here: their memory goes before the frames are built.
+  void release() { std::vector<Track>().swap(grains_); }
 
   // At rest at frame k: the arch and the grains no farther from the outlet's centre held still over
   // arrest_hold.
@@ -458,7 +534,7 @@ class Importer {
         a.clog = static_cast<int>(tracker.clogs().size() - ev.clogs_closed.size() + c + 1);
         a.t = t_[held_frame];
         a.ids = held_arch;
-        for (int id : held_arch) a.track_ids.push_back(out_.track_id[static_cast<size_t>(id)]);
+        for (int id : held_arch) a.track_ids.push_back(track_at(id, held_frame));
         a.descriptors = core::arch_descriptors(held_arch, pos_[held_frame], out_.radius);
         out_.clog_arches.push_back(std::move(a));
         held_arch.clear();
@@ -514,7 +590,7 @@ class Importer {
 
 }  // namespace
 
-Imported import_tracks(const Tracks& tracks, const core::Model& model, const ImportOptions& opt) {
+Imported import_tracks(Tracks& tracks, const core::Model& model, const ImportOptions& opt) {
   return Importer(tracks, model, opt).run();
 }
 

@@ -6,6 +6,9 @@
 //    of where it ended, at most `max_gap` frames later, are the same grain. Gaps of at most `max_gap` frames
 //    inside a track are filled by linear interpolation; longer gaps, and the frames before a grain appears
 //    and after it leaves, park it far below the container (as a drained grain is parked).
+//  - Particles: the run's particles are slots that grains pass through, as a simulation re-injects the grains
+//    that left: a grain that enters takes the place of one of its species and size (within 2%) that left
+//    earlier, so a long film's run holds about as many particles as the container holds grains.
 //  - Exits: a grain whose centre falls wholly below the outlet line (y < -r), as in the simulation, or whose
 //    track ends within a diameter above the outlet, inside its opening, before the last frame (it fell out of
 //    the field of view between two frames).
@@ -37,11 +40,15 @@ struct ImportOptions {
   // The scene's arrest_shift as given (--set arrest_shift=...): taken as it is. Otherwise the tracks' own
   // noise sets a floor under it (ImportReport::arrest_floor).
   bool arrest_shift_given = false;
+  // The tracks' detections cleared once used (their frames' times and numbers stay): a long film's import
+  // then does not hold them and the run's frames at once.
+  bool release_detections = false;
 };
 
 // What the import did with the file, for the metadata and the terminal.
 struct ImportReport {
   long frames = 0, rows = 0, tracks = 0, grains = 0;
+  long particles = 0;       // of the run: a grain that left gives its place to one that enters later
   long joined = 0;          // tracks joined to an earlier one (ids that changed)
   double noise = 0;         // m: the positions' noise, measured from the tracks (see Importer::measure_noise)
   double arrest_floor = 0;  // m: the smallest shift the arrest check asks of every grain (6 x noise)
@@ -74,14 +81,14 @@ struct Imported {
   std::vector<core::StepEvents> between;  // what happened since the previous frame, per frame
   core::StepEvents after;                 // the clog the end of the file closed
   core::Events events;
-  std::vector<double> radius;
-  std::vector<core::Species> species;
-  std::vector<long> track_id;  // per grain, the file's (first) id
+  std::vector<double> radius;          // per particle of the run
+  std::vector<core::Species> species;  // per particle
+  std::vector<long> track_id;          // per particle, the file's id of its first grain
   std::vector<ClogArch> clog_arches;
   ImportReport report;
 };
 
-Imported import_tracks(const Tracks& tracks, const core::Model& model, const ImportOptions& opt);
+Imported import_tracks(Tracks& tracks, const core::Model& model, const ImportOptions& opt);
 
 // The contact graph by distance (see above): every grain with a finite position, walls and obstacle.
 core::ContactGraph contacts_by_distance(const std::vector<core::Vec2>& pos, const std::vector<double>& radius,

@@ -1,4 +1,6 @@
-// Tracked particles from a CSV file (lab/tracks.h).
+// Tracked particles from a CSV file (lab/tracks.h). Over 400 lines because it is one reader: the columns'
+// roles and their default names, TrackMate's and trackpy's layouts, the species from sizes and every row's
+// checks all decide together what one row means, and read best beside each other.
 #include "lab/tracks.h"
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/interrupt.h"
 #include "io/csv_table.h"
 
 namespace lab {
@@ -110,7 +113,7 @@ class RowReader {
  public:
   RowReader(const io::CsvTable& t, const std::string& path, const ColumnMap& map, const Units& units,
             const core::Setup& setup, const core::Geometry& geo, size_t first_row, Tracks& out)
-      : t_(t), path_(path), units_(units), setup_(setup), geo_(geo), names_(setup.species_names()) {
+      : t_(&t), path_(path), units_(units), setup_(setup), geo_(geo), names_(setup.species_names()) {
     for (const Role& r : roles()) col_[r.key] = find_column(t, map, r);
     // TrackMate's time is in the image's unit: seconds, or frames when the image has no frame interval.
     if (col_["time"] == "POSITION_T" && map.time.empty() && first_row > 0) {
@@ -137,16 +140,19 @@ class RowReader {
     ysign_ = units.scale > 0 && !units.y_up ? -1.0 : 1.0;
   }
 
+  // The slice of the file the rows are read from next.
+  void use(const io::CsvTable& t) { t_ = &t; }
+
   // Row `row`: the detection, its time and its frame number (-1 without one); false for a spot without a
   // track id (a tracker's spot it linked to no track), which is skipped.
   bool read(size_t row, Detection& d, double& time, long& number) {
     d = Detection{};
-    d.line = t_.line(row);
-    const std::string& id_text = t_.text(row, col_["id"]);
+    d.line = static_cast<std::int32_t>(t_->line(row));
+    const std::string& id_text = t_->text(row, col_["id"]);
     if (id_text.empty() || id_text == "None" || id_text == "NaN" || id_text == "nan") return false;
     const double idv = finite(row, col_["id"]);
     if (idv != std::floor(idv) || std::fabs(idv) > 9e15)
-      throw core::InputError(line_of(row) + ": column " + col_["id"] + " is '" + t_.text(row, col_["id"]) +
+      throw core::InputError(line_of(row) + ": column " + col_["id"] + " is '" + t_->text(row, col_["id"]) +
                              "', not a whole number (particle ids are integers)");
     d.id = static_cast<long>(idv);
     number = -1;
@@ -154,7 +160,7 @@ class RowReader {
       const double f = finite(row, col_["frame"]);
       if (f != std::floor(f) || f < 0)
         throw core::InputError(line_of(row) + ": column " + col_["frame"] + " is '" +
-                               t_.text(row, col_["frame"]) + "', not a frame number (a whole number >= 0)");
+                               t_->text(row, col_["frame"]) + "', not a frame number (a whole number >= 0)");
       number = static_cast<long>(f);
     }
     time = by_frame_ ? static_cast<double>(number) / units_.fps : finite(row, col_["time"]);
@@ -176,12 +182,12 @@ class RowReader {
     const double v = finite(row, col_.at("size"));
     if (!(v > 0))
       throw core::InputError(line_of(row) + ": column " + col_.at("size") + " is '" +
-                             t_.text(row, col_.at("size")) + "': a grain's size must be > 0");
+                             t_->text(row, col_.at("size")) + "': a grain's size must be > 0");
     return v;
   }
 
  private:
-  const io::CsvTable& t_;
+  const io::CsvTable* t_;
   const std::string& path_;
   const Units& units_;
   const core::Setup& setup_;
@@ -198,11 +204,11 @@ class RowReader {
         throw core::InputError(path_ + ": no column for " + key + " (looked for " + looked_for(r) +
                                "; name it with --columns " + key + "=COLUMN)");
   }
-  std::string line_of(size_t row) const { return path_ + ":" + std::to_string(t_.line(row)); }
+  std::string line_of(size_t row) const { return path_ + ":" + std::to_string(t_->line(row)); }
   double finite(size_t row, const std::string& c) const {
-    const double v = t_.num(row, c);
+    const double v = t_->num(row, c);
     if (!std::isfinite(v))
-      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_.text(row, c) +
+      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_->text(row, c) +
                              "', not a finite number");
     return v;
   }
@@ -210,7 +216,7 @@ class RowReader {
   // Species: a name of the scene's or its index.
   int species(size_t row) {
     const int n_species = static_cast<int>(setup_.species.size());
-    const std::string& s = t_.text(row, col_["species"]);
+    const std::string& s = t_->text(row, col_["species"]);
     auto it = std::find(names_.begin(), names_.end(), s);
     if (it != names_.end()) return static_cast<int>(it - names_.begin());
     char* end = nullptr;
@@ -237,7 +243,7 @@ class RowReader {
     const std::string& c = diameter ? col_["diameter"] : col_["radius"];
     const double v = finite(row, c) * scale_ * (diameter ? 0.5 : 1.0);
     if (!(v > 0))
-      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_.text(row, c) +
+      throw core::InputError(line_of(row) + ": column " + c + " is '" + t_->text(row, c) +
                              "': a grain's size must be > 0");
     d.r = v;
     if (has_species_ || n_species <= 1) return;
@@ -338,19 +344,30 @@ std::vector<int> species_by_size(const std::vector<double>& sizes, const core::S
 
 }  // namespace
 
+namespace {
+constexpr size_t kSliceRows = 1 << 16;  // rows read at a time
+}  // namespace
+
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo) {
-  const io::CsvTable t = io::CsvTable::read(path, "tracked particles");
+  // Read a slice of rows at a time, each row straight into its frame: memory grows with the detections
+  // (56 bytes each), not with the file's text.
+  io::CsvStream stream(path, "tracked particles");
+  io::CsvTable slice;
+  stream.next(slice, kSliceRows);
   Tracks out;
   out.source = path;
-  const size_t first = description_rows(t);
-  out.rows = static_cast<long>(t.rows() - first);
-  RowReader reader(t, path, map, units, setup, geo, first, out);
+  const size_t first = description_rows(slice);
+  RowReader reader(slice, path, map, units, setup, geo, first, out);
   const std::string size_column = reader.size_column();
-  std::vector<Detection> read;
-  std::vector<double> times, sizes;
-  std::vector<long> numbers;
-  for (size_t row = first; row < t.rows(); ++row) {
+  std::map<double, TrackFrame> frames;  // by time
+  for (size_t row = first;; ++row) {
+    if (row >= slice.rows()) {
+      core::throw_if_interrupted();
+      if (!stream.next(slice, kSliceRows)) break;
+      row = 0;
+    }
+    ++out.rows;
     double time = 0;
     long number = -1;
     Detection d;
@@ -358,27 +375,26 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
       ++out.untracked;
       continue;
     }
-    if (!size_column.empty()) sizes.push_back(reader.size_of(row));
-    read.push_back(d);
-    times.push_back(time);
-    numbers.push_back(number);
-  }
-  if (!size_column.empty() && !read.empty()) {
-    const std::vector<int> species = species_by_size(sizes, setup, path, size_column);
-    for (size_t i = 0; i < read.size(); ++i) {
-      read[i].species = species[i];
-      read[i].r = setup.species[static_cast<size_t>(species[i])].radius;
-    }
-    out.species_by_size = true;
-  }
-  std::map<double, TrackFrame> frames;  // by time
-  for (size_t i = 0; i < read.size(); ++i) {
-    TrackFrame& f = frames[times[i]];
-    f.t = times[i];
-    f.number = numbers[i];
-    f.found.push_back(read[i]);
+    if (!size_column.empty()) d.r = reader.size_of(row);  // the size, until the species are known
+    TrackFrame& f = frames[time];
+    f.t = time;
+    f.number = number;
+    f.found.push_back(d);
   }
   if (frames.empty()) throw core::InputError(path + ": no rows (a header and no particle)");
+  if (!size_column.empty()) {
+    std::vector<double> sizes;
+    for (const auto& [time, f] : frames)
+      for (const Detection& d : f.found) sizes.push_back(d.r);
+    const std::vector<int> species = species_by_size(sizes, setup, path, size_column);
+    size_t i = 0;
+    for (auto& [time, f] : frames)
+      for (Detection& d : f.found) {
+        d.species = species[i++];
+        d.r = setup.species[static_cast<size_t>(d.species)].radius;
+      }
+    out.species_by_size = true;
+  }
   for (auto& [time, f] : frames) {
     std::sort(f.found.begin(), f.found.end(),
               [](const Detection& a, const Detection& b) { return a.id < b.id; });
@@ -388,6 +404,7 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
                                std::to_string(f.found[k].id) +
                                " appears twice at t = " + core::format_g(time, 6) + " s (also line " +
                                std::to_string(f.found[k - 1].line) + "): ids must be unique within a frame");
+    f.found.shrink_to_fit();
     out.frames.push_back(std::move(f));
   }
   return out;

@@ -73,8 +73,23 @@ TEST_CASE("import: a trackpy CSV of a recording gives back its clogs, arches the
   CHECK(std::abs(static_cast<long>(found.exits.size()) - static_cast<long>(truth.exits.size())) <= 8);
   const std::string arches = slurp(d / "imp" / "clog_arches.csv");
   CHECK(test::count_of(arches, "\n") == static_cast<long>(truth.clogs.size()) + 1);
-  CHECK(slurp(d / "imp" / "metadata.toml").find("imported = true") != std::string::npos);
+  const std::string meta = slurp(d / "imp" / "metadata.toml");
+  CHECK(meta.find("imported = true") != std::string::npos);
   CHECK(fs::exists(d / "imp" / "manifest.toml"));
+  // Every exit brings a new track (a new id at the top), but the run holds the container's 250 grains, not
+  // one particle per track: a grain that enters takes the place of one that left (a long film's memory and
+  // file then grow with its length, not with its square).
+  auto count = [&](const std::string& key) {
+    const size_t at = meta.find("\n" + key + " = ");
+    REQUIRE(at != std::string::npos);
+    return std::stol(meta.substr(at + key.size() + 4));
+  };
+  const long grains = count("grains"), particles = count("particles");
+  INFO("grains " << grains << ", particles " << particles);
+  CHECK(grains >= 250 + static_cast<long>(truth.exits.size()) / 2);
+  CHECK(particles <= 250 + 10);
+  CHECK(io::Trajectory(d / "imp" / "trajectory.sstraj").info().n_particles ==
+        static_cast<std::uint32_t>(particles));
 
   // The inspector opens it at the first clog's arch and prints its members.
   std::ofstream(d / "s.txt") << "goto clog 1 arch\nprint\nsnapshot " << (d / "clog1.png").string()

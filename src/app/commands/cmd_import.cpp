@@ -87,6 +87,7 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"rows", r.rows},
           {"tracks", r.tracks},
           {"grains", r.grains},
+          {"particles", r.particles},
           {"position_noise_m", r.noise},
           {"arrest_floor_m", r.arrest_floor},
           {"ids_joined", r.joined},
@@ -121,8 +122,8 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
   if (tracks.species_by_size) std::printf("species     told apart by the sizes in the file's size column\n");
   std::printf(
       "grains      %ld (%ld ids joined where a track broke off, %ld split where one jumped; %ld positions "
-      "filled in gaps of <= %d frames; %ld longer gaps left empty)\n",
-      r.grains, r.joined, r.split, r.interpolated, o.import.max_gap, r.long_gaps);
+      "filled in gaps of <= %d frames; %ld longer gaps left empty), as %ld particles in the run\n",
+      r.grains, r.joined, r.split, r.interpolated, o.import.max_gap, r.long_gaps, r.particles);
   std::printf("field       %ld tracks entered after the first frame, %ld left it away from the outlet\n",
               r.entered, r.left_view);
   std::printf("exits       %zu (%ld seen below the outlet, %ld from tracks ending inside it)\n",
@@ -156,7 +157,7 @@ int import_run(ImportCliOptions o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
-  core::check_input_file(o.tracks, "tracked particles", io::CsvTable::kMaxBytes, "");
+  core::check_input_file(o.tracks, "tracked particles", lab::kMaxTrackBytes, "");
   const fs::path out = io::output_path(o.out);
   io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
 
@@ -200,14 +201,15 @@ int import_run(ImportCliOptions o) {
   core::Scene scene = core::load_scene(geometry_file);
   core::apply_overrides(scene, o.overrides);
   const core::Model geometry = core::compile(scene);
-  const lab::Tracks tracks = lab::read_tracks(o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
-                                              geometry.setup, geometry.setup.geo);
+  lab::Tracks tracks = lab::read_tracks(o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
+                                        geometry.setup, geometry.setup.geo);
   if (tracks.frames.size() < 2)
     throw core::InputError(o.tracks + ": one frame only; a run needs at least two");
   lab::ImportOptions how = o.import;
   how.arrest_shift_given = std::any_of(o.overrides.begin(), o.overrides.end(), [](const std::string& kv) {
     return kv.rfind("arrest_shift=", 0) == 0;
   });
+  how.release_detections = true;
   lab::Imported im = lab::import_tracks(tracks, geometry, how);
   const lab::ImportReport& r = im.report;
   // The run's scene: the geometry's, lasting as long as the film (what every reader of the run takes as its
