@@ -166,6 +166,11 @@ class RowReader {
     time = by_frame_ ? static_cast<double>(number) / units_.fps : finite(row, col_["time"]);
     d.x = (finite(row, col_["x"]) - units_.origin_x) * scale_;
     d.y = ysign_ * (finite(row, col_["y"]) - units_.origin_y) * scale_;
+    if (units_.rotation != 0) {
+      const double c = std::cos(units_.rotation), s = std::sin(units_.rotation), x = d.x, y = d.y;
+      d.x = c * x + s * y;
+      d.y = -s * x + c * y;
+    }
     d.species = has_species_ ? species(row) : 0;
     size(row, d);
     d.angle = has_angle_ ? finite(row, col_["angle"]) : 0.0;

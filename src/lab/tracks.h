@@ -30,8 +30,9 @@ ColumnMap parse_column_map(const std::string& text, const std::string& option);
 struct Units {
   double scale = 0;                   // m per pixel; 0: the positions are in metres already
   double origin_x = 0, origin_y = 0;  // the outlet centre, in the file's units (pixels with a scale)
-  bool y_up = false;  // with a scale: y grows upwards in the file (image rows grow downwards otherwise)
-  double fps = 0;     // frames per second, when the file has frame numbers and no times
+  bool y_up = false;    // with a scale: y grows upwards in the file (image rows grow downwards otherwise)
+  double rotation = 0;  // rad, with a scale: the container turned counter-clockwise in the picture
+  double fps = 0;       // frames per second, when the file has frame numbers and no times
 };
 
 struct Detection {

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <set>
 #include <sstream>
 
+#include "app/services/lab.h"
 #include "helpers.h"
 #include "io/trajectory.h"
 #include "vision/detect.h"
@@ -387,4 +389,118 @@ TEST_CASE(
   CHECK_THAT(cut.output, Catch::Matchers::Contains("of the 30 frames its header announces (cut short?)"));
   CHECK(slurp(d / "cut.meta.toml").find("ended_early = true") != std::string::npos);
   CHECK(light_meta.find("ended_early = false") != std::string::npos);
+}
+
+namespace {
+
+// The median distance (m) from each whole disk of the truth's frames to the nearest position found, over the
+// frames of `found` (frame number -> positions in metres).
+double median_error(const io::Trajectory& truth, const std::map<long, std::vector<core::Vec2>>& found) {
+  std::vector<double> e;
+  for (const auto& [k, pos] : found) {
+    if (k >= truth.size()) continue;
+    for (const core::Particle& p : truth.frame(k).particles) {
+      if (p.y < 0.3 || p.y > 1.5) continue;  // in view, above the outlet
+      double best = INFINITY;
+      for (const core::Vec2& q : pos) best = std::min(best, std::hypot(q.x - p.x, q.y - p.y));
+      if (best < p.radius) e.push_back(best);
+    }
+  }
+  std::sort(e.begin(), e.end());
+  return e.empty() ? INFINITY : e[e.size() / 2];
+}
+
+}  // namespace
+
+TEST_CASE("detect and import: a camera turned 2 degrees, calibrated from marked points, gives true positions",
+          "[lab][app][heavy]") {
+  const fs::path d = test::temp_dir("detect_turned");
+  REQUIRE(cli("record " + kScene +
+              " --seed 3 --duration 0.5 --camera window:-1.4,-0.4,1.4,1.6 --size 960x540 --overlay none "
+              "--arch-halo off --quiet --out " +
+              (d / "rec").string())
+              .code == 0);
+  app::Calibration straight;
+  core::Model model;
+  std::string why;
+  REQUIRE(app::movie_calibration(d / "rec.mp4", straight, model, why));
+  // The film as a camera turned the other way sees it: every frame turned 2 degrees counter-clockwise about
+  // its centre, written as images.
+  const double deg = 2;
+  const cv::Mat turn = cv::getRotationMatrix2D(cv::Point2f(480, 270), deg, 1.0);
+  fs::create_directories(d / "frames");
+  vision::FrameSource video((d / "rec.mp4").string());
+  int n = 0;
+  for (cv::Mat f, g; video.next(f); ++n) {
+    cv::warpAffine(f, g, turn, f.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(255, 255, 255));
+    char name[32];
+    std::snprintf(name, sizeof name, "f%04d.png", n);
+    REQUIRE(cv::imwrite((d / "frames" / name).string(), g));
+  }
+  REQUIRE(n >= 10);
+  // Three marked points (the outlet's centre, two on the silo's axis and wall), where the turned film has
+  // them.
+  std::string points;
+  for (core::Vec2 m : {core::Vec2{0, 0}, core::Vec2{0, 1.2}, core::Vec2{0.5, 1.2}}) {
+    const core::Vec2 p = straight.to_pixels(m);
+    const double x = turn.at<double>(0, 0) * p.x + turn.at<double>(0, 1) * p.y + turn.at<double>(0, 2);
+    const double y = turn.at<double>(1, 0) * p.x + turn.at<double>(1, 1) * p.y + turn.at<double>(1, 2);
+    points += (points.empty() ? "" : ":") + num(x) + "," + num(y) + "=" + num(m.x) + "," + num(m.y);
+  }
+  const std::string common = " --geometry " + kScene + " --fps 30.303030303";
+  const auto det = cli("detect " + (d / "frames").string() + common + " --points " + points + " --out " +
+                       (d / "t.csv").string());
+  INFO(det.output);
+  REQUIRE(det.code == 0);
+  CHECK_THAT(det.output,
+             Catch::Matchers::Contains("3 marked points") && Catch::Matchers::Contains("turned 2 deg"));
+  const std::string meta = slurp(d / "t.meta.toml");
+  app::Calibration fit;
+  fit.scale = scale_of(meta);
+  fit.origin_x = toml_number(meta, "origin_x_px");
+  fit.origin_y = toml_number(meta, "origin_y_px");
+  fit.rotation = toml_number(meta, "rotation_deg") * M_PI / 180;
+  CHECK(std::fabs(fit.rotation * 180 / M_PI - deg) < 0.01);
+  CHECK(std::fabs(fit.scale / straight.scale - 1) < 1e-6);
+  CHECK(toml_number(meta, "points_residual_m") < 1e-6);
+  // Positions in metres from the tracks, with the rotation and without it (the calibration of a straight
+  // camera: what --scale and --origin alone gave).
+  std::map<long, std::vector<core::Vec2>> turned, ignored;
+  {
+    std::istringstream rows(slurp(d / "t.csv"));
+    std::string line;
+    std::getline(rows, line);
+    app::Calibration flat = fit;
+    flat.rotation = 0;
+    while (std::getline(rows, line)) {
+      std::vector<std::string> c;
+      std::istringstream cs(line);
+      for (std::string cell; std::getline(cs, cell, ',');) c.push_back(cell);
+      const long k = std::stol(c[0]);
+      turned[k].push_back(fit.to_metres(std::stod(c[2]), std::stod(c[3])));
+      ignored[k].push_back(flat.to_metres(std::stod(c[2]), std::stod(c[3])));
+    }
+  }
+  const io::Trajectory truth(d / "rec" / "trajectory.sstraj");
+  const double diameter = 2 * 0.065, with = median_error(truth, turned),
+               without = median_error(truth, ignored);
+  INFO("median error with the rotation " << with / diameter << " d, without " << without / diameter << " d");
+  CHECK(with < 0.01 * diameter);
+  CHECK(without > 0.05 * diameter);
+  // import takes the rotation from detect's calibration: the run's grains stand where the recording's did.
+  const auto imp = cli("import " + (d / "t.csv").string() + " --quiet --out " + (d / "imp").string());
+  INFO(imp.output);
+  REQUIRE(imp.code == 0);
+  CHECK(std::fabs(toml_number(slurp(d / "imp" / "metadata.toml"), "rotation_deg") - deg) < 0.01);
+  const io::Trajectory run(d / "imp" / "trajectory.sstraj");
+  std::map<long, std::vector<core::Vec2>> imported;
+  for (long k = 0; k < run.size(); ++k)
+    for (const core::Particle& p : run.frame(k).particles) imported[k].push_back({p.x, p.y});
+  CHECK(median_error(truth, imported) < 0.01 * diameter);
+  // A rotation out of range is refused naming the option.
+  const auto bad = cli("detect " + (d / "frames").string() + common +
+                       " --scale 0.004 --origin 480,500 --rotation 60 --out " + (d / "bad.csv").string());
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.output, Catch::Matchers::Contains("--rotation 60: expected -45 to 45 degrees"));
+  CHECK_FALSE(fs::exists(d / "bad.csv"));
 }

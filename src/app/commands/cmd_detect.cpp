@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 struct DetectCliOptions {
   std::string input, geometry, out, origin, points, frames;
   std::vector<std::string> overrides;
-  double scale = 0, fps = 0;
+  double scale = 0, fps = 0, rotation = 0;
   double band = 0.25, edge = 60, max_step = 0.8;
   int memory = 2;
   bool bright = false, force = false, quiet = false;
@@ -44,11 +44,17 @@ void check_options(const DetectCliOptions& o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
+  if (!(std::fabs(o.rotation) <= 45))
+    throw core::InputError(
+        "--rotation " + core::format_g(o.rotation) +
+        ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
+  if (o.rotation != 0 && !(o.scale > 0))
+    throw core::InputError("--rotation goes with --scale and --origin (--points finds the rotation itself)");
 }
 
 // What detect found, on the terminal; a warning when the video ended early.
 void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, const DetectStats& st,
-                  const fs::path& out) {
+                  const Calibration& cal, const fs::path& out) {
   if (source.ended_early())
     std::fprintf(
         stderr,
@@ -56,6 +62,13 @@ void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, 
         "the tracks stop there\n",
         o.input.c_str(), source.frames_read(), source.count());
   if (o.quiet) return;
+  std::printf("calibration %s: %s mm a pixel, the outlet's centre at (%s, %s) px, turned %s deg",
+              cal.from.c_str(), core::format_g(1e3 * cal.scale, 4).c_str(),
+              core::format_g(cal.origin_x, 6).c_str(), core::format_g(cal.origin_y, 6).c_str(),
+              core::format_g(cal.rotation * 180 / M_PI, 3).c_str());
+  if (cal.residual > 1e-6)
+    std::printf(" (the points lie %s mm from the fit)", core::format_g(1e3 * cal.residual, 3).c_str());
+  std::printf("\n");
   if (!o.bright)
     std::printf(
         "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
@@ -86,9 +99,10 @@ int detect(const DetectCliOptions& o) {
           "--scale and --origin go together (metres per pixel, and the outlet centre's pixel X,Y)");
     job.cal.scale = o.scale;
     lab::parse_origin(o.origin, job.cal.origin_x, job.cal.origin_y);
+    job.cal.rotation = o.rotation * M_PI / 180;
     job.cal.from = "command line";
   } else if (!o.points.empty()) {
-    job.cal = two_point_calibration(o.points, "--points");
+    job.cal = points_calibration(o.points, "--points");
   } else if (!movie_calibration(o.input, job.cal, model, why)) {
     throw core::InputError(o.input + ": no calibration: give --scale and --origin, or --points (" +
                            "it is not a siloscope movie that calibrates itself: " + why + ")");
@@ -166,10 +180,12 @@ int detect(const DetectCliOptions& o) {
           "\"\nscale_m_per_px = " + core::format_toml_float(job.cal.scale, 12) +
           "\norigin_x_px = " + core::format_toml_float(job.cal.origin_x, 12) +
           "\norigin_y_px = " + core::format_toml_float(job.cal.origin_y, 12) +
+          "\nrotation_deg = " + core::format_toml_float(job.cal.rotation * 180 / M_PI, 12) +
+          "\npoints_residual_m = " + core::format_toml_float(job.cal.residual, 6) +
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
-  print_detect(o, source, st, out);
+  print_detect(o, source, st, job.cal, out);
   return 0;
 }
 }  // namespace
@@ -188,7 +204,12 @@ void define_detect_command(CLI::App& command, Action& action) {
   cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
   cmd->add_option("--scale", o->scale, "metres per pixel");
   cmd->add_option("--origin", o->origin, "X,Y: the pixel of the outlet's centre");
-  cmd->add_option("--points", o->points, "PX,PY=X,Y:PX,PY=X,Y: two marked pixels and where they are (m)");
+  cmd->add_option("--points", o->points,
+                  "PX,PY=X,Y:PX,PY=X,Y[:...]: two or more marked pixels and where they are (m, the outlet's "
+                  "centre at 0,0): the scale, origin and the camera's rotation");
+  cmd->add_option(
+      "--rotation", o->rotation,
+      "with --scale and --origin: degrees the container is turned counter-clockwise in the picture");
   cmd->add_option("--fps", o->fps,
                   "frames per second (default: the video's, or a siloscope movie's simulated rate)");
   cmd->add_option("--frames", o->frames, "K or A:B: only these frames (from 0)");

@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 struct ImportCliOptions {
   std::string tracks, geometry, out, columns, origin;
   std::vector<std::string> overrides;
-  double scale = 0, fps = 0;
+  double scale = 0, fps = 0, rotation = 0;
   bool y_up = false, force = false, quiet = false;
   lab::ImportOptions import;
 };
@@ -80,6 +80,7 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"scale_m_per_px", units.scale},
           {"origin_x", units.origin_x},
           {"origin_y", units.origin_y},
+          {"rotation_deg", units.rotation * 180 / M_PI},
           {"contact_tolerance", o.import.contact_tolerance},
           {"max_gap_frames", static_cast<long>(o.import.max_gap)},
           {"join_distance_diameters", o.import.join_distance},
@@ -157,6 +158,10 @@ int import_run(ImportCliOptions o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
+  if (!(std::fabs(o.rotation) <= 45))
+    throw core::InputError(
+        "--rotation " + core::format_g(o.rotation) +
+        ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
   core::check_input_file(o.tracks, "tracked particles", lab::kMaxTrackBytes, "");
   const fs::path out = io::output_path(o.out);
   io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
@@ -164,6 +169,7 @@ int import_run(ImportCliOptions o) {
   lab::Units units;
   units.scale = o.scale;
   units.y_up = o.y_up;
+  units.rotation = o.rotation * M_PI / 180;
   units.fps = o.fps;
   std::string calibration = "command line";
   if (!o.origin.empty()) lab::parse_origin(o.origin, units.origin_x, units.origin_y);
@@ -182,6 +188,7 @@ int import_run(ImportCliOptions o) {
     if (s && ox && oy && *s > 0) {
       units.scale = *s;
       if (o.origin.empty()) units.origin_x = *ox, units.origin_y = *oy;
+      if (o.rotation == 0) units.rotation = t["calibration"]["rotation_deg"].value_or(0.0) * M_PI / 180;
       calibration = meta.filename().string();
     }
     if (o.fps == 0)
@@ -279,6 +286,9 @@ void define_import_command(CLI::App& command, Action& action) {
                   "metres per pixel (positions and sizes in pixels, image rows downwards)");
   cmd->add_option("--origin", o->origin, "X,Y: where the outlet's centre is, in the file's units");
   cmd->add_flag("--y-up", o->y_up, "with --scale: y grows upwards in the file");
+  cmd->add_option("--rotation", o->rotation,
+                  "with --scale: degrees the container is turned counter-clockwise in the picture (default: "
+                  "detect's calibration, else 0)");
   cmd->add_option("--fps", o->fps, "frames per second, for a file with frame numbers and no times");
   cmd->add_option(
       "--contact-tolerance", o->import.contact_tolerance,

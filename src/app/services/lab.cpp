@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <deque>
 #include <future>
 #include <random>
@@ -73,36 +74,72 @@ bool movie_calibration(const fs::path& input, Calibration& cal, core::Model& mod
   return true;
 }
 
-Calibration two_point_calibration(const std::string& text, const std::string& option) {
+core::Vec2 Calibration::to_metres(double px, double py) const {
+  const core::Vec2 up{(px - origin_x) * scale, (origin_y - py) * scale};  // the picture's axes, y up, in m
+  if (rotation == 0) return up;
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  return {c * up.x + s * up.y, -s * up.x + c * up.y};
+}
+
+core::Vec2 Calibration::to_pixels(core::Vec2 m) const {
+  if (rotation != 0) {
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    m = {c * m.x - s * m.y, s * m.x + c * m.y};
+  }
+  return {origin_x + m.x / scale, origin_y - m.y / scale};
+}
+
+Calibration points_calibration(const std::string& text, const std::string& option) {
   auto fail = [&]() -> Calibration {
     throw core::InputError(option + " '" + text +
-                           "': expected PX,PY=X,Y:PX,PY=X,Y (two pixels and where they are in metres, the "
-                           "outlet's centre at 0,0)");
+                           "': expected PX,PY=X,Y:PX,PY=X,Y[:...] (two or more pixels and where they are in "
+                           "metres, the outlet's centre at 0,0)");
   };
-  double v[8];
-  int n = 0;
+  std::vector<double> v;
   std::string cur;
   for (size_t i = 0; i <= text.size(); ++i) {
     const char ch = i < text.size() ? text[i] : ':';
     if (ch == ',' || ch == '=' || ch == ':') {
       char* end = nullptr;
-      if (n >= 8 || cur.empty()) return fail();
-      v[n++] = std::strtod(cur.c_str(), &end);
-      if (*end != '\0' || !std::isfinite(v[n - 1])) return fail();
+      if (cur.empty()) return fail();
+      v.push_back(std::strtod(cur.c_str(), &end));
+      if (*end != '\0' || !std::isfinite(v.back())) return fail();
       cur.clear();
     } else {
       cur += ch;
     }
   }
-  if (n != 8) return fail();
-  const double dpx = std::hypot(v[4] - v[0], v[5] - v[1]), dm = std::hypot(v[6] - v[2], v[7] - v[3]);
-  if (!(dpx > 0) || !(dm > 0))
-    throw core::InputError(option + " '" + text + "': the two points must differ (in pixels and in metres)");
+  if (v.size() % 4 != 0 || v.size() < 8) return fail();
+  // Least squares in the complex plane: pixel (y up) = a metres + b, a = e^(i rotation) / scale.
+  using C = std::complex<double>;
+  const size_t n = v.size() / 4;
+  std::vector<C> u(n), w(n);
+  C ub = 0, wb = 0;
+  for (size_t k = 0; k < n; ++k) {
+    u[k] = {v[4 * k], -v[4 * k + 1]};
+    w[k] = {v[4 * k + 2], v[4 * k + 3]};
+    ub += u[k] / static_cast<double>(n), wb += w[k] / static_cast<double>(n);
+  }
+  C num = 0;
+  double den = 0, spread_px = 0;
+  for (size_t k = 0; k < n; ++k) {
+    num += (u[k] - ub) * std::conj(w[k] - wb);
+    den += std::norm(w[k] - wb);
+    spread_px += std::norm(u[k] - ub);
+  }
+  if (!(den > 0) || !(spread_px > 0))
+    throw core::InputError(option + " '" + text + "': the points must differ (in pixels and in metres)");
+  const C a = num / den, b = ub - a * wb;
   Calibration c;
-  c.scale = dm / dpx;
-  c.origin_x = v[0] - v[2] / c.scale;
-  c.origin_y = v[1] + v[3] / c.scale;  // image rows grow downwards
-  c.from = "two points";
+  c.scale = 1 / std::abs(a);
+  c.rotation = std::arg(a);
+  if (std::fabs(c.rotation) < 1e-12) c.rotation = 0;  // points marked along the picture's axes
+  c.origin_x = b.real();
+  c.origin_y = -b.imag();
+  double sum = 0;
+  for (size_t k = 0; k < n; ++k) sum += std::norm((u[k] - b) / a - w[k]);
+  c.residual = std::sqrt(sum / static_cast<double>(n));
+  c.from = std::to_string(n) + " marked points";
   return c;
 }
 
@@ -113,13 +150,17 @@ namespace {
 // and the background's estimate around it. Its left edge on a multiple of 4, so the background's quarter-size
 // copy sees the same blocks as on the whole picture.
 cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
-  const double slack_px = 2 * rmax + 2 * 1.25 * rmax + 8;
-  const int x0 =
-      std::max(0, static_cast<int>(std::floor(cal.origin_x + geo.x_left / cal.scale - slack_px)) & ~3);
-  const int x1 =
-      std::min(width, static_cast<int>(std::ceil(cal.origin_x + geo.x_right / cal.scale + slack_px)));
-  const int y0 =
-      std::max(0, static_cast<int>(std::floor(cal.origin_y - geo.total_height / cal.scale - slack_px)));
+  // The container's corners in pixels; below them, falling grains drift sideways as the picture is turned.
+  double left = INFINITY, right = -INFINITY, top = INFINITY;
+  for (double x : {geo.x_left, geo.x_right})
+    for (double y : {0.0, geo.total_height}) {
+      const core::Vec2 p = cal.to_pixels({x, y});
+      left = std::min(left, p.x), right = std::max(right, p.x), top = std::min(top, p.y);
+    }
+  const double slack_px = 2 * rmax + 2 * 1.25 * rmax + 8 + std::fabs(std::tan(cal.rotation)) * height;
+  const int x0 = std::max(0, static_cast<int>(std::floor(left - slack_px)) & ~3);
+  const int x1 = std::min(width, static_cast<int>(std::ceil(right + slack_px)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(top - slack_px)));
   if (x1 - x0 < 8 || height - y0 < 8)
     return cv::Rect(0, 0, width, height);  // off the picture: look everywhere
   return cv::Rect(x0, y0, x1 - x0, height - y0);
@@ -130,8 +171,8 @@ cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, double 
 cv::Mat wall_mask(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
   cv::Mat ignore = cv::Mat::zeros(height, width, CV_8U);
   auto px = [&](core::Vec2 p) {
-    return cv::Point(static_cast<int>(std::lround(cal.origin_x + p.x / cal.scale)),
-                     static_cast<int>(std::lround(cal.origin_y - p.y / cal.scale)));
+    const core::Vec2 q = cal.to_pixels(p);
+    return cv::Point(static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y)));
   };
   const int thick = std::max(3, static_cast<int>(std::lround(0.8 * rmax)));
   for (core::Wall w :
@@ -143,7 +184,16 @@ cv::Mat wall_mask(const core::Geometry& geo, const Calibration& cal, double rmax
     if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
       cv::circle(ignore, px(geo.obstacle.centre),
                  static_cast<int>(std::lround(0.5 * geo.obstacle.width / cal.scale)), 255, fill);
-    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
+    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar && cal.rotation != 0) {
+      const core::Vec2 o = geo.obstacle.centre;
+      const double hw = 0.5 * geo.obstacle.width, hh = 0.5 * geo.obstacle.height;
+      const std::vector<cv::Point> corners{px({o.x - hw, o.y - hh}), px({o.x + hw, o.y - hh}),
+                                           px({o.x + hw, o.y + hh}), px({o.x - hw, o.y + hh})};
+      if (fill < 0)
+        cv::fillConvexPoly(ignore, corners, 255);
+      else
+        cv::polylines(ignore, corners, true, 255, fill);
+    } else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
       cv::rectangle(ignore,
                     px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
                         geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
@@ -205,7 +255,7 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
     std::vector<vision::Circle> kept;
     for (const vision::Circle& c : found) {
       if (job.drop > 0 && u(rng) < job.drop) continue;
-      const core::Vec2 p{(c.x - job.cal.origin_x) * job.cal.scale, (job.cal.origin_y - c.y) * job.cal.scale};
+      const core::Vec2 p = job.cal.to_metres(c.x, c.y);
       const double slack = 2 * c.r * job.cal.scale;
       // A centre inside the obstacle (by more than half a radius) is its own shading, not a grain.
       const bool in_obstacle = geo.obstacle.present() && geo.obstacle.gap(p) < -0.5 * c.r * job.cal.scale;

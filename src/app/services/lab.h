@@ -18,8 +18,15 @@ struct Calibration {
   double scale = 0;  // m per pixel
   double origin_x = 0,
          origin_y = 0;  // px (OpenCV's: the first pixel's centre is 0, 0) of the outlet's centre
+  double rotation = 0;  // rad: the container turned counter-clockwise in the picture (a camera turned the
+                        // other way)
+  double residual = 0;  // m: the marked points' root-mean-square distance from where the fit puts them
   double fps = 0;       // frames per simulated or lab second (0: unknown)
-  std::string from;     // "command line", "two points", or the recording's metadata file
+  std::string from;     // "command line", "marked points", or the recording's metadata file
+
+  // A pixel (x right, y down) in the container's metres, and back.
+  core::Vec2 to_metres(double px, double py) const;
+  core::Vec2 to_pixels(core::Vec2 m) const;
 };
 
 // A siloscope movie's own calibration, from the recording directory beside it (MOVIE without .mp4, holding
@@ -29,9 +36,10 @@ struct Calibration {
 bool movie_calibration(const std::filesystem::path& input, Calibration& cal, core::Model& model,
                        std::string& why);
 
-// Two marked points "PX,PY=X,Y:PX,PY=X,Y" (pixels = metres in the container's frame): scale and origin (no
-// rotation). Throws core::InputError naming `option`.
-Calibration two_point_calibration(const std::string& text, const std::string& option);
+// Marked points "PX,PY=X,Y:PX,PY=X,Y[:...]" (pixels = metres in the container's frame), two or more: the
+// scale, origin and rotation that carry the metres onto the pixels, by least squares (exact for two; with
+// more, `residual` says how far the points lie from the fit). Throws core::InputError naming `option`.
+Calibration points_calibration(const std::string& text, const std::string& option);
 
 struct DetectStats {
   long frames = 0, detections = 0, dropped_outside = 0, tracks = 0;

@@ -55,8 +55,8 @@ void score_grains(const io::Trajectory& truth, Trip& trip, RoundTripRow& row) {
   std::map<int, long> last_track;  // true grain -> the track it was last matched to
   trip.truth_of.assign(tracks.frames.size(), {});
   auto whole_in_view = [&](const core::Particle& p) {
-    const double px = cal.origin_x + p.x / cal.scale, py = cal.origin_y - p.y / cal.scale,
-                 r = p.radius / cal.scale;
+    const core::Vec2 q = cal.to_pixels({p.x, p.y});
+    const double px = q.x, py = q.y, r = p.radius / cal.scale;
     return px - r >= 0 && px + r <= trip.width - 1 && py - r >= 0 && py + r <= trip.height - 1;
   };
   for (size_t k = 0; k < tracks.frames.size(); ++k) {
@@ -209,6 +209,7 @@ RoundTripRow round_trip(const fs::path& recording, double level, double drop, st
   units.scale = trip.cal.scale;
   units.origin_x = trip.cal.origin_x;
   units.origin_y = trip.cal.origin_y;
+  units.rotation = trip.cal.rotation;
   trip.tracks = lab::read_tracks(tracks_csv.string(), {}, units, trip.model.setup, trip.model.setup.geo);
   lab::ImportOptions opt;
   opt.contact_tolerance = contact_tolerance;
