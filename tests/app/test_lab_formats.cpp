@@ -20,6 +20,7 @@
 #include "helpers.h"
 #include "io/trajectory.h"
 #include "vision/detect.h"
+#include "vision/lens.h"
 
 namespace fs = std::filesystem;
 using test::cli;
@@ -503,4 +504,97 @@ TEST_CASE("detect and import: a camera turned 2 degrees, calibrated from marked 
   CHECK(bad.code == 2);
   CHECK_THAT(bad.output, Catch::Matchers::Contains("--rotation 60: expected -45 to 45 degrees"));
   CHECK_FALSE(fs::exists(d / "bad.csv"));
+}
+
+TEST_CASE("detect: a lens's distortion found from a chessboard is taken out of the positions",
+          "[lab][app][heavy]") {
+  const fs::path d = test::temp_dir("detect_lens");
+  REQUIRE(cli("record " + kScene +
+              " --seed 3 --duration 0.5 --camera window:-1.4,-0.4,1.4,1.6 --size 960x540 --overlay none "
+              "--arch-halo off --quiet --out " +
+              (d / "rec").string())
+              .code == 0);
+  app::Calibration straight;
+  core::Model model;
+  std::string why;
+  REQUIRE(app::movie_calibration(d / "rec.mp4", straight, model, why));
+  // A barrel-distorting lens (k1 = -0.12 at a focal length of 960 px: the picture's corners move 14 px
+  // inwards), and what it films: a 10 x 7 chessboard (9 x 6 inner corners) and the recording.
+  vision::Lens truth_lens;
+  truth_lens.present = true;
+  truth_lens.camera = cv::Matx33d(960, 0, 479.5, 0, 960, 269.5, 0, 0, 1);
+  truth_lens.distortion = {-0.12, 0, 0, 0, 0};
+  cv::Mat board(540, 960, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (int r = 0; r < 7; ++r)
+    for (int c = 0; c < 10; ++c)
+      if ((r + c) % 2 == 0)
+        cv::rectangle(board, cv::Rect(80 + 80 * c, -10 + 80 * r, 80, 80), cv::Scalar(0, 0, 0), cv::FILLED);
+  REQUIRE(cv::imwrite((d / "board.png").string(), vision::distort_picture(board, truth_lens)));
+  fs::create_directories(d / "frames");
+  vision::FrameSource video((d / "rec.mp4").string());
+  int n = 0;
+  for (cv::Mat f; video.next(f); ++n) {
+    char name[32];
+    std::snprintf(name, sizeof name, "f%04d.png", n);
+    REQUIRE(cv::imwrite((d / "frames" / name).string(), vision::distort_picture(f, truth_lens)));
+  }
+  REQUIRE(n >= 10);
+  // Marked points on the distorted film (where the lens puts the outlet's centre and two wall points).
+  std::string points;
+  for (core::Vec2 m : {core::Vec2{0, 0}, core::Vec2{-0.5, 1.4}, core::Vec2{0.5, 1.4}}) {
+    const core::Vec2 ideal = straight.to_pixels(m);
+    const cv::Point2d p = truth_lens.raw({ideal.x, ideal.y});
+    points += (points.empty() ? "" : ":") + num(p.x) + "," + num(p.y) + "=" + num(m.x) + "," + num(m.y);
+  }
+  const io::Trajectory truth(d / "rec" / "trajectory.sstraj");
+  const double diameter = 2 * 0.065;
+  auto error_of = [&](const std::string& extra, const std::string& name) {
+    const auto det = cli("detect " + (d / "frames").string() + " --geometry " + kScene +
+                         " --fps 30.303030303 --points " + points + extra + " --out " + (d / name).string());
+    INFO(det.output);
+    REQUIRE(det.code == 0);
+    const std::string meta = slurp(d / (name.substr(0, name.size() - 4) + ".meta.toml"));
+    app::Calibration cal;
+    cal.scale = scale_of(meta);
+    cal.origin_x = toml_number(meta, "origin_x_px");
+    cal.origin_y = toml_number(meta, "origin_y_px");
+    cal.rotation = toml_number(meta, "rotation_deg") * M_PI / 180;
+    std::map<long, std::vector<core::Vec2>> found;
+    std::istringstream rows(slurp(d / name));
+    std::string line;
+    std::getline(rows, line);
+    while (std::getline(rows, line)) {
+      std::vector<std::string> c;
+      std::istringstream cs(line);
+      for (std::string cell; std::getline(cs, cell, ',');) c.push_back(cell);
+      found[std::stol(c[0])].push_back(cal.to_metres(std::stod(c[2]), std::stod(c[3])));
+    }
+    return std::make_pair(median_error(truth, found) / diameter, meta);
+  };
+  const auto [with, meta] = error_of(" --lens " + (d / "board.png").string(), "lens.csv");
+  const auto [without, unused] = error_of("", "none.csv");
+  INFO("median error with the lens " << with << " d, without " << without << " d; k1 "
+                                     << toml_number(meta, "lens_k1") << ", rms "
+                                     << toml_number(meta, "lens_rms_px") << " px");
+  CHECK(std::fabs(toml_number(meta, "lens_k1") + 0.12) < 0.01);
+  CHECK(toml_number(meta, "lens_rms_px") < 0.5);
+  CHECK(with < 0.01);
+  CHECK(without > 2 * with);
+  // A chessboard of another pattern, or of another size than the film, is refused naming what to fix.
+  const auto pattern =
+      cli("detect " + (d / "frames").string() + " --geometry " + kScene + " --points " + points + " --lens " +
+          (d / "board.png").string() + " --pattern 7x5 --out " + (d / "p.csv").string());
+  CHECK(pattern.code == 2);
+  CHECK_THAT(pattern.output, Catch::Matchers::Contains("no chessboard of 7x5 inner corners found"));
+  cv::Mat small;
+  cv::resize(board, small, cv::Size(480, 270));
+  REQUIRE(cv::imwrite((d / "small.png").string(), small));
+  const auto size =
+      cli("detect " + (d / "frames").string() + " --geometry " + kScene + " --points " + points + " --lens " +
+          (d / "small.png").string() + " --pattern 9x6 --out " + (d / "s.csv").string());
+  CHECK(size.code == 2);
+  CHECK_THAT(size.output,
+             Catch::Matchers::Contains("its pictures are 480x270 and the film's frames 960x540"));
+  CHECK_FALSE(fs::exists(d / "p.csv"));
+  CHECK_FALSE(fs::exists(d / "s.csv"));
 }

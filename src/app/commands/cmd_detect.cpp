@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DetectCliOptions {
-  std::string input, geometry, out, origin, points, frames;
+  std::string input, geometry, out, origin, points, frames, lens, pattern = "9x6";
   std::vector<std::string> overrides;
   double scale = 0, fps = 0, rotation = 0;
   double band = 0.25, edge = 60, max_step = 0.8;
@@ -81,16 +81,19 @@ void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, 
       st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
 }
 
-int detect(const DetectCliOptions& o) {
-  check_options(o);
-  const fs::path out = io::output_path(o.out);
-  if (out.extension() != ".csv") throw core::InputError("--out " + o.out + ": expected a .csv file");
-  fs::path meta_out = out;
-  meta_out.replace_extension(".meta.toml");
-  io::check_not_input(out, {fs::absolute(o.input)}, "tracks");
-
-  DetectJob job;
-  core::Model model;
+// The lens (from --lens), then the calibration of ideal pixels: --scale and --origin, marked points, or a
+// siloscope movie's own (true: `model` is then its scene).
+bool calibrate(const DetectCliOptions& o, DetectJob& job, core::Model& model) {
+  if (!o.lens.empty()) {
+    int cols = 0, rows = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(o.pattern.c_str(), "%d%c%d%c", &cols, &x, &rows, &extra) != 3 || x != 'x' || cols < 3 ||
+        rows < 3 || cols > 100 || rows > 100)
+      throw core::InputError(
+          "--pattern '" + o.pattern +
+          "': expected COLUMNSxROWS, the chessboard's inner corners (3 to 100 each, e.g. 9x6)");
+    job.lens = vision::lens_from_chessboard(o.lens, cv::Size(cols, rows));
+  }
   bool have_model = false;
   std::string why;
   if (o.scale > 0 || !o.origin.empty()) {
@@ -102,13 +105,27 @@ int detect(const DetectCliOptions& o) {
     job.cal.rotation = o.rotation * M_PI / 180;
     job.cal.from = "command line";
   } else if (!o.points.empty()) {
-    job.cal = points_calibration(o.points, "--points");
+    job.cal = points_calibration(o.points, "--points", job.lens);
   } else if (!movie_calibration(o.input, job.cal, model, why)) {
     throw core::InputError(o.input + ": no calibration: give --scale and --origin, or --points (" +
                            "it is not a siloscope movie that calibrates itself: " + why + ")");
   } else {
     have_model = true;
   }
+  return have_model;
+}
+
+int detect(const DetectCliOptions& o) {
+  check_options(o);
+  const fs::path out = io::output_path(o.out);
+  if (out.extension() != ".csv") throw core::InputError("--out " + o.out + ": expected a .csv file");
+  fs::path meta_out = out;
+  meta_out.replace_extension(".meta.toml");
+  io::check_not_input(out, {fs::absolute(o.input)}, "tracks");
+
+  DetectJob job;
+  core::Model model;
+  bool have_model = calibrate(o, job, model);
   if (!o.geometry.empty()) {
     core::Scene s = core::load_scene(o.geometry);
     core::apply_overrides(s, o.overrides);
@@ -141,6 +158,11 @@ int detect(const DetectCliOptions& o) {
   }
 
   vision::FrameSource source(o.input);
+  if (job.lens.present && job.lens.size != cv::Size(source.width(), source.height()))
+    throw core::InputError("--lens " + o.lens + ": its pictures are " + std::to_string(job.lens.size.width) +
+                           "x" + std::to_string(job.lens.size.height) + " and the film's frames " +
+                           std::to_string(source.width()) + "x" + std::to_string(source.height()) +
+                           " (the chessboard is filmed by the same camera, at the same size)");
   if (o.fps > 0) job.cal.fps = o.fps;
   if (!(job.cal.fps > 0)) job.cal.fps = source.fps();
   if (!(job.cal.fps > 0))
@@ -183,6 +205,17 @@ int detect(const DetectCliOptions& o) {
           "\nrotation_deg = " + core::format_toml_float(job.cal.rotation * 180 / M_PI, 12) +
           "\npoints_residual_m = " + core::format_toml_float(job.cal.residual, 6) +
           "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
+  if (job.lens.present) {
+    const vision::Lens& l = job.lens;
+    meta += "lens = " + core::toml_string(l.from) + "  # chessboard pictures: x, y are ideal pixels" +
+            "\nlens_views = " + std::to_string(l.views) +
+            "\nlens_rms_px = " + core::format_toml_float(l.rms, 6) +
+            "\nlens_focal_px = " + core::format_toml_float(l.camera(0, 0), 12) +
+            "\nlens_centre_x_px = " + core::format_toml_float(l.camera(0, 2), 12) +
+            "\nlens_centre_y_px = " + core::format_toml_float(l.camera(1, 2), 12) +
+            "\nlens_k1 = " + core::format_toml_float(l.distortion[0], 12) +
+            "\nlens_k2 = " + core::format_toml_float(l.distortion[1], 12) + "\n";
+  }
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
   print_detect(o, source, st, job.cal, out);
@@ -207,6 +240,10 @@ void define_detect_command(CLI::App& command, Action& action) {
   cmd->add_option("--points", o->points,
                   "PX,PY=X,Y:PX,PY=X,Y[:...]: two or more marked pixels and where they are (m, the outlet's "
                   "centre at 0,0): the scale, origin and the camera's rotation");
+  cmd->add_option("--lens", o->lens,
+                  "a picture of a chessboard filmed by the same camera (or a directory of them): the lens's "
+                  "distortion taken out of every position, the tracks then in ideal pixels");
+  cmd->add_option("--pattern", o->pattern, "the chessboard's inner corners, COLUMNSxROWS (default 9x6)");
   cmd->add_option(
       "--rotation", o->rotation,
       "with --scale and --origin: degrees the container is turned counter-clockwise in the picture");

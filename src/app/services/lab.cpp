@@ -89,7 +89,7 @@ core::Vec2 Calibration::to_pixels(core::Vec2 m) const {
   return {origin_x + m.x / scale, origin_y - m.y / scale};
 }
 
-Calibration points_calibration(const std::string& text, const std::string& option) {
+Calibration points_calibration(const std::string& text, const std::string& option, const vision::Lens& lens) {
   auto fail = [&]() -> Calibration {
     throw core::InputError(option + " '" + text +
                            "': expected PX,PY=X,Y:PX,PY=X,Y[:...] (two or more pixels and where they are in "
@@ -116,7 +116,8 @@ Calibration points_calibration(const std::string& text, const std::string& optio
   std::vector<C> u(n), w(n);
   C ub = 0, wb = 0;
   for (size_t k = 0; k < n; ++k) {
-    u[k] = {v[4 * k], -v[4 * k + 1]};
+    const cv::Point2d p = lens.ideal({v[4 * k], v[4 * k + 1]});  // marked on the film: through its lens
+    u[k] = {p.x, -p.y};
     w[k] = {v[4 * k + 2], v[4 * k + 3]};
     ub += u[k] / static_cast<double>(n), wb += w[k] / static_cast<double>(n);
   }
@@ -149,12 +150,17 @@ namespace {
 // filter below) from above its top to the picture's bottom, where exited grains fall; with room for a disk
 // and the background's estimate around it. Its left edge on a multiple of 4, so the background's quarter-size
 // copy sees the same blocks as on the whole picture.
-cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
+cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, const vision::Lens& lens,
+                      double rmax, int width, int height) {
   // The container's corners in pixels; below them, falling grains drift sideways as the picture is turned.
   double left = INFINITY, right = -INFINITY, top = INFINITY;
-  for (double x : {geo.x_left, geo.x_right})
-    for (double y : {0.0, geo.total_height}) {
-      const core::Vec2 p = cal.to_pixels({x, y});
+  for (int i = 0; i <= 8; ++i)  // along its outline: a lens bends the sides
+    for (int j = 0; j <= 8; ++j) {
+      if (i % 8 && j % 8) continue;
+      const double x = i == 8 ? geo.x_right : geo.x_left + i * (geo.x_right - geo.x_left) / 8;
+      const double y = j == 8 ? geo.total_height : j * geo.total_height / 8;
+      const core::Vec2 q = cal.to_pixels({x, y});
+      const cv::Point2d p = lens.raw({q.x, q.y});
       left = std::min(left, p.x), right = std::max(right, p.x), top = std::min(top, p.y);
     }
   const double slack_px = 2 * rmax + 2 * 1.25 * rmax + 8 + std::fabs(std::tan(cal.rotation)) * height;
@@ -167,44 +173,63 @@ cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, double 
 }
 
 // The walls' pixels (and the obstacle's rim): their edges are not a disk's rim. As wide as 0.8 of the
-// largest radius, from the geometry and the calibration.
-cv::Mat wall_mask(const core::Geometry& geo, const Calibration& cal, double rmax, int width, int height) {
+// largest radius, from the geometry and the calibration. A turned camera or a lens's distortion: the outlines
+// drawn through points along them (a straight wall is curved on the film).
+cv::Mat wall_mask(const core::Geometry& geo, const Calibration& cal, const vision::Lens& lens, double rmax,
+                  int width, int height) {
   cv::Mat ignore = cv::Mat::zeros(height, width, CV_8U);
   auto px = [&](core::Vec2 p) {
     const core::Vec2 q = cal.to_pixels(p);
-    return cv::Point(static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y)));
+    const cv::Point2d r = lens.raw({q.x, q.y});
+    return cv::Point(static_cast<int>(std::lround(r.x)), static_cast<int>(std::lround(r.y)));
   };
   const int thick = std::max(3, static_cast<int>(std::lround(0.8 * rmax)));
+  const core::Obstacle& ob = geo.obstacle;
+  if (cal.rotation == 0 && !lens.present) {
+    for (core::Wall w :
+         {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
+      cv::line(ignore, px(geo.walls[static_cast<size_t>(w)].a), px(geo.walls[static_cast<size_t>(w)].b), 255,
+               thick);
+    // The obstacle whole, its rim and inside: no grain is there, and its own shading is no disk's.
+    for (int fill : {thick, -1})
+      if (ob.kind == core::Obstacle::Kind::Disk)
+        cv::circle(ignore, px(ob.centre), static_cast<int>(std::lround(0.5 * ob.width / cal.scale)), 255,
+                   fill);
+      else if (ob.kind == core::Obstacle::Kind::Bar)
+        cv::rectangle(ignore, px({ob.centre.x - 0.5 * ob.width, ob.centre.y + 0.5 * ob.height}),
+                      px({ob.centre.x + 0.5 * ob.width, ob.centre.y - 0.5 * ob.height}), 255, fill);
+    return ignore;
+  }
+  auto along = [&](core::Vec2 a, core::Vec2 b, std::vector<cv::Point>& out) {
+    for (int k = 0; k < 16; ++k) out.push_back(px(a + (static_cast<double>(k) / 16) * (b - a)));
+  };
   for (core::Wall w :
-       {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight})
-    cv::line(ignore, px(geo.walls[static_cast<size_t>(w)].a), px(geo.walls[static_cast<size_t>(w)].b), 255,
-             thick);
-  // The obstacle whole, its rim and inside: no grain is there, and its own shading is no disk's.
-  for (int fill : {thick, -1})
-    if (geo.obstacle.kind == core::Obstacle::Kind::Disk)
-      cv::circle(ignore, px(geo.obstacle.centre),
-                 static_cast<int>(std::lround(0.5 * geo.obstacle.width / cal.scale)), 255, fill);
-    else if (geo.obstacle.kind == core::Obstacle::Kind::Bar && cal.rotation != 0) {
-      const core::Vec2 o = geo.obstacle.centre;
-      const double hw = 0.5 * geo.obstacle.width, hh = 0.5 * geo.obstacle.height;
-      const std::vector<cv::Point> corners{px({o.x - hw, o.y - hh}), px({o.x + hw, o.y - hh}),
-                                           px({o.x + hw, o.y + hh}), px({o.x - hw, o.y + hh})};
-      if (fill < 0)
-        cv::fillConvexPoly(ignore, corners, 255);
-      else
-        cv::polylines(ignore, corners, true, 255, fill);
-    } else if (geo.obstacle.kind == core::Obstacle::Kind::Bar)
-      cv::rectangle(ignore,
-                    px({geo.obstacle.centre.x - 0.5 * geo.obstacle.width,
-                        geo.obstacle.centre.y + 0.5 * geo.obstacle.height}),
-                    px({geo.obstacle.centre.x + 0.5 * geo.obstacle.width,
-                        geo.obstacle.centre.y - 0.5 * geo.obstacle.height}),
-                    255, fill);
+       {core::Wall::HopperLeft, core::Wall::HopperRight, core::Wall::SiloLeft, core::Wall::SiloRight}) {
+    std::vector<cv::Point> line;
+    along(geo.walls[static_cast<size_t>(w)].a, geo.walls[static_cast<size_t>(w)].b, line);
+    line.push_back(px(geo.walls[static_cast<size_t>(w)].b));
+    cv::polylines(ignore, line, false, 255, thick);
+  }
+  std::vector<cv::Point> outline;
+  if (ob.kind == core::Obstacle::Kind::Disk)
+    for (int k = 0; k < 64; ++k)
+      outline.push_back(
+          px(ob.centre + 0.5 * ob.width * core::Vec2{std::cos(k * M_PI / 32), std::sin(k * M_PI / 32)}));
+  else if (ob.kind == core::Obstacle::Kind::Bar) {
+    const double hw = 0.5 * ob.width, hh = 0.5 * ob.height;
+    const core::Vec2 c[4] = {ob.centre + core::Vec2{-hw, -hh}, ob.centre + core::Vec2{hw, -hh},
+                             ob.centre + core::Vec2{hw, hh}, ob.centre + core::Vec2{-hw, hh}};
+    for (int k = 0; k < 4; ++k) along(c[k], c[(k + 1) % 4], outline);
+  }
+  if (!outline.empty()) {
+    cv::fillPoly(ignore, std::vector<std::vector<cv::Point>>{outline}, 255);
+    cv::polylines(ignore, outline, true, 255, thick);
+  }
   return ignore;
 }
 
-// One frame's disks, in the whole picture's pixels: the camera's effects (the round trip's), the polarity,
-// then detection inside `region` only.
+// One frame's disks, in ideal pixels: the camera's effects (the round trip's), the polarity, then detection
+// inside `region` only, the centres carried through the lens.
 std::vector<vision::Circle> detect_frame(cv::Mat frame, long k, const DetectJob& job, bool bright,
                                          const vision::DetectOptions& detect, const cv::Rect& region) {
   cv::Mat picture = job.camera ? job.camera(frame, k) : frame;
@@ -212,6 +237,12 @@ std::vector<vision::Circle> detect_frame(cv::Mat frame, long k, const DetectJob&
   if (bright) cv::bitwise_not(inside, inside);
   std::vector<vision::Circle> found = vision::detect_disks(inside, detect);
   for (vision::Circle& c : found) c.x += region.x, c.y += region.y;
+  if (job.lens.present) {
+    std::vector<cv::Point2d> at;
+    for (const vision::Circle& c : found) at.emplace_back(c.x, c.y);
+    job.lens.ideal(at);
+    for (size_t i = 0; i < found.size(); ++i) found[i].x = at[i].x, found[i].y = at[i].y;
+  }
   return found;
 }
 
@@ -239,8 +270,9 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
   cv::Rect region(0, 0, source.width(), source.height());
   vision::DetectOptions detect = job.detect;
   if (source.width() > 0) {
-    region = grain_region(geo, job.cal, rmax, source.width(), source.height());
-    if (detect.ignore.empty()) detect.ignore = wall_mask(geo, job.cal, rmax, source.width(), source.height());
+    region = grain_region(geo, job.cal, job.lens, rmax, source.width(), source.height());
+    if (detect.ignore.empty())
+      detect.ignore = wall_mask(geo, job.cal, job.lens, rmax, source.width(), source.height());
     detect.ignore = detect.ignore(region).clone();
   }
   bool bright = job.bright;

@@ -11,6 +11,7 @@
 
 #include "core/model.h"
 #include "vision/detect.h"
+#include "vision/lens.h"
 
 namespace app {
 
@@ -38,8 +39,10 @@ bool movie_calibration(const std::filesystem::path& input, Calibration& cal, cor
 
 // Marked points "PX,PY=X,Y:PX,PY=X,Y[:...]" (pixels = metres in the container's frame), two or more: the
 // scale, origin and rotation that carry the metres onto the pixels, by least squares (exact for two; with
-// more, `residual` says how far the points lie from the fit). Throws core::InputError naming `option`.
-Calibration points_calibration(const std::string& text, const std::string& option);
+// more, `residual` says how far the points lie from the fit). Pixels marked on the film are taken through
+// `lens` first. Throws core::InputError naming `option`.
+Calibration points_calibration(const std::string& text, const std::string& option,
+                               const vision::Lens& lens = {});
 
 struct DetectStats {
   long frames = 0, detections = 0, dropped_outside = 0, tracks = 0;
@@ -51,7 +54,8 @@ struct DetectStats {
 
 struct DetectJob {
   vision::DetectOptions detect;
-  Calibration cal;
+  Calibration cal;            // of ideal pixels (the lens's distortion taken out)
+  vision::Lens lens;          // the film's lens (none: the film's pixels are ideal)
   long first = 0, last = -1;  // frames to use (last < 0: to the end)
   double max_step = 0.8;      // radii
   int memory = 2;             // frames
