@@ -261,3 +261,20 @@ TEST_CASE("import: a broken track is joined, a short gap filled, a changed frame
     found = found || (std::fabs(p.x - 0.13) < 1e-5 && std::fabs(p.y - 0.9) < 1e-5);
   CHECK(found);
 }
+
+TEST_CASE(
+    "detect: a siloscope movie filmed with its overlay gives its grains (the box and legend are no grains)",
+    "[lab][app][heavy]") {
+  const fs::path d = temp_dir("lab_overlay");
+  // The default overlay: the information box with its legend's disks, the scale bar, the arch's halo and
+  // line.
+  REQUIRE(cli("record " + kScene +
+              " --seed 3 --duration 2 --camera window:-1.4,-0.4,1.4,1.6 --size 1280x720 --quiet --out " +
+              (d / "truth").string())
+              .code == 0);
+  const app::RoundTripRow r = app::round_trip(d / "truth", 0, 0, 3, d / "t.csv");
+  INFO("recall " << r.recall << ", precision " << r.precision << ", error " << r.error_median_d << " d");
+  CHECK(r.recall >= 0.995);
+  CHECK(r.precision >= 0.995);
+  CHECK(r.error_median_d <= 0.01);
+}
