@@ -75,6 +75,18 @@ CsvTable CsvTable::read(const std::string& path, const std::string& what) {
   return t;
 }
 
+CsvTable CsvTable::from_rows(const std::string& path, const std::string& what,
+                             std::vector<std::string> header, std::vector<std::vector<std::string>> rows,
+                             std::vector<long> lines) {
+  CsvTable t;
+  t.path_ = path;
+  t.what_ = what;
+  t.header_ = std::move(header);
+  t.cells_ = std::move(rows);
+  t.lines_ = std::move(lines);
+  return t;
+}
+
 CsvStream::CsvStream(const std::string& path, const std::string& what) {
   namespace fs = std::filesystem;
   std::error_code ec;

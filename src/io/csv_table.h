@@ -19,6 +19,9 @@ class CsvTable {
   // has another number of fields than the header.
   static CsvTable read(const std::string& path, const std::string& what);
   static constexpr std::size_t kMaxBytes = std::size_t{1} << 28;  // 256 MiB: no campaign table comes near
+  // A table made in memory (a file of another format read into rows): `lines` numbers the rows in messages.
+  static CsvTable from_rows(const std::string& path, const std::string& what, std::vector<std::string> header,
+                            std::vector<std::vector<std::string>> rows, std::vector<long> lines);
 
   const std::string& path() const { return path_; }
   std::size_t rows() const { return cells_.size(); }

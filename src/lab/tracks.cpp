@@ -4,14 +4,18 @@
 #include "lab/tracks.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
 #include "core/format.h"
 #include "core/interrupt.h"
 #include "io/csv_table.h"
+#include "lab/trackmate_xml.h"
 
 namespace lab {
 
@@ -356,12 +360,20 @@ constexpr size_t kSliceRows = 1 << 16;  // rows read at a time
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo) {
   // Read a slice of rows at a time, each row straight into its frame: memory grows with the detections
-  // (56 bytes each), not with the file's text.
-  io::CsvStream stream(path, "tracked particles");
-  io::CsvTable slice;
-  stream.next(slice, kSliceRows);
+  // (48 bytes each), not with the file's text. TrackMate's XML comes whole, as one slice.
   Tracks out;
   out.source = path;
+  std::optional<io::CsvStream> stream;
+  io::CsvTable slice;
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".xml") {
+    slice = trackmate_xml(path, out.untracked);
+    out.rows = out.untracked;  // the spots in no track are no rows of the table: counted here
+  } else {
+    stream.emplace(path, "tracked particles");
+    stream->next(slice, kSliceRows);
+  }
   const size_t first = description_rows(slice);
   RowReader reader(slice, path, map, units, setup, geo, first, out);
   const std::string size_column = reader.size_column();
@@ -369,7 +381,7 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
   for (size_t row = first;; ++row) {
     if (row >= slice.rows()) {
       core::throw_if_interrupted();
-      if (!stream.next(slice, kSliceRows)) break;
+      if (!stream || !stream->next(slice, kSliceRows)) break;
       row = 0;
     }
     ++out.rows;

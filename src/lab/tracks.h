@@ -6,7 +6,8 @@
 // d), the angle (angle, rad) and the species (species: a name of the geometry scene's species or its index).
 // trackpy's columns (frame, particle, x, y, and its own others) work without a map, its `size` telling the
 // species of a mixture apart; so do TrackMate's spots (TRACK_ID, POSITION_X, POSITION_Y, POSITION_T in
-// seconds or FRAME, RADIUS, and its three lines of names and units under the header). Spots without a track
+// seconds or FRAME, RADIUS, and its three lines of names and units under the header), and its XML (a file
+// ending .xml: lab/trackmate_xml.h). Spots without a track
 // id are skipped and counted. Any other naming is given with a column map "id=TrackID,x=X_px,...". The file
 // may be any CSV dialect io::CsvTable reads. Pixel units are converted by a scale (m per pixel) and the pixel
 // where the outlet's centre is (the origin); image rows grow downwards, so y is flipped unless y_up.

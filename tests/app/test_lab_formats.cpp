@@ -168,6 +168,62 @@ TEST_CASE("import: trackpy without diameters, spreadsheet dialects and TrackMate
   CHECK(slurp(d / "trackmate" / "exits.csv") == exits);
   CHECK(slurp(d / "trackmate" / "metadata.toml").find("untracked_spots_skipped = 2") != std::string::npos);
 
+  // TrackMate's XML (its saved session): spots by frame, tracks as edges between spots, the tracks its filter
+  // kept listed; two spots in no track and a track the filter left out are skipped and counted, as are the
+  // grains seen in one frame only (no edge: TrackMate has no track of one spot).
+  long single = 0;
+  {
+    std::map<long, std::string> frames;
+    std::map<long, std::string> edges;  // per track
+    std::map<long, long> last;          // per track, its last spot
+    long n = 0;
+    for (const Spot& s : spots) {
+      ++n;
+      frames[s.frame] += "<Spot ID=\"" + std::to_string(n) + "\" name=\"ID" + std::to_string(n) +
+                         "\" POSITION_X=\"" + num(s.x_px) + "\" POSITION_Y=\"" + num(s.y_px) +
+                         "\" POSITION_Z=\"0.0\" POSITION_T=\"" + std::to_string(s.frame) + ".0\" FRAME=\"" +
+                         std::to_string(s.frame) + "\" RADIUS=\"" + num(s.radius_px) +
+                         "\" QUALITY=\"20\"/>\n";
+      if (last.count(s.id))
+        edges[s.id] += "<Edge SPOT_SOURCE_ID=\"" + std::to_string(last[s.id]) + "\" SPOT_TARGET_ID=\"" +
+                       std::to_string(n) + "\"/>\n";
+      last[s.id] = n;
+    }
+    for (const auto& [id, spot] : last) single += !edges.count(id);
+    frames[2] += "<Spot ID=\"900001\" POSITION_X=\"400\" POSITION_Y=\"300\" FRAME=\"2\" RADIUS=\"16\"/>\n";
+    frames[3] +=
+        "<Spot ID=\"900002\" POSITION_X=\"410\" POSITION_Y=\"320\" FRAME=\"3\" RADIUS=\"6\"/>\n"
+        "<Spot ID=\"900003\" POSITION_X=\"380\" POSITION_Y=\"320\" FRAME=\"3\" RADIUS=\"16\"/>\n";
+    frames[4] += "<Spot ID=\"900004\" POSITION_X=\"381\" POSITION_Y=\"321\" FRAME=\"4\" RADIUS=\"16\"/>\n";
+    std::ofstream x(d / "trackmate.xml");
+    x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<TrackMate version=\"7.11.1\">\n"
+      << "<Model spatialunits=\"pixel\" timeunits=\"frame\">\n<AllSpots nspots=\"" << n + 4 << "\">\n";
+    for (const auto& [k, text] : frames)
+      x << "<SpotsInFrame frame=\"" << k << "\">\n" << text << "</SpotsInFrame>\n";
+    x << "</AllSpots>\n<AllTracks>\n";
+    for (const auto& [id, text] : edges)
+      x << "<Track name=\"Track_" << id << "\" TRACK_ID=\"" << id << "\">\n" << text << "</Track>\n";
+    x << "<Track name=\"Track_x\" TRACK_ID=\"999999\">\n<Edge SPOT_SOURCE_ID=\"900003\" "
+         "SPOT_TARGET_ID=\"900004\"/>\n</Track>\n</AllTracks>\n<FilteredTracks>\n";
+    for (const auto& [id, text] : edges) x << "<TrackID TRACK_ID=\"" << id << "\"/>\n";
+    x << "</FilteredTracks>\n</Model>\n</TrackMate>\n";
+  }
+  const std::string tmx = import("trackmate.xml", "trackmate_xml");
+  CHECK_THAT(
+      tmx, Catch::Matchers::Contains("skipped     " + std::to_string(4 + single) + " spots without a track"));
+  CHECK(slurp(d / "trackmate_xml" / "exits.csv") == exits);
+  // Not TrackMate's XML, and not XML at all: refused naming the file and what was expected.
+  std::ofstream(d / "other.xml") << "<?xml version=\"1.0\"?>\n<svg/>\n";
+  const auto other = cli("import " + (d / "other.xml").string() + args + " --out " + (d / "o1").string());
+  CHECK(other.code == 2);
+  CHECK_THAT(other.output, Catch::Matchers::Contains("other.xml: not a TrackMate file"));
+  std::ofstream(d / "broken.xml") << "<TrackMate><Model>\n";
+  const auto broken = cli("import " + (d / "broken.xml").string() + args + " --out " + (d / "o2").string());
+  CHECK(broken.code == 2);
+  CHECK_THAT(broken.output, Catch::Matchers::Contains("broken.xml: not readable as XML"));
+  CHECK_FALSE(fs::exists(d / "o1"));
+  CHECK_FALSE(fs::exists(d / "o2"));
+
   // Ids kept across the exit and the re-injection at the top (a jump of metres in one frame): each track is
   // split where it jumps, so the exits and clogs are the reference's (grain numbers aside).
   write(d / "kept.csv", "frame,particle,x,y,diameter\n", spots_of(d / "r" / "trajectory.sstraj", true),

@@ -270,9 +270,11 @@ int import_run(ImportCliOptions o) {
 void define_import_command(CLI::App& command, Action& action) {
   auto o = std::make_shared<ImportCliOptions>();
   CLI::App* cmd = &command;
-  cmd->add_option("tracks", o->tracks,
-                  "CSV, one row per particle per frame: t or frame, particle (id), x, y, optional r or "
-                  "diameter, angle, species (trackpy's names work as they are)")
+  cmd->add_option(
+         "tracks", o->tracks,
+         "CSV, one row per particle per frame: t or frame, particle (id), x, y, optional r or "
+         "diameter, angle, species (trackpy's and TrackMate's names work as they are); or TrackMate's "
+         "XML")
       ->required();
   cmd->add_option("--geometry", o->geometry,
                   "a scene file: the container (walls, outlet, obstacle) and species (default: the scene in "
