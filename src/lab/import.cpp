@@ -132,6 +132,22 @@ class Importer {
 
   const Detection& d(const Point& p) const { return tracks_.frames[p.frame].found[p.index]; }
 
+  // A track that ends where its grain leaves through the outlet: its last position in the opening and within
+  // a diameter above the outlet line, or moving down so fast that it would be there a frame later (a small
+  // grain falls farther than its diameter between two frames).
+  bool leaves_at_outlet(const Track& tr) const {
+    const Detection& last = d(tr.points.back());
+    if (ends_at_outlet(last, geo_)) return true;
+    if (tr.points.size() < 2) return false;
+    const Point &p = tr.points[tr.points.size() - 2], &q = tr.points.back();
+    const double dt = t_[q.frame] - t_[p.frame];
+    if (!(dt > 0) || !(last.y < d(p).y)) return false;
+    Detection next = last;
+    next.x += (last.x - d(p).x) / dt * rep_.interval_median;
+    next.y += (last.y - d(p).y) / dt * rep_.interval_median;
+    return ends_at_outlet(next, geo_);
+  }
+
   // Times from the first frame, and how regular the intervals are.
   void frame_times() {
     nf_ = static_cast<int>(tracks_.frames.size());
@@ -175,7 +191,7 @@ class Importer {
     std::sort(by_end.begin(), by_end.end(), [&](int a, int b) { return all[a].end() < all[b].end(); });
     for (int ia : by_end) {
       Track& a = all[static_cast<size_t>(ia)];
-      while (!a.joined && a.end() < nf_ - 1 && !ends_at_outlet(d(a.points.back()), geo_)) {
+      while (!a.joined && a.end() < nf_ - 1 && !leaves_at_outlet(a)) {
         const int best = best_continuation(all, starting, ia);
         if (best < 0) break;
         Track& b = all[static_cast<size_t>(best)];
@@ -391,9 +407,8 @@ class Importer {
           ++rep_.exits_below;
           break;
         }
-      const Detection& last = d(grains_[g].points.back());
       if (exit_frame < 0 && grains_[g].end() < nf_ - 1) {
-        if (ends_at_outlet(last, geo_)) {
+        if (leaves_at_outlet(grains_[g])) {
           exit_frame = grains_[g].end() + 1;
           ++rep_.exits_lost;
         } else {
