@@ -148,8 +148,8 @@ namespace {
 
 // Where grains can be, in pixels: the container's width (and a diameter beyond each side, the slack of the
 // filter below) from above its top to the picture's bottom, where exited grains fall; with room for a disk
-// and the background's estimate around it. Its left edge on a multiple of 4, so the background's quarter-size
-// copy sees the same blocks as on the whole picture.
+// and the background's estimate around it. Its left and top edges on multiples of 4, so the background's
+// quarter-size copy sees the same blocks as on the whole picture.
 cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, const vision::Lens& lens,
                       double rmax, int width, int height) {
   // The container's corners in pixels; below them, falling grains drift sideways as the picture is turned.
@@ -166,7 +166,7 @@ cv::Rect grain_region(const core::Geometry& geo, const Calibration& cal, const v
   const double slack_px = 2 * rmax + 2 * 1.25 * rmax + 8 + std::fabs(std::tan(cal.rotation)) * height;
   const int x0 = std::max(0, static_cast<int>(std::floor(left - slack_px)) & ~3);
   const int x1 = std::min(width, static_cast<int>(std::ceil(right + slack_px)));
-  const int y0 = std::max(0, static_cast<int>(std::floor(top - slack_px)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(top - slack_px)) & ~3);
   if (x1 - x0 < 8 || height - y0 < 8)
     return cv::Rect(0, 0, width, height);  // off the picture: look everywhere
   return cv::Rect(x0, y0, x1 - x0, height - y0);
