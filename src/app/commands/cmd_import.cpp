@@ -2,13 +2,18 @@
 // run directory like a recording's (trajectory, exits, clogs, the clogs' arches with their descriptors,
 // summary, metadata, manifest), its clogs and arches found by the simulation's own rules from positions alone
 // (lab/import.h). Every command that reads a recording reads it: inspect, export, gallery, analyze, timeline.
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/services/cli.h"
+#include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -36,6 +41,41 @@ struct ImportCliOptions {
   bool y_up = false, force = false, quiet = false;
   lab::ImportOptions import;
 };
+
+// trackpy's HDF5 (TRACKS.h5 or .hdf5) as a CSV in the system's temporary directory, removed when done: pandas
+// reads it (SHARE/python/siloscope/_trackpy_hdf5.py, with Debian's python3-pandas and python3-tables).
+class Hdf5AsCsv {
+ public:
+  explicit Hdf5AsCsv(const std::string& path)
+      : csv_((fs::temp_directory_path() / ("siloscope-" + std::to_string(::getpid()) + "-tracks.csv"))
+                 .string()) {
+    const int status =
+        run_python((share_dir() / "python" / "siloscope" / "_trackpy_hdf5.py").string(), {path, csv_});
+    if (status == 0) return;
+    remove();
+    throw core::InputError(path + (status == 3
+                                       ? ": trackpy's HDF5 is read with pandas: install Debian's "
+                                         "python3-pandas and python3-tables, or export the tracks as CSV"
+                                       : ": not trackpy's HDF5 (pandas tables), nor read as such"));
+  }
+  ~Hdf5AsCsv() { remove(); }
+  Hdf5AsCsv(const Hdf5AsCsv&) = delete;
+  Hdf5AsCsv& operator=(const Hdf5AsCsv&) = delete;
+  const std::string& csv() const { return csv_; }
+
+ private:
+  void remove() {
+    std::error_code ec;
+    fs::remove(csv_, ec);
+  }
+  std::string csv_;
+};
+
+bool is_hdf5(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".h5" || ext == ".hdf5" || ext == ".hdf";
+}
 
 // detect's metadata beside its CSV (TRACKS.meta.toml): the calibration it used, when the command line gives
 // none.
@@ -145,7 +185,8 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
               out.string().c_str());
 }
 
-int import_run(ImportCliOptions o) {
+// The numeric options in their ranges (before any work).
+void check_options(const ImportCliOptions& o) {
   if (!(o.import.contact_tolerance >= 0 && o.import.contact_tolerance <= 0.5))
     throw core::InputError("--contact-tolerance " + core::format_g(o.import.contact_tolerance) +
                            ": expected a gap from 0 to 0.5 of the smaller diameter");
@@ -162,16 +203,17 @@ int import_run(ImportCliOptions o) {
     throw core::InputError(
         "--rotation " + core::format_g(o.rotation) +
         ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
-  core::check_input_file(o.tracks, "tracked particles", lab::kMaxTrackBytes, "");
-  const fs::path out = io::output_path(o.out);
-  io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
+}
 
+// Pixels to metres: the command line's, else the calibration detect wrote beside the tracks; `calibration`
+// says which.
+lab::Units import_units(const ImportCliOptions& o, std::string& calibration) {
   lab::Units units;
   units.scale = o.scale;
   units.y_up = o.y_up;
   units.rotation = o.rotation * M_PI / 180;
   units.fps = o.fps;
-  std::string calibration = "command line";
+  calibration = "command line";
   if (!o.origin.empty()) lab::parse_origin(o.origin, units.origin_x, units.origin_y);
   const fs::path meta = detect_metadata(o.tracks);
   if (o.scale == 0 && fs::exists(meta)) {
@@ -194,6 +236,18 @@ int import_run(ImportCliOptions o) {
     if (o.fps == 0)
       if (auto f = t["calibration"]["fps"].value<double>(); f && *f > 0) units.fps = *f;
   }
+  return units;
+}
+
+int import_run(ImportCliOptions o) {
+  check_options(o);
+  core::check_input_file(o.tracks, "tracked particles", lab::kMaxTrackBytes, "");
+  const fs::path out = io::output_path(o.out);
+  io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
+
+  std::string calibration;
+  const lab::Units units = import_units(o, calibration);
+  const fs::path meta = detect_metadata(o.tracks);
 
   // The container: --geometry, or the scene detect wrote beside the tracks (a siloscope movie's own).
   std::string geometry_file = o.geometry;
@@ -208,8 +262,20 @@ int import_run(ImportCliOptions o) {
   core::Scene scene = core::load_scene(geometry_file);
   core::apply_overrides(scene, o.overrides);
   const core::Model geometry = core::compile(scene);
-  lab::Tracks tracks = lab::read_tracks(o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
-                                        geometry.setup, geometry.setup.geo);
+  std::optional<Hdf5AsCsv> h5;
+  if (is_hdf5(o.tracks)) h5.emplace(o.tracks);
+  lab::Tracks tracks;
+  try {
+    tracks = lab::read_tracks(h5 ? h5->csv() : o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
+                              geometry.setup, geometry.setup.geo);
+  } catch (const core::InputError& e) {
+    if (!h5) throw;
+    std::string what = e.what();  // the temporary CSV's name is the user's file's, its rows the tables'
+    for (size_t at; (at = what.find(h5->csv())) != std::string::npos;)
+      what.replace(at, h5->csv().size(), o.tracks + " (its tables as CSV, row line - 1)");
+    throw core::InputError(what);
+  }
+  tracks.source = o.tracks;
   if (tracks.frames.size() < 2)
     throw core::InputError(o.tracks + ": one frame only; a run needs at least two");
   lab::ImportOptions how = o.import;
@@ -274,7 +340,7 @@ void define_import_command(CLI::App& command, Action& action) {
          "tracks", o->tracks,
          "CSV, one row per particle per frame: t or frame, particle (id), x, y, optional r or "
          "diameter, angle, species (trackpy's and TrackMate's names work as they are); or TrackMate's "
-         "XML")
+         "XML, or trackpy's HDF5 (.h5, read through pandas)")
       ->required();
   cmd->add_option("--geometry", o->geometry,
                   "a scene file: the container (walls, outlet, obstacle) and species (default: the scene in "
