@@ -43,4 +43,7 @@ inline std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
+// A file name's extension in lower case, with its dot (".h5" for "Tracks.H5"; "" for none).
+std::string lower_extension(const std::string& path);
+
 }  // namespace core

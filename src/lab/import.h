@@ -90,14 +90,4 @@ struct Imported {
 
 Imported import_tracks(Tracks& tracks, const core::Model& model, const ImportOptions& opt);
 
-// The contact graph by distance (see above): every grain with a finite position, walls and obstacle.
-core::ContactGraph contacts_by_distance(const std::vector<core::Vec2>& pos, const std::vector<double>& radius,
-                                        const std::vector<bool>& present, const core::Geometry& geo,
-                                        double tolerance);
-
-// The blocking arch at a frame by distance (empty if none).
-std::vector<int> arch_by_distance(const std::vector<core::Vec2>& pos, const std::vector<double>& radius,
-                                  const std::vector<bool>& present, const core::Model& model,
-                                  double tolerance);
-
 }  // namespace lab

@@ -4,9 +4,7 @@
 #include "lab/tracks.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
@@ -365,9 +363,7 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
   out.source = path;
   std::optional<io::CsvStream> stream;
   io::CsvTable slice;
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".xml") {
+  if (core::lower_extension(path) == ".xml") {
     slice = trackmate_xml(path, out.untracked);
     out.rows = out.untracked;  // the spots in no track are no rows of the table: counted here
   } else {

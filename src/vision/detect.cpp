@@ -16,6 +16,7 @@ extern "C" {
 #include <opencv2/videoio.hpp>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace vision {
 
@@ -255,11 +256,22 @@ struct FrameSource::Impl {
 
 namespace {
 bool tiff_name(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  const std::string ext = core::lower_extension(p.string());
   return ext == ".tif" || ext == ".tiff";
 }
 }  // namespace
+
+std::vector<std::filesystem::path> pictures_in(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string ext = core::lower_extension(e.path().string());
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" || ext == ".tiff")
+      files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
   namespace fs = std::filesystem;
@@ -270,14 +282,7 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
     throw core::InputError(path + ": no such file or directory (a video, or a directory of frames)");
   }
   if (fs::is_directory(path, ec)) {
-    for (const auto& e : fs::directory_iterator(path, ec)) {
-      std::string ext = e.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-      if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" ||
-          ext == ".tiff")
-        impl_->files.push_back(e.path());
-    }
-    std::sort(impl_->files.begin(), impl_->files.end());
+    impl_->files = pictures_in(path);
     if (impl_->files.empty()) {
       delete impl_;
       throw core::InputError(path + ": a directory with no frames (PNG, JPEG, BMP or TIFF files)");

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -59,6 +60,9 @@ class Linker {
 // noise of 6 L grey levels, light falling off by 12 L % across the picture, a perspective that moves the
 // corners by 0.1 L % of the width. Deterministic for a seed.
 cv::Mat add_camera(const cv::Mat& clean, double level, std::uint64_t seed);
+
+// The pictures of a directory (PNG, JPEG, BMP, TIFF, whatever the case of their extension), in name order.
+std::vector<std::filesystem::path> pictures_in(const std::filesystem::path& dir);
 
 // The frames of a video file, or of a directory of images (PNG, JPEG, BMP, TIFF in name order), one at a
 // time. Throws core::InputError naming the path when it cannot be opened or a frame cannot be decoded.

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "vision/detect.h"
 
 namespace vision {
 
@@ -49,14 +50,7 @@ std::vector<std::string> picture_files(const std::string& pictures) {
     return {pictures};
   }
   std::vector<std::string> files;
-  for (const auto& e : fs::directory_iterator(pictures)) {
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" ||
-                                ext == ".tif" || ext == ".tiff"))
-      files.push_back(e.path().string());
-  }
-  std::sort(files.begin(), files.end());
+  for (const fs::path& p : pictures_in(pictures)) files.push_back(p.string());
   if (files.empty())
     throw core::InputError("--lens " + pictures + ": the directory holds no picture (PNG, JPEG, BMP, TIFF)");
   return files;

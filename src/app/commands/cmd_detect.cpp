@@ -44,10 +44,6 @@ void check_options(const DetectCliOptions& o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
-  if (!(std::fabs(o.rotation) <= 45))
-    throw core::InputError(
-        "--rotation " + core::format_g(o.rotation) +
-        ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
   if (o.rotation != 0 && !(o.scale > 0))
     throw core::InputError("--rotation goes with --scale and --origin (--points finds the rotation itself)");
 }
@@ -102,7 +98,7 @@ bool calibrate(const DetectCliOptions& o, DetectJob& job, core::Model& model) {
           "--scale and --origin go together (metres per pixel, and the outlet centre's pixel X,Y)");
     job.cal.scale = o.scale;
     lab::parse_origin(o.origin, job.cal.origin_x, job.cal.origin_y);
-    job.cal.rotation = o.rotation * M_PI / 180;
+    job.cal.rotation = rotation_radians(o.rotation);
     job.cal.from = "command line";
   } else if (!o.points.empty()) {
     job.cal = points_calibration(o.points, "--points", job.lens);

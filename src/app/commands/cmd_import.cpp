@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -13,6 +12,7 @@
 #include "analysis/measure.h"
 #include "analysis/tidy.h"
 #include "app/services/cli.h"
+#include "app/services/lab.h"
 #include "app/services/process.h"
 #include "app/services/run_outputs.h"
 #include "core/error.h"
@@ -72,8 +72,7 @@ class Hdf5AsCsv {
 };
 
 bool is_hdf5(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = core::lower_extension(path);
   return ext == ".h5" || ext == ".hdf5" || ext == ".hdf";
 }
 
@@ -199,10 +198,6 @@ void check_options(const ImportCliOptions& o) {
     throw core::InputError("--scale " + core::format_g(o.scale) + ": expected metres per pixel, > 0");
   if (o.fps < 0 || !std::isfinite(o.fps))
     throw core::InputError("--fps " + core::format_g(o.fps) + ": expected > 0");
-  if (!(std::fabs(o.rotation) <= 45))
-    throw core::InputError(
-        "--rotation " + core::format_g(o.rotation) +
-        ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
 }
 
 // Pixels to metres: the command line's, else the calibration detect wrote beside the tracks; `calibration`
@@ -211,7 +206,7 @@ lab::Units import_units(const ImportCliOptions& o, std::string& calibration) {
   lab::Units units;
   units.scale = o.scale;
   units.y_up = o.y_up;
-  units.rotation = o.rotation * M_PI / 180;
+  units.rotation = rotation_radians(o.rotation);
   units.fps = o.fps;
   calibration = "command line";
   if (!o.origin.empty()) lab::parse_origin(o.origin, units.origin_x, units.origin_y);

@@ -74,6 +74,14 @@ bool movie_calibration(const fs::path& input, Calibration& cal, core::Model& mod
   return true;
 }
 
+double rotation_radians(double degrees) {
+  if (!(std::fabs(degrees) <= 45))
+    throw core::InputError(
+        "--rotation " + core::format_g(degrees) +
+        ": expected -45 to 45 degrees (the container turned counter-clockwise in the picture)");
+  return degrees * M_PI / 180;
+}
+
 core::Vec2 Calibration::to_metres(double px, double py) const {
   const core::Vec2 up{(px - origin_x) * scale, (origin_y - py) * scale};  // the picture's axes, y up, in m
   if (rotation == 0) return up;

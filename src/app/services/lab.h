@@ -15,6 +15,9 @@
 
 namespace app {
 
+// --rotation DEG (detect's and import's) in radians; throws core::InputError outside -45 to 45 degrees.
+double rotation_radians(double degrees);
+
 struct Calibration {
   double scale = 0;  // m per pixel
   double origin_x = 0,

@@ -27,7 +27,7 @@ struct RoundTripRow {
   // (median |difference|, degrees).
   long arches_compared = 0;
   double member_recall = 0, member_precision = 0, span_error_d = 0, rise_error_d = 0, theta_error_deg = 0;
-  double detect_s_per_frame = 0;  // detection and linking, without decoding or the camera's effects
+  double detect_s_per_frame = 0;  // the whole detection pass a frame: decoding, the camera's effects, linking
   // Frames during a clog with its arch standing, in the recording and in the import.
   double contact_tolerance = 0.1;
   long arch_frames_true = 0, arch_frames_found = 0;
