@@ -222,14 +222,20 @@ std::pair<float, float> info_box_estimate(const OverlayOptions& o, float em,
     ++items;
   }
   if (o.time) line(12);
-  if (o.counts) line(names + 8);  // "52 exits: 30 a, 22 b" or "40 original 12 added exits"
-  if (o.rate) line(24 + first);   // "Q~ = 12.34 /s (originals, so far)"
+  // "40 original 12 added exits", or from three species on "52 exits: 30 a 12 b 10 c" (up to three digits
+  // and a space before each name).
+  size_t letters = 0;
+  for (const auto& n : species) letters += n.size();
+  if (o.counts) line(species.size() > 2 ? letters + 4 * species.size() + 11 : names + 8);
+  if (o.rate) line(24 + first);                                // "Q~ = 12.34 /s (originals, so far)"
   if (o.timer) line(0, 6), w = std::max(w, 5 * em + 21 * ch);  // the bar, then "clogged 12.3 s / 5 s"
   if (o.arch) line(24);
   if (o.legend) {
     h += 1;
-    ++items;           // the separator
-    line(names + 16);  // the species' swatches and the arch's, on one row
+    ++items;  // the separator
+    // The species' swatches and the arch's, on one row: each name and a swatch of about 2.5 em (measured:
+    // 18.6 em for three species and the arch at 2x, where this gives 20 em).
+    line(letters + 4 + 5 * (species.size() + 1));
     if (colour_rows) line(20, 0), w = std::max(w, 8 * em + 20 * ch), line(20, 0);
   }
   h += 4.0f * std::max(0, items - 1);
@@ -250,7 +256,9 @@ std::vector<std::pair<float, float>> plot_box_sizes(float view_w, float view_h, 
                                                     float beside) {
   std::vector<std::pair<float, float>> out = {plot_box_size(view_w, view_h, em)};
   const float pad = 0.6f * em;
-  for (float limit : {margin_w - 2 * pad, beside - 3 * pad, 0.3f * view_w})
+  // Beside the information box: a pad from the panel's edge, the box's own pad from the other edge and its
+  // blocked surround (0.4 em) and the cell the free space rounds to.
+  for (float limit : {margin_w - 2 * pad, beside - 4 * pad, 0.3f * view_w})
     if (limit > 10 * em)
       for (float height : {0.2f, 0.12f}) out.push_back(plot_box_size(view_w, view_h, em, limit, height));
   return out;
@@ -263,7 +271,8 @@ Box info_band(const Box& panel, float band, float box_h, float pad) {
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
                    const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
                    const std::vector<std::string>& species, const std::string& title, bool colour_rows,
-                   int top, int band) {
+                   int top, int band, const std::vector<std::pair<float, float>>& texts, bool* column_fits,
+                   float heading_w) {
   const float em = overlay_em(h, o.font_scale), pad = 0.6f * em;
   const bool info = o.time || o.counts || o.rate || o.timer || o.arch || o.legend;
   // The title wraps at 18 em, or inside a margin (info_contents).
@@ -275,8 +284,15 @@ int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)
     const Box panel{static_cast<float>(panel_x), static_cast<float>(top),
                     static_cast<float>(panel_x + panel_w), static_cast<float>(h)};
     const auto [iw, ih] = estimate(margin);
+    // The texts may also use the heading's band beside the heading (centred, heading_w wide).
+    const Box whole{panel.x0, 0, panel.x1, panel.y1};
     for (const auto& views : views_of(panel_w - margin)) {
-      FreeSpace fs(panel, std::max(2.0f, 0.25f * em));
+      FreeSpace fs(whole, std::max(2.0f, 0.25f * em));
+      if (top > 0) {
+        const float c = 0.5f * (whole.x0 + whole.x1),
+                    half = heading_w > 0 ? 0.5f * heading_w : 0.5f * panel_w;
+        fs.block({c - half, 0, c + half, static_cast<float>(top)}, 0.4f * em);
+      }
       fs.block_container(views, geo);
       if (info && o.info_at < 0) {
         std::optional<Box> b;
@@ -312,16 +328,44 @@ int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)
         const Box view{static_cast<float>(zoom->rect.x), static_cast<float>(zoom->rect.y),
                        static_cast<float>(zoom->rect.x + zoom->rect.w),
                        static_cast<float>(zoom->rect.y + zoom->rect.h)};
-        if (!fs.place_at_corner(sw, 1.7f * em, view, 3, em) &&
-            !fs.place_at_corner(sw, 1.7f * em, panel, 3, em))
-          return false;
+        auto b = fs.place_at_corner(sw, 1.7f * em, view, 3, em);
+        // Outside its view the bar says which view it measures: "1 d = 13 cm (outlet view)".
+        if (!b) b = fs.place_at_corner(std::max(sw, 13.0f * em), 1.7f * em, panel, 3, em);
+        if (!b) return false;
+        fs.block(*b, 0.4f * em);
+      }
+      // The texts after the boxes (Overlay::place_text): each anywhere clear in the panel.
+      for (const auto& [tw, th] : texts) {
+        const auto b = fs.place(tw, th, whole, whole.x0, whole.y0, 0.0f, 0.0f);
+        if (!b) return false;
+        fs.block(*b, 0.25f * em);
       }
     }
     return true;
   };
-  if (!(info || o.plot || o.scale || o.colorbar) || fits(0)) return 0;
-  // A column as wide as the information box (the plot wraps into it), at most half the panel.
-  return std::min(static_cast<int>(std::ceil(estimate(0).first + 2 * pad)), panel_w / 2);
+  if (column_fits) *column_fits = true;
+  if (!(info || o.plot || o.scale || o.colorbar || !texts.empty()) || fits(0)) return 0;
+  // A column as wide as the information box (the plot wraps into it) and the widest text, at most half the
+  // panel; with a band (the caller asks only whether the band alone is room enough), not looked at further.
+  float widest = info ? estimate(0).first : 0.0f;
+  for (const auto& t : texts) widest = std::max(widest, t.first);
+  const int first = std::min(static_cast<int>(std::ceil(widest + 2 * pad)), panel_w / 2);
+  if (band > 0) return first;
+  // Wider, in steps of an em, while the texts find no room in it.
+  for (int m = first; m <= panel_w / 2; m += static_cast<int>(std::ceil(em))) {
+    if (fits(m)) return m;
+    if (texts.empty()) break;
+  }
+  if (column_fits) *column_fits = false;
+  return first;
+}
+
+std::pair<float, float> text_box_estimate(const std::string& text, float em) {
+  // Measured on the overlay's font: 13.6 em for "arch removed (5 s rule): 3 disks" (0.43 em a character) and
+  // for "a grain in the middle of the pile", 8.5 em for "slow motion 4.12x" (its digits are wider).
+  const auto digits = std::count_if(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const float chars = 0.44f * static_cast<float>(text.size()) + 0.16f * static_cast<float>(digits);
+  return {chars * em + 0.8f * em, 1.4f * em};
 }
 
 }  // namespace render

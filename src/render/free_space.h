@@ -97,10 +97,21 @@ Box info_band(const Box& panel, float band, float box_h, float pad);
 
 // `top`: pixels at the top of the panel the boxes may not use (a comparison panel's heading); `band`: a band
 // of that many pixels below the views, where the information box goes first (as Overlay draws it).
+// `texts`: the sizes of the texts the overlay places after the boxes (an event's caption, the slow-motion
+// badge, the user's notes: text_box_estimate), each of which must find clear space in the panel too.
+// `column_fits` (if given): whether the column returned holds everything (false: the widest the plan allows,
+// half the panel, does not; the overlay then counts the pictures where a box or a text has no clear space).
+// `heading_w`: the width of the heading's text, centred in the `top` band (the texts may use the band beside
+// it; 0: the whole band is the heading's).
 int overlay_margin(const std::function<std::vector<std::vector<View>>(int width)>& views_of,
                    const core::Geometry& geo, const OverlayOptions& o, int panel_x, int panel_w, int h,
                    const std::vector<std::string>& species, const std::string& title, bool colour_rows,
-                   int top = 0, int band = 0);
+                   int top = 0, int band = 0, const std::vector<std::pair<float, float>>& texts = {},
+                   bool* column_fits = nullptr, float heading_w = 0);
+
+// The box of one line of text over the scene (a caption, the badge, a note) estimated before ImGui lays it
+// out, in pixels: the text's width and a line, with the box's padding around them.
+std::pair<float, float> text_box_estimate(const std::string& text, float em);
 
 // The information box's size estimated from its contents (before ImGui lays it out), in pixels: width and
 // height, its title wrapped at `wrap` pixels (as info_contents wraps it). Used by overlay_margin; the box

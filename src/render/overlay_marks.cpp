@@ -207,14 +207,10 @@ void Overlay::draw_events(const Annotations& notes, const std::vector<View>& vie
       dl->PopClipRect();
     }
     const View& zoom = most_zoomed(views);
-    // The panel's extent (its views'): the caption and the badge stay inside it, clear of the boxes and the
-    // grains where the panel has room (the layout's free space), else off the boxes and texts (place_text).
-    Box panel{static_cast<float>(zoom.rect.x), static_cast<float>(zoom.rect.y),
-              static_cast<float>(zoom.rect.x + zoom.rect.w), static_cast<float>(zoom.rect.y + zoom.rect.h)};
-    for (const auto& v : views)
-      panel.x0 = std::min(panel.x0, static_cast<float>(v.rect.x)),
-      panel.x1 = std::max(panel.x1, static_cast<float>(v.rect.x + v.rect.w));
-    panel.y1 = std::max(panel.y1, panel_y1_);  // and the band below the views the boxes have, if any
+    // The caption and the badge stay inside the panel (its views, and the column or band the plan gave the
+    // boxes, where the record plan counted them: overlay_margin's texts), clear of the boxes and the grains
+    // where the panel has room (the layout's free space), else off the boxes and texts (place_text).
+    const Box panel{panel_x0_, 0, panel_x1_, panel_y1_};
     if (!notes.caption.empty()) {
       // Centred over the view, moved in (not cut) where it would pass the panel's edge.
       const ImVec2 size = ImGui::CalcTextSize(notes.caption.c_str());

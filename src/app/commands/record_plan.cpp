@@ -124,10 +124,36 @@ static void plan_video(const RecordOptions& o, const core::Scene& scene, Plan& p
     throw core::InputError("--no-movie without --png-every would record nothing");
 }
 
+// The texts the overlay may write over the scene at once: an event's caption (the longest this scene can
+// have, with an arch of up to 9 disks), the slow-motion badge, and every note of --annotate (all at once: the
+// plan does not look at their times).
+static std::vector<std::string> over_scene_texts(const RecordOptions& o, const Plan& plan,
+                                                 const core::Model& model) {
+  std::vector<std::string> texts;
+  if (plan.overlay.events) {
+    std::string caption;
+    auto longer = [&](const std::string& c) {
+      if (c.size() > caption.size()) caption = c;
+    };
+    const core::Scene& scene = model.scene;
+    if (model.setup.clog_rule)
+      longer("arch removed (" + num6(scene.clog_timeout) + " s rule): 9 " +
+             (model.setup.any_polygon() ? "grains" : "disks"));
+    if (scene.vibration_amplitude > 0 || scene.vibration_gamma > 0)
+      longer("clog broken by vibration after 10.0 s");
+    if (plan.freeze) longer(plan.freeze.caption());
+    if (!caption.empty()) texts.push_back(caption);
+  }
+  if (o.speed < 1 || o.slowmo > 1 || plan.freeze) texts.push_back("slow motion 12.34x");
+  for (const auto& n : plan.notes) texts.push_back(n.text);
+  return texts;
+}
+
 // Each panel's views, its heading and the room for the overlay's boxes (a column on its right or a band below
 // its views), the same in every panel.
+// `texts`: what the overlay writes over the scene after the boxes (over_scene_texts), which need room too.
 static void lay_out_panels(const render::CameraSpec& camera, bool quiet, Plan& plan,
-                           std::vector<Panel>& panels) {
+                           std::vector<Panel>& panels, const std::vector<std::string>& texts) {
   const record::VideoSettings& video = plan.video;
   const size_t n_panels = panels.size();
   const int panel_w = video.width / static_cast<int>(n_panels);
@@ -159,15 +185,25 @@ static void lay_out_panels(const render::CameraSpec& camera, bool quiet, Plan& p
     return sets;
   };
   const bool colour_rows = !render::color_scale_label(plan.style).empty() || plan.style.chains;
-  auto column_for = [&](int band) {  // the column the panels need with a band of `band` pixels below
+  std::vector<std::pair<float, float>> text_sizes;
+  for (const auto& t : texts) text_sizes.push_back(render::text_box_estimate(t, em));
+  auto heading_w = [&](const std::string& label) {  // its text's width, estimated as the boxes' (one row)
+    return n_panels > 1 ? std::min(0.5f * render::kHeadingScale * em * static_cast<float>(label.size()),
+                                   static_cast<float>(panel_w) - 2 * em)
+                        : 0.0f;
+  };
+  auto column_for = [&](int band, bool* fits = nullptr) {  // the column the panels need, a band below
     int need = 0;
     for (size_t k = 0; k < n_panels; ++k) {
       const Panel& p = panels[k];
       const int height = video.height - heading_h - band;
+      bool panel_fits = true;
       need = std::max(
           need, render::overlay_margin([&](int width) { return views_in(p, k, width, height); }, p.geo,
                                        plan.overlay, static_cast<int>(k) * panel_w, panel_w, video.height,
-                                       p.odata.species_names, p.odata.title, colour_rows, heading_h, band));
+                                       p.odata.species_names, p.odata.title, colour_rows, heading_h, band,
+                                       text_sizes, &panel_fits, heading_w(p.label)));
+      if (fits && !panel_fits) *fits = false;
     }
     return need;
   };
@@ -177,14 +213,18 @@ static void lay_out_panels(const render::CameraSpec& camera, bool quiet, Plan& p
     for (const auto& v : sets.front()) best = std::max(best, v.px_per_m());
     return best;
   };
-  int margin = column_for(0), band = 0;
+  bool column_fits = true;
+  int margin = column_for(0, &column_fits), band = 0;
   if (margin > 0) {
-    // The lowest band that holds the boxes (where the views leave room at their bottom, below the outlet, it
-    // can be lower than the boxes), up to 45% of the height, in steps of a hundredth of it.
+    // The lowest band that holds the boxes and the texts (where the views leave room at their bottom, below
+    // the outlet, it can be lower than the boxes), in steps of a hundredth of the height: up to 45% of it
+    // where the column holds them too (the band then only where it leaves the views more zoom), up to 65%
+    // where the column does not (large text in a small picture: the views smaller, the texts clear).
     const int step = std::max(4, video.height / 100);
-    for (int b = step; b < 0.45 * (video.height - heading_h); b += step)
+    const double most = column_fits ? 0.45 : 0.65;
+    for (int b = step; b < most * (video.height - heading_h); b += step)
       if (column_for(b) == 0) {
-        if (zoom(0, b) > zoom(margin, 0)) band = b, margin = 0;
+        if (!column_fits || zoom(0, b) > zoom(margin, 0)) band = b, margin = 0;
         break;
       }
   }
@@ -269,7 +309,7 @@ Plan plan_recording(const RecordOptions& o, std::vector<Panel>& panels) {
         std::find(plan.style.tracked.begin(), plan.style.tracked.end(), key.camera.subject) ==
             plan.style.tracked.end())
       plan.style.tracked.push_back(key.camera.subject);
-  lay_out_panels(camera, o.quiet, plan, panels);
+  lay_out_panels(camera, o.quiet, plan, panels, over_scene_texts(o, plan, panels.front().model));
   // The look-ahead last: everything it could be refused for has been checked.
   if (look_ahead) {
     // The same scale in every panel: the largest of the panels' own.
