@@ -379,6 +379,7 @@ void Overlay::build(const core::Frame& f, const OverlayData& d, const OverlayOpt
   // The texts over the scene after the boxes, in the space they left: none over a box or another text.
   texts_.clear();
   if (heading_rect_[2] > heading_rect_[0]) texts_.push_back({"heading", heading_rect_, true});
+  place_texts(notes, views, em, o.events);  // widest first, then drawn where each was placed
   if (o.events) draw_events(notes, views, em);
   if (!notes.texts.empty()) draw_texts(notes, views, em);  // the user's own: shown whatever the overlay
   // A bold line between panels of a comparison, thin separators between views.

@@ -18,6 +18,8 @@
 #include "render/free_space.h"
 #include "render/palette.h"
 
+struct ImDrawList;  // ImGui's (the overlay draws with it; this header does not include ImGui)
+
 namespace render {
 
 struct OverlayOptions {
@@ -236,6 +238,23 @@ class Overlay {
   // `within` (where it stood in the last picture while that stays clear), else `want` (not clear). Blocks it.
   Box place_text(const std::string& name, float w, float h, const Box& within, std::array<float, 2> want,
                  float ax, float ay);
+  // The texts of a picture are placed widest first (a short note placed first near its point could leave
+  // a long one no clear spot): draw_events and draw_texts run once without drawing (`texts_dry_`: place_text
+  // only notes what each text wants), the wants are placed, then the two run again and place_text returns
+  // each text's spot (`texts_placed_`).
+  void place_texts(const Annotations& notes, const std::vector<View>& views, float em, bool events);
+  ImDrawList* text_draw_list();
+  struct TextWant {
+    std::string name;
+    float w, h;
+    Box within;
+    std::array<float, 2> want;
+    float ax, ay;
+  };
+  bool texts_dry_ = false;
+  std::vector<TextWant> text_wants_;
+  std::map<std::string, Box> texts_placed_;
+  std::shared_ptr<ImDrawList> scratch_;  // what the dry run draws into (shared: its type is ImGui's)
   std::map<std::string, Box> text_spots_;
   std::vector<PlacedText> texts_;
   std::optional<Box> spot(const std::string& key, float w, float h, const Box& within, int corner, float pad);
