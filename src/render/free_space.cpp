@@ -192,6 +192,10 @@ int heading_height(const std::string& text, float em, int panel_w) {
   return static_cast<int>(std::ceil(rows * 1.2f * hem + 0.3f * em));
 }
 
+float heading_width(const std::string& text, float em, int panel_w) {
+  return std::min(0.5f * kHeadingScale * em * static_cast<float>(text.size()), panel_w - 2.0f * em);
+}
+
 float overlay_em(int h, double font_scale) {
   return static_cast<float>(
       std::max(13, static_cast<int>(std::lround(h / 42.0 * std::clamp(font_scale, 0.25, 8.0)))));

@@ -81,6 +81,8 @@ float overlay_style_scale(float em);
 // where they were too few). 0 for no heading.
 constexpr float kHeadingScale = 1.6f;
 int heading_height(const std::string& text, float em, int panel_w);
+// The width of its widest row, estimated the same way (half a heading em a character, at most the wrap).
+float heading_width(const std::string& text, float em, int panel_w);
 
 // The text height the overlay uses in a picture h pixels tall at a font scale (the same rule as its font).
 float overlay_em(int h, double font_scale);

@@ -187,22 +187,17 @@ static void lay_out_panels(const render::CameraSpec& camera, bool quiet, Plan& p
   const bool colour_rows = !render::color_scale_label(plan.style).empty() || plan.style.chains;
   std::vector<std::pair<float, float>> text_sizes;
   for (const auto& t : texts) text_sizes.push_back(render::text_box_estimate(t, em));
-  auto heading_w = [&](const std::string& label) {  // its text's width, estimated as the boxes' (one row)
-    return n_panels > 1 ? std::min(0.5f * render::kHeadingScale * em * static_cast<float>(label.size()),
-                                   static_cast<float>(panel_w) - 2 * em)
-                        : 0.0f;
-  };
   auto column_for = [&](int band, bool* fits = nullptr) {  // the column the panels need, a band below
     int need = 0;
     for (size_t k = 0; k < n_panels; ++k) {
       const Panel& p = panels[k];
       const int height = video.height - heading_h - band;
       bool panel_fits = true;
-      need = std::max(
-          need, render::overlay_margin([&](int width) { return views_in(p, k, width, height); }, p.geo,
-                                       plan.overlay, static_cast<int>(k) * panel_w, panel_w, video.height,
-                                       p.odata.species_names, p.odata.title, colour_rows, heading_h, band,
-                                       text_sizes, &panel_fits, heading_w(p.label)));
+      need = std::max(need, render::overlay_margin(
+                                [&](int width) { return views_in(p, k, width, height); }, p.geo, plan.overlay,
+                                static_cast<int>(k) * panel_w, panel_w, video.height, p.odata.species_names,
+                                p.odata.title, colour_rows, heading_h, band, text_sizes, &panel_fits,
+                                n_panels > 1 ? render::heading_width(p.label, em, panel_w) : 0.0f));
       if (fits && !panel_fits) *fits = false;
     }
     return need;
