@@ -506,7 +506,7 @@ TEST_CASE("detect and import: a camera turned 2 degrees, calibrated from marked 
   }
   const std::string common = " --geometry " + kScene + " --fps 30.303030303";
   const auto det = cli("detect " + (d / "frames").string() + common + " --points " + points + " --out " +
-                       (d / "t.csv").string());
+                       (d / "t.csv").string() + " --rectified " + (d / "up.mp4").string());
   INFO(det.output);
   REQUIRE(det.code == 0);
   CHECK_THAT(det.output,
@@ -522,28 +522,45 @@ TEST_CASE("detect and import: a camera turned 2 degrees, calibrated from marked 
   CHECK(toml_number(meta, "points_residual_m") < 1e-6);
   // Positions in metres from the tracks, with the rotation and without it (the calibration of a straight
   // camera: what --scale and --origin alone gave).
-  std::map<long, std::vector<core::Vec2>> turned, ignored;
-  {
-    std::istringstream rows(slurp(d / "t.csv"));
+  std::map<long, std::vector<core::Vec2>> turned, ignored, upright;
+  app::Calibration flat = fit;
+  flat.rotation = 0;
+  auto positions = [](const fs::path& csv, const app::Calibration& cal,
+                      std::map<long, std::vector<core::Vec2>>& to) {
+    std::istringstream rows(slurp(csv));
     std::string line;
     std::getline(rows, line);
-    app::Calibration flat = fit;
-    flat.rotation = 0;
     while (std::getline(rows, line)) {
       std::vector<std::string> c;
       std::istringstream cs(line);
       for (std::string cell; std::getline(cs, cell, ',');) c.push_back(cell);
-      const long k = std::stol(c[0]);
-      turned[k].push_back(fit.to_metres(std::stod(c[2]), std::stod(c[3])));
-      ignored[k].push_back(flat.to_metres(std::stod(c[2]), std::stod(c[3])));
+      to[std::stol(c[0])].push_back(cal.to_metres(std::stod(c[2]), std::stod(c[3])));
     }
-  }
+  };
+  positions(d / "t.csv", fit, turned);
+  positions(d / "t.csv", flat, ignored);
   const io::Trajectory truth(d / "rec" / "trajectory.sstraj");
   const double diameter = 2 * 0.065, with = median_error(truth, turned),
                without = median_error(truth, ignored);
   INFO("median error with the rotation " << with / diameter << " d, without " << without / diameter << " d");
   CHECK(with < 0.01 * diameter);
   CHECK(without > 0.05 * diameter);
+  // The rectified film is the straight camera's: detected with the fit's scale and origin and no rotation,
+  // its grains stand where the recording's did. Its comment holds the upright calibration.
+  REQUIRE(det.output.find("rectified film -> ") != std::string::npos);
+  vision::FrameSource up((d / "up.mp4").string());
+  CHECK(up.width() == 960);
+  CHECK(up.height() == 540);
+  const auto again =
+      cli("detect " + (d / "up.mp4").string() + common + " --scale " + num(fit.scale) + " --origin " +
+          num(fit.origin_x) + "," + num(fit.origin_y) + " --out " + (d / "up.csv").string());
+  INFO(again.output);
+  REQUIRE(again.code == 0);
+  positions(d / "up.csv", flat, upright);
+  INFO("median error of the rectified film " << median_error(truth, upright) / diameter << " d");
+  CHECK(median_error(truth, upright) < 0.01 * diameter);
+  CHECK(upright.size() == turned.size());
+  CHECK(slurp(d / "t.meta.toml").find("rectified_film = ") != std::string::npos);
   // import takes the rotation from detect's calibration: the run's grains stand where the recording's did.
   const auto imp = cli("import " + (d / "t.csv").string() + " --quiet --out " + (d / "imp").string());
   INFO(imp.output);
@@ -560,6 +577,14 @@ TEST_CASE("detect and import: a camera turned 2 degrees, calibrated from marked 
   CHECK(bad.code == 2);
   CHECK_THAT(bad.output, Catch::Matchers::Contains("--rotation 60: expected -45 to 45 degrees"));
   CHECK_FALSE(fs::exists(d / "bad.csv"));
+  // The rectified film is an MP4, checked before any work; nothing is written.
+  const auto avi = cli("detect " + (d / "frames").string() + common + " --points " + points + " --out " +
+                       (d / "bad.csv").string() + " --rectified " + (d / "up.avi").string());
+  CHECK(avi.code == 2);
+  CHECK_THAT(avi.output,
+             Catch::Matchers::Contains("--rectified " + (d / "up.avi").string() + ": expected an .mp4 file"));
+  CHECK_FALSE(fs::exists(d / "bad.csv"));
+  CHECK_FALSE(fs::exists(d / "up.avi"));
 }
 
 TEST_CASE("detect: a lens's distortion found from a chessboard is taken out of the positions",
@@ -604,9 +629,10 @@ TEST_CASE("detect: a lens's distortion found from a chessboard is taken out of t
   }
   const io::Trajectory truth(d / "rec" / "trajectory.sstraj");
   const double diameter = 2 * 0.065;
-  auto error_of = [&](const std::string& extra, const std::string& name) {
-    const auto det = cli("detect " + (d / "frames").string() + " --geometry " + kScene +
-                         " --fps 30.303030303 --points " + points + extra + " --out " + (d / name).string());
+  auto error_of = [&](const std::string& extra, const std::string& name,
+                      const std::string& input = "frames") {
+    const auto det = cli("detect " + (d / input).string() + " --geometry " + kScene + " --fps 30.303030303" +
+                         extra + " --out " + (d / name).string());
     INFO(det.output);
     REQUIRE(det.code == 0);
     const std::string meta = slurp(d / (name.substr(0, name.size() - 4) + ".meta.toml"));
@@ -627,15 +653,24 @@ TEST_CASE("detect: a lens's distortion found from a chessboard is taken out of t
     }
     return std::make_pair(median_error(truth, found) / diameter, meta);
   };
-  const auto [with, meta] = error_of(" --lens " + (d / "board.png").string(), "lens.csv");
-  const auto [without, unused] = error_of("", "none.csv");
-  INFO("median error with the lens " << with << " d, without " << without << " d; k1 "
-                                     << toml_number(meta, "lens_k1") << ", rms "
+  const auto [with, meta] = error_of(" --points " + points + " --lens " + (d / "board.png").string() +
+                                         " --rectified " + (d / "up.mp4").string(),
+                                     "lens.csv");
+  const auto [without, unused] = error_of(" --points " + points, "none.csv");
+  // The rectified film is the ideal camera's: detected without a lens, at the scale and origin the lens's
+  // calibration found, its grains stand where the recording's did.
+  const auto [rectified, up_meta] =
+      error_of(" --scale " + num(scale_of(meta)) + " --origin " + num(toml_number(meta, "origin_x_px")) +
+                   "," + num(toml_number(meta, "origin_y_px")),
+               "up.csv", "up.mp4");
+  INFO("median error with the lens " << with << " d, without " << without << " d, of the rectified film "
+                                     << rectified << " d; k1 " << toml_number(meta, "lens_k1") << ", rms "
                                      << toml_number(meta, "lens_rms_px") << " px");
   CHECK(std::fabs(toml_number(meta, "lens_k1") + 0.12) < 0.01);
   CHECK(toml_number(meta, "lens_rms_px") < 0.5);
   CHECK(with < 0.01);
   CHECK(without > 2 * with);
+  CHECK(rectified < 0.01);
   // A chessboard of another pattern, or of another size than the film, is refused naming what to fix.
   const auto pattern =
       cli("detect " + (d / "frames").string() + " --geometry " + kScene + " --points " + points + " --lens " +

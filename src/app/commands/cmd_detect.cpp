@@ -4,6 +4,9 @@
 // recording's metadata; a lab film takes --scale and --origin, or two marked points.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+
+#include <opencv2/imgproc.hpp>
 
 #include "app/services/cli.h"
 #include "app/services/lab.h"
@@ -13,6 +16,7 @@
 #include "io/metadata.h"
 #include "io/output.h"
 #include "lab/tracks.h"
+#include "record/mp4.h"
 
 namespace app {
 
@@ -20,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DetectCliOptions {
-  std::string input, geometry, out, origin, points, frames, lens, pattern = "9x6";
+  std::string input, geometry, out, origin, points, frames, lens, pattern = "9x6", rectified;
   std::vector<std::string> overrides;
   double scale = 0, fps = 0, rotation = 0;
   double band = 0.25, edge = 60, max_step = 0.8;
@@ -77,6 +81,62 @@ void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, 
       st.dropped_outside, st.tracks, st.seconds / std::max(1L, st.frames), out.string().c_str());
 }
 
+// The [NAME] section of a calibration (and its lens, when present) in a metadata file.
+std::string calibration_toml(const std::string& name, const Calibration& cal, const vision::Lens& lens) {
+  std::string t = "\n[" + name + "]\nfrom = " + core::toml_string(cal.from) +
+                  "\nscale_m_per_px = " + core::format_toml_float(cal.scale, 12) +
+                  "\norigin_x_px = " + core::format_toml_float(cal.origin_x, 12) +
+                  "\norigin_y_px = " + core::format_toml_float(cal.origin_y, 12) +
+                  "\nrotation_deg = " + core::format_toml_float(cal.rotation * 180 / M_PI, 12) +
+                  "\npoints_residual_m = " + core::format_toml_float(cal.residual, 6) +
+                  "\nfps = " + core::format_toml_float(cal.fps, 12) + "\n";
+  if (lens.present)
+    t += "lens = " + core::toml_string(lens.from) + "  # chessboard pictures: x, y are ideal pixels" +
+         "\nlens_views = " + std::to_string(lens.views) +
+         "\nlens_rms_px = " + core::format_toml_float(lens.rms, 6) +
+         "\nlens_focal_px = " + core::format_toml_float(lens.camera(0, 0), 12) +
+         "\nlens_centre_x_px = " + core::format_toml_float(lens.camera(0, 2), 12) +
+         "\nlens_centre_y_px = " + core::format_toml_float(lens.camera(1, 2), 12) +
+         "\nlens_k1 = " + core::format_toml_float(lens.distortion[0], 12) +
+         "\nlens_k2 = " + core::format_toml_float(lens.distortion[1], 12) + "\n";
+  return t;
+}
+
+// --rectified: the film as the tracks see it, written frame by frame while detect reads it (app/services/
+// lab.h's Rectifier). Its MP4 comment holds the metadata: the scene, the command, and the upright film's own
+// calibration ([calibration]) beside the one it was made with ([rectified_from]).
+class RectifiedFilm {
+ public:
+  RectifiedFilm(const fs::path& path, const DetectJob& job, const core::Model& model, int width, int height)
+      : rect_(job.cal, job.lens, width, height) {
+    record::VideoSettings v;
+    v.width = rect_.width(), v.height = rect_.height();
+    v.fps = std::clamp(static_cast<int>(std::lround(job.cal.fps)), 1, 240);
+    v.frame_rate = job.cal.fps;
+    v.crf = 18;
+    io::RunInfo info;
+    info.command = command_line();
+    v.comment = io::metadata_toml(model, info) + calibration_toml("calibration", rect_.upright(), {}) +
+                calibration_toml("rectified_from", job.cal, job.lens);
+    mp4_ = std::make_unique<record::Mp4Writer>(path, v);
+  }
+  void add(const cv::Mat& frame) {
+    const cv::Mat upright = rect_.apply(frame);
+    image_.width = upright.cols, image_.height = upright.rows;
+    image_.rgba.resize(static_cast<size_t>(upright.cols) * upright.rows * 4);
+    cv::Mat rgba(upright.rows, upright.cols, CV_8UC4, image_.rgba.data());
+    cv::cvtColor(upright, rgba, cv::COLOR_BGR2RGBA);
+    mp4_->add(image_);
+  }
+  void finish() { mp4_->finish(); }
+  const Calibration& upright() const { return rect_.upright(); }
+
+ private:
+  Rectifier rect_;
+  std::unique_ptr<record::Mp4Writer> mp4_;  // removes its partial file unless finished
+  core::Image image_;
+};
+
 // The lens (from --lens), then the calibration of ideal pixels: --scale and --origin, marked points, or a
 // siloscope movie's own (true: `model` is then its scene).
 bool calibrate(const DetectCliOptions& o, DetectJob& job, core::Model& model) {
@@ -118,6 +178,13 @@ int detect(const DetectCliOptions& o) {
   fs::path meta_out = out;
   meta_out.replace_extension(".meta.toml");
   io::check_not_input(out, {fs::absolute(o.input)}, "tracks");
+  fs::path film_out;
+  if (!o.rectified.empty()) {
+    film_out = io::output_path(o.rectified);
+    if (film_out.extension() != ".mp4")
+      throw core::InputError("--rectified " + o.rectified + ": expected an .mp4 file");
+    io::check_not_input(film_out, {fs::absolute(o.input)}, "rectified film");
+  }
 
   DetectJob job;
   core::Model model;
@@ -167,6 +234,14 @@ int detect(const DetectCliOptions& o) {
   io::check_destination(out, o.force, "tracks", io::OutputKind::Csv, kHeader);
   // The sidecar is an output too: never over a file of the user's, replaced by --force only as written.
   io::check_destination(meta_out, o.force, "tracks' metadata", io::OutputKind::Csv, io::kMetadataFirstLine);
+  std::unique_ptr<io::OutputLock> film_lock;
+  std::unique_ptr<RectifiedFilm> film;
+  if (!film_out.empty()) {
+    film_lock = std::make_unique<io::OutputLock>(film_out);
+    io::check_destination(film_out, o.force, "rectified film", io::OutputKind::Movie);
+    film = std::make_unique<RectifiedFilm>(film_out, job, model, source.width(), source.height());
+    job.on_frame = [&film](const cv::Mat& frame, long) { film->add(frame); };
+  }
 
   Progress progress("detect", source.count() > 0 ? static_cast<double>(source.count()) : 1.0, !o.quiet);
   job.progress = [&](long k) { progress.update(static_cast<double>(k + 1)); };
@@ -175,6 +250,7 @@ int detect(const DetectCliOptions& o) {
   progress.finish();
   if (st.frames == 0)
     throw core::InputError(o.input + ": no frame could be decoded (or --frames lies past its end)");
+  if (film) film->finish();
 
   io::RunInfo info;
   info.command = command_line();
@@ -193,28 +269,18 @@ int detect(const DetectCliOptions& o) {
                 {"memory_frames", static_cast<long>(o.memory)},
                 {"bright", st.bright},
                 {"bright_found_from_first_frame", !o.bright}};
+  if (film) info.facts.push_back({"rectified_film", film_out.string()});
   std::string meta = io::metadata_toml(model, info);
-  meta += "\n[calibration]\nfrom = \"" + job.cal.from +
-          "\"\nscale_m_per_px = " + core::format_toml_float(job.cal.scale, 12) +
-          "\norigin_x_px = " + core::format_toml_float(job.cal.origin_x, 12) +
-          "\norigin_y_px = " + core::format_toml_float(job.cal.origin_y, 12) +
-          "\nrotation_deg = " + core::format_toml_float(job.cal.rotation * 180 / M_PI, 12) +
-          "\npoints_residual_m = " + core::format_toml_float(job.cal.residual, 6) +
-          "\nfps = " + core::format_toml_float(job.cal.fps, 12) + "\n";
-  if (job.lens.present) {
-    const vision::Lens& l = job.lens;
-    meta += "lens = " + core::toml_string(l.from) + "  # chessboard pictures: x, y are ideal pixels" +
-            "\nlens_views = " + std::to_string(l.views) +
-            "\nlens_rms_px = " + core::format_toml_float(l.rms, 6) +
-            "\nlens_focal_px = " + core::format_toml_float(l.camera(0, 0), 12) +
-            "\nlens_centre_x_px = " + core::format_toml_float(l.camera(0, 2), 12) +
-            "\nlens_centre_y_px = " + core::format_toml_float(l.camera(1, 2), 12) +
-            "\nlens_k1 = " + core::format_toml_float(l.distortion[0], 12) +
-            "\nlens_k2 = " + core::format_toml_float(l.distortion[1], 12) + "\n";
-  }
+  meta += calibration_toml("calibration", job.cal, job.lens);
   io::write_output(out, csv);
   io::write_output(meta_out, meta);
   print_detect(o, source, st, job.cal, out);
+  if (film && !o.quiet) {
+    const Calibration& up = film->upright();
+    std::printf("rectified film -> %s (upright, ideal pixels: --scale %s --origin %s,%s)\n", film_out.c_str(),
+                core::format_g(up.scale, 9).c_str(), core::format_g(up.origin_x, 9).c_str(),
+                core::format_g(up.origin_y, 9).c_str());
+  }
   return 0;
 }
 }  // namespace
@@ -239,6 +305,10 @@ void define_detect_command(CLI::App& command, Action& action) {
   cmd->add_option("--lens", o->lens,
                   "a picture of a chessboard filmed by the same camera (or a directory of them): the lens's "
                   "distortion taken out of every position, the tracks then in ideal pixels");
+  cmd->add_option(
+      "--rectified", o->rectified,
+      "also write the film as the tracks see it, MP4: the lens's distortion taken out and the "
+      "container turned upright, the outlet's centre where it was (the calibration in its comment)");
   cmd->add_option("--pattern", o->pattern, "the chessboard's inner corners, COLUMNSxROWS (default 9x6)");
   cmd->add_option(
       "--rotation", o->rotation,

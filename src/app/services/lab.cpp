@@ -266,6 +266,31 @@ std::vector<vision::Circle> detect_frame(cv::Mat frame, long k, const DetectJob&
 
 }  // namespace
 
+Rectifier::Rectifier(const Calibration& cal, const vision::Lens& lens, int width, int height) {
+  upright_ = cal;
+  upright_.rotation = 0;
+  upright_.residual = 0;
+  upright_.from = "rectified (" + cal.from + ")";
+  cv::Mat mx(height + (height & 1), width + (width & 1), CV_32F), my(mx.size(), CV_32F);
+  for (int v = 0; v < mx.rows; ++v)
+    for (int u = 0; u < mx.cols; ++u) {
+      const core::Vec2 ideal = cal.to_pixels(upright_.to_metres(u, v));
+      const cv::Point2d raw = lens.raw({ideal.x, ideal.y});
+      mx.at<float>(v, u) = static_cast<float>(raw.x);
+      my.at<float>(v, u) = static_cast<float>(raw.y);
+    }
+  cv::convertMaps(mx, my, map_, map_fraction_, CV_16SC2);
+}
+
+cv::Mat Rectifier::apply(const cv::Mat& frame) const {
+  cv::Mat bgr = frame;
+  if (frame.channels() == 1) cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
+  if (frame.channels() == 4) cv::cvtColor(frame, bgr, cv::COLOR_BGRA2BGR);
+  cv::Mat out;
+  cv::remap(bgr, out, map_, map_fraction_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0, 0, 0));
+  return out;
+}
+
 std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,
                           DetectStats& stats) {
   const core::Geometry& geo = model.setup.geo;
@@ -333,6 +358,7 @@ std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, con
     if (!source.next(frame)) break;
     if (k < job.first) continue;
     if (job.last >= 0 && k > job.last) break;
+    if (job.on_frame) job.on_frame(frame, k);
     if (!polarity_known) {
       cv::Mat picture = job.camera ? job.camera(frame, k) : frame, inverted;
       cv::bitwise_not(picture(region), inverted);

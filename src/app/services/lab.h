@@ -70,6 +70,26 @@ struct DetectJob {
   double drop = 0;
   std::uint64_t seed = 1;
   std::function<void(long)> progress;
+  // Each frame used, as decoded (before detection), in order, on the calling thread: detect --rectified.
+  std::function<void(const cv::Mat&, long)> on_frame;
+};
+
+// The film as the tracks see it (detect --rectified): every frame carried through the lens to ideal pixels
+// and turned upright (the container's axis vertical), the outlet's centre kept at its pixel and the scale
+// unchanged; what lies outside the film is black. The width and height are made even (a movie's yuv420p) by
+// one column or row more.
+class Rectifier {
+ public:
+  Rectifier(const Calibration& cal, const vision::Lens& lens, int width, int height);
+  cv::Mat apply(const cv::Mat& frame) const;  // BGR or grey in, BGR out
+  // The rectified film's own calibration: the same scale and origin, no rotation, no lens.
+  const Calibration& upright() const { return upright_; }
+  int width() const { return map_.cols; }
+  int height() const { return map_.rows; }
+
+ private:
+  cv::Mat map_, map_fraction_;  // cv::remap's fixed-point tables
+  Calibration upright_;
 };
 
 // Every frame of `source` detected and linked; the CSV's text. Disks whose centre lies outside the container
