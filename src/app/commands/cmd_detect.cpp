@@ -269,7 +269,7 @@ int detect(const DetectCliOptions& o) {
                 {"memory_frames", static_cast<long>(o.memory)},
                 {"bright", st.bright},
                 {"bright_found_from_first_frame", !o.bright}};
-  if (film) info.facts.push_back({"rectified_film", film_out.string()});
+  if (film) info.facts.push_back({"rectified_film", o.rectified});
   std::string meta = io::metadata_toml(model, info);
   meta += calibration_toml("calibration", job.cal, job.lens);
   io::write_output(out, csv);
