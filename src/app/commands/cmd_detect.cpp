@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <memory>
 
-#include <opencv2/imgproc.hpp>
-
 #include "app/services/cli.h"
 #include "app/services/lab.h"
 #include "app/services/terminal.h"
@@ -121,11 +119,7 @@ class RectifiedFilm {
     mp4_ = std::make_unique<record::Mp4Writer>(path, v);
   }
   void add(const cv::Mat& frame) {
-    const cv::Mat upright = rect_.apply(frame);
-    image_.width = upright.cols, image_.height = upright.rows;
-    image_.rgba.resize(static_cast<size_t>(upright.cols) * upright.rows * 4);
-    cv::Mat rgba(upright.rows, upright.cols, CV_8UC4, image_.rgba.data());
-    cv::cvtColor(upright, rgba, cv::COLOR_BGR2RGBA);
+    rect_.apply(frame, image_);
     mp4_->add(image_);
   }
   void finish() { mp4_->finish(); }

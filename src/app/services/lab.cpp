@@ -282,13 +282,16 @@ Rectifier::Rectifier(const Calibration& cal, const vision::Lens& lens, int width
   cv::convertMaps(mx, my, map_, map_fraction_, CV_16SC2);
 }
 
-cv::Mat Rectifier::apply(const cv::Mat& frame) const {
+void Rectifier::apply(const cv::Mat& frame, core::Image& out) const {
   cv::Mat bgr = frame;
   if (frame.channels() == 1) cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
   if (frame.channels() == 4) cv::cvtColor(frame, bgr, cv::COLOR_BGRA2BGR);
-  cv::Mat out;
-  cv::remap(bgr, out, map_, map_fraction_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0, 0, 0));
-  return out;
+  cv::Mat upright;
+  cv::remap(bgr, upright, map_, map_fraction_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0, 0, 0));
+  out.width = upright.cols, out.height = upright.rows;
+  out.rgba.resize(static_cast<size_t>(upright.cols) * static_cast<size_t>(upright.rows) * 4);
+  cv::Mat rgba(upright.rows, upright.cols, CV_8UC4, out.rgba.data());
+  cv::cvtColor(upright, rgba, cv::COLOR_BGR2RGBA);
 }
 
 std::string detect_tracks(vision::FrameSource& source, const DetectJob& job, const core::Model& model,

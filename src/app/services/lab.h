@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 
+#include "core/image.h"
 #include "core/model.h"
 #include "vision/detect.h"
 #include "vision/lens.h"
@@ -81,7 +82,8 @@ struct DetectJob {
 class Rectifier {
  public:
   Rectifier(const Calibration& cal, const vision::Lens& lens, int width, int height);
-  cv::Mat apply(const cv::Mat& frame) const;  // BGR or grey in, BGR out
+  // A frame (BGR, BGRA or grey) rectified into `out`, RGBA as record's movie writer takes it.
+  void apply(const cv::Mat& frame, core::Image& out) const;
   // The rectified film's own calibration: the same scale and origin, no rotation, no lens.
   const Calibration& upright() const { return upright_; }
   int width() const { return map_.cols; }
