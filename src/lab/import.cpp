@@ -56,6 +56,7 @@ class Importer {
     check_calibration();
     release();
     clogs_and_arches();
+    out_.paths = {std::move(t_), std::move(pos_), std::move(angle_), std::move(present_)};
     return std::move(out_);
   }
 
@@ -446,30 +447,6 @@ class Importer {
     return true;
   }
 
-  // Frame k's grains: positions, angles, velocities from the neighbouring frames (unseen grains parked, at
-  // rest).
-  void fill_particles(int k, core::Frame& f) const {
-    f.particles.resize(static_cast<size_t>(n_));
-    for (int g = 0; g < n_; ++g) {
-      core::Particle& p = f.particles[g];
-      p.radius = static_cast<float>(out_.radius[g]);
-      p.species = out_.species[g];
-      p.force = 0;
-      p.vx = p.vy = 0;
-      p.x = static_cast<float>(pos_[k][g].x);
-      p.y = static_cast<float>(pos_[k][g].y);
-      p.angle = 0;
-      if (!present_[k][g]) continue;
-      p.angle = angle_[k][g];
-      const int a = k > 0 && present_[k - 1][g] ? k - 1 : k;
-      const int b = k + 1 < nf_ && present_[k + 1][g] ? k + 1 : k;
-      if (b > a) {
-        p.vx = static_cast<float>((pos_[b][g].x - pos_[a][g].x) / (t_[b] - t_[a]));
-        p.vy = static_cast<float>((pos_[b][g].y - pos_[a][g].y) / (t_[b] - t_[a]));
-      }
-    }
-  }
-
   // The frames before frame k, from the arch's formation on, show the clog confirmed at k as forming: the
   // arch from the instant it stood, as a simulated run's trajectory has it (app/services/hindsight.h).
   void show_forming(int k, const core::ClogState& st) {
@@ -538,7 +515,6 @@ class Importer {
       core::Frame& f = out_.frames[k];
       f.t = t_[k];
       f.step = static_cast<std::uint64_t>(k);
-      fill_particles(k, f);
       f.clog_open = st.open;
       f.clog_number = st.number;
       f.clog_start = st.start;
@@ -555,6 +531,31 @@ class Importer {
 };
 
 }  // namespace
+
+void Imported::particles_at(size_t k, std::vector<core::Particle>& out) const {
+  const size_t n = radius.size(), nf = paths.t.size();
+  const std::vector<core::Vec2>& pos = paths.pos[k];
+  out.resize(n);
+  for (size_t g = 0; g < n; ++g) {
+    core::Particle& p = out[g];
+    p.radius = static_cast<float>(radius[g]);
+    p.species = species[g];
+    p.force = 0;
+    p.vx = p.vy = 0;
+    p.x = static_cast<float>(pos[g].x);
+    p.y = static_cast<float>(pos[g].y);
+    p.angle = 0;
+    if (!paths.present[k][g]) continue;
+    p.angle = paths.angle[k][g];
+    const size_t a = k > 0 && paths.present[k - 1][g] ? k - 1 : k;
+    const size_t b = k + 1 < nf && paths.present[k + 1][g] ? k + 1 : k;
+    if (b > a) {
+      const double dt = paths.t[b] - paths.t[a];
+      p.vx = static_cast<float>((paths.pos[b][g].x - paths.pos[a][g].x) / dt);
+      p.vy = static_cast<float>((paths.pos[b][g].y - paths.pos[a][g].y) / dt);
+    }
+  }
+}
 
 Imported import_tracks(Tracks& tracks, const core::Model& model, const ImportOptions& opt) {
   return Importer(tracks, model, opt).run();

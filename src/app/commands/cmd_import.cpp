@@ -17,6 +17,7 @@
 #include "app/services/run_outputs.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/interrupt.h"
 #include "core/model.h"
 #include "io/csv_table.h"
 #include "io/events_csv.h"
@@ -305,7 +306,15 @@ int import_run(ImportCliOptions o) {
     ti.species = im.species;
     ti.metadata = metadata;
     io::TrajectoryWriter w(dir.file(io::run_file::kTrajectory), ti);
-    for (size_t k = 0; k < im.frames.size(); ++k) w.add(im.frames[k], 0, im.between[k]);
+    std::vector<core::Particle> particles;  // one frame's at a time (lab/import.h)
+    for (size_t k = 0; k < im.frames.size(); ++k) {
+      core::throw_if_interrupted();
+      core::Frame& f = im.frames[k];
+      im.particles_at(k, particles);
+      f.particles.swap(particles);
+      w.add(f, 0, im.between[k]);
+      f.particles.swap(particles);
+    }
     w.add_events(im.after);
     w.close();
   }
