@@ -166,6 +166,11 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
   refused("detect " + (d / "frames").string() + " --geometry " + kScene + " --out " +
               (d / "out" / "t.csv").string(),
           "no calibration: give --scale and --origin, or --points");
+  // Polygons are not found as disks quietly: the species is named, with the way out.
+  refused("detect " + (d / "frames").string() + " --scale 0.004 --origin 400,600 --geometry " +
+              std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/pentagons.toml --out " +
+              (d / "out" / "t.csv").string(),
+          "species.pentagons.sides = 5: detect finds disks only");
 }
 
 TEST_CASE("round trip: a filmed recording's grains, clogs and arches come back through detect and import",

@@ -165,6 +165,40 @@ bool calibrate(const DetectCliOptions& o, DetectJob& job, core::Model& model) {
   return have_model;
 }
 
+// The container and its species (a siloscope movie's own scene, or --geometry), each species' radius in
+// pixels at the calibration.
+core::Model detect_geometry(const DetectCliOptions& o, DetectJob& job) {
+  core::Model model;
+  bool have_model = calibrate(o, job, model);
+  if (!o.geometry.empty()) {
+    core::Scene s = core::load_scene(o.geometry);
+    core::apply_overrides(s, o.overrides);
+    model = core::compile(s);
+    have_model = true;
+  }
+  if (!have_model)
+    throw core::InputError(
+        "--geometry: needed for a film that is not a siloscope movie (the container and its species' sizes)");
+  for (const core::SpeciesDef& sp : model.setup.species) {
+    // Found as disks, polygons would come back as disks quietly: their outlines are not circles.
+    if (sp.polygon())
+      throw core::InputError(
+          "species." + sp.name + ".sides = " + std::to_string(sp.sides) +
+          ": detect finds disks only, and a polygon's outline is not a circle; track "
+          "polygons with a tool that measures their outlines and import the tracks, or give "
+          "--set species." +
+          sp.name + ".sides=0 to find them as disks of equal area");
+    job.detect.radius_px.push_back(sp.radius / job.cal.scale);
+  }
+  for (double r : job.detect.radius_px)
+    if (r < 3)
+      throw core::InputError(
+          "the grains are " + core::format_g(r, 3) +
+          " pixels in radius at this calibration: at least 3 are needed (film closer, or a larger "
+          "picture)");
+  return model;
+}
+
 int detect(const DetectCliOptions& o) {
   check_options(o);
   const fs::path out = io::output_path(o.out);
@@ -181,25 +215,7 @@ int detect(const DetectCliOptions& o) {
   }
 
   DetectJob job;
-  core::Model model;
-  bool have_model = calibrate(o, job, model);
-  if (!o.geometry.empty()) {
-    core::Scene s = core::load_scene(o.geometry);
-    core::apply_overrides(s, o.overrides);
-    model = core::compile(s);
-    have_model = true;
-  }
-  if (!have_model)
-    throw core::InputError(
-        "--geometry: needed for a film that is not a siloscope movie (the container and its species' sizes)");
-  for (const core::SpeciesDef& sp : model.setup.species)
-    job.detect.radius_px.push_back(sp.radius / job.cal.scale);
-  for (double r : job.detect.radius_px)
-    if (r < 3)
-      throw core::InputError(
-          "the grains are " + core::format_g(r, 3) +
-          " pixels in radius at this calibration: at least 3 are needed (film closer, or a larger "
-          "picture)");
+  core::Model model = detect_geometry(o, job);
   job.detect.band = o.band;
   job.detect.edge_threshold = o.edge;
   job.max_step = o.max_step;
