@@ -53,6 +53,10 @@ class BuildWithCMake(build_py):
         bindir = os.path.join(package, "bin")
         os.makedirs(bindir, exist_ok=True)
         shutil.copy2(os.path.join(build, "siloscope"), bindir)
+        # ... and its picture and video readers in BINDIR/lib/siloscope (vision/codecs.h).
+        os.makedirs(os.path.join(bindir, "lib", "siloscope"), exist_ok=True)
+        shutil.copy2(os.path.join(build, "lib", "siloscope", "siloscope_codecs.so"),
+                     os.path.join(bindir, "lib", "siloscope"))
         share = os.path.join(bindir, "share", "siloscope")
         shutil.rmtree(share, ignore_errors=True)
         shutil.copytree(os.path.join(build, "share", "siloscope"), share,

@@ -11,12 +11,11 @@ extern "C" {
 #include <libavutil/log.h>
 }
 #include <opencv2/core/utils/logger.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "core/error.h"
 #include "core/format.h"
+#include "vision/codecs.h"
 
 namespace vision {
 
@@ -251,7 +250,7 @@ cv::Mat add_camera(const cv::Mat& clean, double level, std::uint64_t seed) {
 }
 
 struct FrameSource::Impl {
-  cv::VideoCapture video;
+  std::unique_ptr<VideoReader> video;
   std::vector<std::filesystem::path> files;
   size_t next = 0;
   std::string path;
@@ -280,7 +279,9 @@ std::vector<std::filesystem::path> pictures_in(const std::filesystem::path& dir)
   return files;
 }
 
-FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
+FrameSource::FrameSource(const std::string& path) {
+  codecs();  // the readers' module loaded (or its absence said) before anything is held
+  impl_ = new Impl;
   namespace fs = std::filesystem;
   impl_->path = path;
   std::error_code ec;
@@ -295,7 +296,7 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
       throw core::InputError(path + ": a directory with no frames (PNG, JPEG, BMP or TIFF files)");
     }
     count_ = static_cast<long>(impl_->files.size());
-    const cv::Mat first = cv::imread(impl_->files.front().string(), cv::IMREAD_COLOR);
+    const cv::Mat first = codecs().read_picture(impl_->files.front().string(), cv::IMREAD_COLOR);
     if (first.empty()) {
       const std::string f = impl_->files.front().string();
       delete impl_;
@@ -305,10 +306,8 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
     return;
   }
   if (tiff_name(path)) {  // a stack of frames in one TIFF, or a single picture
-    impl_->pages = cv::imcount(path, cv::IMREAD_COLOR);
-    cv::Mat first;
-    if (impl_->pages == 0 || !cv::imreadmulti(path, impl_->chunk, 0, 1, cv::IMREAD_COLOR) ||
-        impl_->chunk.empty()) {
+    impl_->pages = codecs().count_pages(path);
+    if (impl_->pages == 0 || !codecs().read_pages(path, 0, 1, impl_->chunk)) {
       delete impl_;
       throw core::InputError(path + ": cannot be decoded as a TIFF image or stack");
     }
@@ -323,15 +322,16 @@ FrameSource::FrameSource(const std::string& path) : impl_(new Impl) {
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
   av_log_set_level(AV_LOG_QUIET);
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
-  if (!impl_->video.open(path, cv::CAP_FFMPEG) || !impl_->video.isOpened()) {
+  impl_->video = codecs().open_video(path);
+  if (!impl_->video) {
     delete impl_;
     throw core::InputError(path +
                            ": cannot be decoded as a video (FFmpeg found no video stream it can read)");
   }
-  fps_ = impl_->video.get(cv::CAP_PROP_FPS);
-  count_ = static_cast<long>(impl_->video.get(cv::CAP_PROP_FRAME_COUNT));
-  width_ = static_cast<int>(impl_->video.get(cv::CAP_PROP_FRAME_WIDTH));
-  height_ = static_cast<int>(impl_->video.get(cv::CAP_PROP_FRAME_HEIGHT));
+  fps_ = impl_->video->fps;
+  count_ = impl_->video->count;
+  width_ = impl_->video->width;
+  height_ = impl_->video->height;
   if (width_ <= 0 || height_ <= 0) {
     delete impl_;
     throw core::InputError(path + ": cannot be decoded as a video (no frame size)");
@@ -346,7 +346,7 @@ bool FrameSource::next(cv::Mat& frame) {
   if (!impl_->files.empty()) {
     if (impl_->next >= impl_->files.size()) return false;
     const std::string f = impl_->files[impl_->next++].string();
-    frame = cv::imread(f, cv::IMREAD_COLOR);
+    frame = codecs().read_picture(f, cv::IMREAD_COLOR);
     if (frame.empty()) throw core::InputError(f + ": cannot be decoded as an image");
     if (frame.cols != width_ || frame.rows != height_)
       throw core::InputError(f + ": " + std::to_string(frame.cols) + "x" + std::to_string(frame.rows) +
@@ -360,8 +360,7 @@ bool FrameSource::next(cv::Mat& frame) {
       impl_->chunk.clear();
       impl_->chunk_start = impl_->next;
       const int n = static_cast<int>(std::min<size_t>(32, impl_->pages - impl_->next));
-      if (!cv::imreadmulti(impl_->path, impl_->chunk, static_cast<int>(impl_->next), n, cv::IMREAD_COLOR) ||
-          impl_->chunk.empty())
+      if (!codecs().read_pages(impl_->path, static_cast<int>(impl_->next), n, impl_->chunk))
         throw core::InputError(impl_->path + ": page " + std::to_string(impl_->next) + " of " +
                                std::to_string(impl_->pages) + " cannot be decoded");
     }
@@ -373,7 +372,7 @@ bool FrameSource::next(cv::Mat& frame) {
                              " where the first is " + std::to_string(width_) + "x" + std::to_string(height_));
     return true;
   }
-  if (impl_->video.read(frame) && !frame.empty()) {
+  if (impl_->video->read(frame)) {
     ++read_;
     return true;
   }

@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "vision/codecs.h"
 #include "vision/detect.h"
 
 namespace vision {
@@ -68,7 +68,7 @@ Lens lens_from_chessboard(const std::string& pictures, cv::Size pattern) {
   std::vector<std::vector<cv::Point2f>> image;
   cv::Size size;
   for (const std::string& f : files) {
-    const cv::Mat grey = cv::imread(f, cv::IMREAD_GRAYSCALE);
+    const cv::Mat grey = codecs().read_picture(f, cv::IMREAD_GRAYSCALE);
     if (grey.empty()) throw core::InputError("--lens " + f + ": cannot be decoded as a picture");
     if (size.area() == 0) size = grey.size();
     if (grey.size() != size)

@@ -46,6 +46,12 @@ pth=$(cat "$root/usr/lib/python3/dist-packages/siloscope.pth")
 test "$pth" = "/usr/share/siloscope/python"
 # The compiled module is under /usr/lib/siloscope (architecture-dependent), and the package finds it.
 ls "$root"/usr/lib/siloscope/_siloscope*.so > /dev/null
+# ... and the picture and video readers the binary loads when it reads a film (vision/codecs.h).
+(cd "$work" && "$root/usr/bin/siloscope" record paper --duration 0.3 --set settle_time=1 --size 640x360 \
+  --camera window:-1,-0.2,1,0.9 --overlay none --arch-halo off --quiet --out "$work/film" &&
+  "$root/usr/bin/siloscope" detect "$work/film.mp4" --out "$work/film.csv" > "$work/detect.log") ||
+  { cat "$work/detect.log"; exit 1; }
+[ "$(wc -l < "$work/film.csv")" -gt 100 ] || { echo "FAIL: detect found $(wc -l < "$work/film.csv") rows"; exit 1; }
 version=$("$root/usr/bin/siloscope" --version | cut -d' ' -f1)
 PYTHONPATH="$root/usr/share/siloscope/python" /usr/bin/python3 -c "
 import siloscope

@@ -23,6 +23,11 @@ test -s sheet.png
 "$bin" run "$tmp/prefix/share/siloscope/scenes/paper.toml" --duration 1 --trajectory-fps 10 --quiet --out rec
 "$bin" share rec --out rec.html > share.log || { cat share.log; exit 1; }
 grep -q "siloscope.share" rec.html
+# A film read back (detect): the picture and video readers are a module the binary loads from PREFIX/lib/siloscope.
+"$bin" record "$tmp/prefix/share/siloscope/scenes/paper.toml" --duration 0.3 --set settle_time=1 --size 640x360 \
+  --camera window:-1,-0.2,1,0.9 --overlay none --arch-halo off --quiet --out film
+"$bin" detect film.mp4 --out film.csv > detect.log || { cat detect.log; exit 1; }
+[ "$(wc -l < film.csv)" -gt 100 ] || { echo "FAIL: detect found $(wc -l < film.csv) rows"; cat detect.log; exit 1; }
 PYTHONPATH="$tmp/prefix/share/siloscope/python" /usr/bin/python3 -c "import siloscope; print(siloscope.read_run('run'))"
 # The installed package: its in-process module (not in a sanitized build, which makes none: CMakeLists.txt), and
 # siloscope.run() finding PREFIX/bin/siloscope (not PATH).

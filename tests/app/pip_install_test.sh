@@ -32,6 +32,12 @@ p.step(1000)
 assert p.render(320, 180).shape == (180, 320, 3)
 "
 env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run paper --duration 1 --quiet --out preset
+# A film read back: the picture and video readers are a module beside the package's binary (bin/lib/siloscope).
+env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" record paper --duration 0.3 --set settle_time=1 --size 640x360 \
+  --camera window:-1,-0.2,1,0.9 --overlay none --arch-halo off --quiet --out film
+env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" detect film.mp4 --out film.csv > detect.log ||
+  { cat detect.log; exit 1; }
+[ "$(wc -l < film.csv)" -gt 100 ] || { echo "FAIL: detect found $(wc -l < film.csv) rows"; exit 1; }
 env -u SILOSCOPE_BINARY "$tmp/env/bin/siloscope" run "$scene" --seed 7 --duration 20 --quiet --out run
 cmp py-exits.csv run/exits.csv
 echo "pip-installed siloscope: Simulation and the siloscope command agree ($(wc -l < run/exits.csv) lines)"
