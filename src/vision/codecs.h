@@ -1,8 +1,8 @@
 // Pictures and videos read with OpenCV's imgcodecs and videoio, behind an interface. Those two libraries
-// bring some 240 shared libraries with them (GDAL, GDCM, GStreamer among them): linked into the binary, they
-// cost every start of every command 0.2 s, a sweep's realizations and the inspector's launch included. They
-// live in a module beside the binary (siloscope_codecs.so: BINDIR/lib/siloscope here, PREFIX/lib/siloscope
-// installed), loaded the first time a command reads a picture or a video.
+// bring about 100 shared libraries nothing else needs (GDAL, GDCM, GStreamer among them): linked into the
+// binary, they cost every start of every command 0.2 s, a sweep's realizations and the inspector's launch
+// included. They live in a module beside the binary (siloscope_codecs.so: BINDIR/lib/siloscope here,
+// PREFIX/lib/siloscope installed), loaded the first time a command reads a picture or a video.
 #pragma once
 
 #include <memory>
