@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <unordered_map>
+#include <utility>
 
 #include "core/clog.h"
 #include "core/error.h"
@@ -20,22 +23,51 @@ namespace lab {
 
 namespace {
 
+// A detection where its track needs it: the tracks' points lie one track after another (on disk, as the
+// detections by frame do), so a pass over the grains reads them in order.
 struct Point {
+  Detection det;
   int frame;
-  int index;  // of the detection in its frame (Importer::d)
+  int index;  // of the detection in its frame
 };
 struct Track {
+  Track(long i, std::span<Point> p) : id(i), points(p), first(p.front().frame), last(p.back().frame) {}
   long id;
-  std::vector<Point> points;  // in frame order
-  bool joined = false;        // merged into another
-  int start() const { return points.front().frame; }
-  int end() const { return points.back().frame; }
+  std::span<Point> points;  // in frame order
+  bool joined = false;      // merged into another
+  std::vector<int> chain;   // the tracks joined after this one, in order (while joining)
+  int first, last;          // frames (kept here: reading them from the points would bring their pages in)
+  int start() const { return first; }
+  int end() const { return last; }
 };
 
 // The track ends where a grain leaves through the outlet: within a diameter above the outlet line, inside the
 // opening (or already below it).
 bool ends_at_outlet(const Detection& d, const core::Geometry& geo) {
   return d.y < -d.r || (d.y < 2 * d.r && std::fabs(d.x) < geo.half_aperture + 0.5 * d.r);
+}
+
+// The k-th smallest (from 0) of values >= 0, exactly, as a sort would give it, without holding them in
+// memory: their bits order them as their values do, so four passes of a 16-bit histogram each find it.
+double kth_smallest(const io::Spill<double>& v, size_t k) {
+  std::uint64_t prefix = 0;
+  for (int shift = 48; shift >= 0; shift -= 16) {
+    const std::uint64_t above = shift == 48 ? 0 : ~std::uint64_t{0} << (shift + 16);  // the bits found
+    std::vector<size_t> count(size_t{1} << 16, 0);
+    for (size_t i = 0; i < v.size(); ++i) {
+      std::uint64_t b;
+      std::memcpy(&b, &v[i], sizeof b);
+      if ((b & above) == prefix) ++count[(b >> shift) & 0xffff];
+      if (i % (size_t{1} << 22) == (size_t{1} << 22) - 1) v.release();
+    }
+    v.release();
+    size_t digit = 0;
+    while (k >= count[digit]) k -= count[digit++];
+    prefix |= static_cast<std::uint64_t>(digit) << shift;
+  }
+  double out;
+  std::memcpy(&out, &prefix, sizeof out);
+  return out;
 }
 
 // The import's steps over one track file, each a method: frame times, tracks joined into grains, each grain's
@@ -51,12 +83,11 @@ class Importer {
     grain_sizes();
     measure_noise();
     find_exits();
-    grain_paths();  // the last step that reads the detections: it may release them as it goes
     park_unseen();
     check_calibration();
     release();
     clogs_and_arches();
-    out_.paths = {std::move(t_), std::move(pos_), std::move(angle_), std::move(present_)};
+    paths_.t = std::move(t_);
     return std::move(out_);
   }
 
@@ -72,26 +103,55 @@ class Importer {
   int ng_ = 0;  // grains (tracks after joining)
   double rmax_ = 0;
   std::vector<double> t_;
-  std::vector<Track> grains_;
+  std::vector<Track> grains_;      // their points in track_points_, or grain_points_ when joined
+  io::Spill<Point> track_points_;  // by the file's ids
+  io::Spill<Point> grain_points_;  // of the grains joined from several tracks
+  std::vector<std::vector<std::pair<long, int>>> pieces_;  // per grain: its tracks' (file id, first frame)
   std::vector<double> grain_radius_;
   std::vector<core::Species> grain_species_;
   std::vector<int> slot_of_;                             // per grain
   std::vector<std::vector<std::pair<int, long>>> held_;  // per slot: (first frame, file id) of its grains
-  std::vector<std::vector<core::Vec2>> pos_;
-  std::vector<std::vector<float>> angle_;
-  std::vector<std::vector<bool>> present_;
+  Paths& paths_ = out_.paths;
   std::vector<std::vector<int>> exits_at_;
 
-  const Detection& d(const Point& p) const { return tracks_.frames[p.frame].found[p.index]; }
+  static const Detection& d(const Point& p) { return p.det; }
+  core::Vec2& pos(int k, int g) const { return paths_.pos[static_cast<size_t>(k) * paths_.n + g]; }
+  float& ang(int k, int g) const { return paths_.angle[static_cast<size_t>(k) * paths_.n + g]; }
+  std::uint8_t& seen(int k, int g) const { return paths_.present[static_cast<size_t>(k) * paths_.n + g]; }
+  // The pages of the detections, the grains' points and the paths read so far leave memory (they stay on
+  // disk) once about kTouched bytes of them were read: a pass over frames or over grains reads them one
+  // after another; filling a grain's gap reaches into the paths a page a frame.
+  static constexpr size_t kTouched = size_t{32} << 20;
+  static constexpr size_t kFaultAround = size_t{64} << 10;  // what one read brings in (Linux's fault-around)
+  mutable size_t touched_ = 0;
+  void breathe(size_t bytes) const {
+    touched_ += bytes;
+    if (touched_ < kTouched) return;
+    touched_ = 0;
+    tracks_.detections.release();
+    track_points_.release();
+    grain_points_.release();
+    paths_.release();
+  }
+  void breathe_frame(int k) const {
+    breathe(tracks_.frames[k].found.size() * sizeof(Detection) + paths_.n * (sizeof(core::Vec2) + 5));
+  }
+  void breathe_grain(const Track& tr) const { breathe(tr.points.size() * sizeof(Point)); }
+  void breathe_out() const { breathe(kTouched); }
 
   // A track that ends where its grain leaves through the outlet: its last position in the opening and within
   // a diameter above the outlet line, or moving down so fast that it would be there a frame later (a small
   // grain falls farther than its diameter between two frames).
   bool leaves_at_outlet(const Track& tr) const {
-    const Detection& last = d(tr.points.back());
+    return leaves_at_outlet(tr.points.back(),
+                            tr.points.size() < 2 ? nullptr : &tr.points[tr.points.size() - 2]);
+  }
+  // ... its last point q, the one before p (nullptr: none).
+  bool leaves_at_outlet(const Point& q, const Point* before) const {
+    const Detection& last = d(q);
     if (ends_at_outlet(last, geo_)) return true;
-    if (tr.points.size() < 2) return false;
-    const Point &p = tr.points[tr.points.size() - 2], &q = tr.points.back();
+    if (!before) return false;
+    const Point& p = *before;
     const double dt = t_[q.frame] - t_[p.frame];
     if (!(dt > 0) || !(last.y < d(p).y)) return false;
     Detection next = last;
@@ -120,20 +180,36 @@ class Importer {
   }
 
   // Tracks by the file's ids, then a track that breaks off away from the outlet joined to one starting near
-  // where it ended, within max_gap frames: a grain whose id changed.
+  // where it ended, within max_gap frames: a grain whose id changed. The points are copied onto disk track
+  // by track (by the file's ids).
   void join_tracks() {
-    std::map<long, Track> by_id;
+    std::unordered_map<long, std::size_t> next;  // id -> its points' count, then where its next one goes
     for (int k = 0; k < nf_; ++k) {
-      const std::vector<Detection>& found = tracks_.frames[k].found;
-      for (int i = 0; i < static_cast<int>(found.size()); ++i) {
-        Track& tr = by_id[found[i].id];
-        tr.id = found[i].id;
-        tr.points.push_back({k, i});
-      }
+      for (const Detection& det : tracks_.frames[k].found) ++next[det.id];
+      breathe_frame(k);
+    }
+    std::vector<long> ids;
+    ids.reserve(next.size());
+    for (const auto& [id, n] : next) ids.push_back(id);
+    std::sort(ids.begin(), ids.end());
+    std::vector<std::size_t> first(ids.size() + 1, 0);  // the ids' points' places, in the ids' order
+    for (size_t i = 0; i < ids.size(); ++i) first[i + 1] = first[i] + std::exchange(next[ids[i]], first[i]);
+    track_points_ = io::Spill<Point>(opt_.spill_dir);
+    io::Spill<Point>& by_id = track_points_;
+    by_id.resize(first.back());
+    for (int k = 0; k < nf_; ++k) {
+      const std::span<Detection> found = tracks_.frames[k].found;
+      for (int i = 0; i < static_cast<int>(found.size()); ++i)
+        by_id[next.find(found[i].id)->second++] = {found[i], k, i};
+      breathe_frame(k);
+      if (k % 1024 == 1023) by_id.release();
     }
     std::vector<Track> all;
-    for (auto it = by_id.begin(); it != by_id.end(); it = by_id.erase(it))
-      split_at_jumps(std::move(it->second), all);
+    for (size_t i = 0; i < ids.size(); ++i) {
+      split_at_jumps(Track{ids[i], std::span<Point>(by_id.data() + first[i], first[i + 1] - first[i])}, all);
+      if (first[i] / 8192 != first[i + 1] / 8192) by_id.release();
+    }
+    by_id.release();
     rep_.tracks = static_cast<long>(all.size());
     std::vector<std::vector<int>> starting(static_cast<size_t>(nf_));
     for (int i = 0; i < static_cast<int>(all.size()); ++i)
@@ -143,51 +219,90 @@ class Importer {
     std::sort(by_end.begin(), by_end.end(), [&](int a, int b) { return all[a].end() < all[b].end(); });
     for (int ia : by_end) {
       Track& a = all[static_cast<size_t>(ia)];
-      while (!a.joined && a.end() < nf_ - 1 && !leaves_at_outlet(a)) {
-        const int best = best_continuation(all, starting, ia);
+      if (a.joined) continue;
+      auto before_last = [&](const Track& tail) {  // the chain's point before its last (nullptr: one point)
+        if (tail.points.size() >= 2) return &tail.points[tail.points.size() - 2];
+        return a.chain.size() >= 2   ? &all[static_cast<size_t>(a.chain[a.chain.size() - 2])].points.back()
+               : a.chain.size() == 1 ? &a.points.back()
+                                     : nullptr;
+      };
+      for (;;) {
+        const Track& tail = a.chain.empty() ? a : all[static_cast<size_t>(a.chain.back())];
+        if (tail.end() >= nf_ - 1 || leaves_at_outlet(tail.points.back(), before_last(tail))) break;
+        const int best = best_continuation(all, starting, ia, tail);
         if (best < 0) break;
-        Track& b = all[static_cast<size_t>(best)];
-        a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-        b.joined = true;
+        all[static_cast<size_t>(best)].joined = true;
+        a.chain.push_back(best);
         ++rep_.joined;
       }
+      breathe(kFaultAround * 8 * (a.chain.size() + 1));
     }
-    for (Track& tr : all)
-      if (!tr.joined) grains_.push_back(std::move(tr));
+    grains_from(all);
     ng_ = static_cast<int>(grains_.size());
     rep_.grains = ng_;
+  }
+
+  // The grains: each track not joined to another, with those joined after it. A track joined to none keeps
+  // its points where they are; a grain of several has them copied one after another.
+  void grains_from(std::vector<Track>& all) {
+    size_t joined = 0;
+    for (const Track& tr : all)
+      if (!tr.joined && !tr.chain.empty()) {
+        joined += tr.points.size();
+        for (int b : tr.chain) joined += all[static_cast<size_t>(b)].points.size();
+      }
+    grain_points_ = io::Spill<Point>(opt_.spill_dir);
+    grain_points_.resize(joined);
+    std::size_t at = 0;
+    for (Track& tr : all) {
+      if (tr.joined) continue;
+      pieces_.push_back({{tr.id, tr.start()}});
+      if (tr.chain.empty()) {
+        grains_.push_back(tr);  // its frames as kept (reading them again would bring pages in)
+        continue;
+      }
+      const std::size_t first = at;
+      auto copy = [&](const Track& piece) {
+        std::copy(piece.points.begin(), piece.points.end(), grain_points_.data() + at);
+        at += piece.points.size();
+        breathe(2 * piece.points.size() * sizeof(Point));
+      };
+      copy(tr);
+      for (int b : tr.chain) {
+        copy(all[static_cast<size_t>(b)]);
+        pieces_.back().push_back({all[static_cast<size_t>(b)].id, all[static_cast<size_t>(b)].start()});
+      }
+      grains_.push_back(Track{tr.id, std::span<Point>(grain_points_.data() + first, at - first)});
+    }
   }
 
   // A track that jumps farther than a grain can move between two of its frames is two grains' (an id kept
   // across an exit and the re-injection at the top, or an id used again elsewhere): split there. A grain
   // moves at most four of its diameters, or twice the speed of a fall from the container's top, between them.
-  void split_at_jumps(Track tr, std::vector<Track>& out) {
+  void split_at_jumps(const Track& tr, std::vector<Track>& out) {
     const double fastest = 2 * std::sqrt(2 * core::length(model_.setup.gravity) * geo_.total_height);
-    Track piece{tr.id, {}, false};
-    for (const Point& p : tr.points) {
-      if (!piece.points.empty()) {
-        const Point& q = piece.points.back();
-        const double reach = std::max(8 * d(p).r, fastest * (t_[p.frame] - t_[q.frame]));
-        if (std::hypot(d(p).x - d(q).x, d(p).y - d(q).y) > reach) {
-          out.push_back(std::move(piece));
-          piece = Track{tr.id, {}, false};
-          ++rep_.split;
-        }
+    std::size_t from = 0;
+    for (std::size_t k = 1; k < tr.points.size(); ++k) {
+      const Point &p = tr.points[k], &q = tr.points[k - 1];
+      const double reach = std::max(8 * d(p).r, fastest * (t_[p.frame] - t_[q.frame]));
+      if (std::hypot(d(p).x - d(q).x, d(p).y - d(q).y) > reach) {
+        out.push_back(Track{tr.id, tr.points.subspan(from, k - from)});
+        from = k;
+        ++rep_.split;
       }
-      piece.points.push_back(p);
     }
-    out.push_back(std::move(piece));
+    out.push_back(Track{tr.id, tr.points.subspan(from)});
   }
 
-  // The nearest track of the same species starting within max_gap frames after track ia ends, within
+  // The nearest track of the same species starting within max_gap frames after track ia ends (with those
+  // joined to it: its tail), within
   // join_distance diameters; -1 when none.
-  int best_continuation(const std::vector<Track>& all, const std::vector<std::vector<int>>& starting,
-                        int ia) const {
-    const Track& a = all[static_cast<size_t>(ia)];
-    const Detection& last = d(a.points.back());
+  int best_continuation(const std::vector<Track>& all, const std::vector<std::vector<int>>& starting, int ia,
+                        const Track& tail) const {
+    const Detection& last = d(tail.points.back());
     int best = -1;
     double best_d = opt_.join_distance * 2 * last.r;
-    for (int s = a.end() + 1; s <= std::min(nf_ - 1, a.end() + opt_.max_gap + 1); ++s)
+    for (int s = tail.end() + 1; s <= std::min(nf_ - 1, tail.end() + opt_.max_gap + 1); ++s)
       for (int ib : starting[static_cast<size_t>(s)]) {
         const Track& b = all[static_cast<size_t>(ib)];
         if (b.joined || ib == ia || d(b.points.front()).species != last.species) continue;
@@ -210,6 +325,7 @@ class Importer {
       grain_species_[g] =
           static_cast<core::Species>(std::max_element(count.begin(), count.end()) - count.begin());
       rmax_ = std::max(rmax_, grain_radius_[g]);
+      breathe_grain(grains_[g]);
     }
     assign_slots();
   }
@@ -254,36 +370,45 @@ class Importer {
     return it == h.begin() ? h.front().second : std::prev(it)->second;
   }
 
-  // Where each grain is at every frame: its detections, gaps of at most max_gap frames interpolated. Frame
-  // by frame, each frame's detections released once placed when the caller asked (a frame's positions take
-  // less room than its detections did).
+  // Where each grain is at every frame: its detections, gaps of at most max_gap frames interpolated, kept on
+  // disk as the detections are (frame k's particle g at k * n + g).
   void grain_paths() {
-    std::vector<std::vector<int>> slot_at(static_cast<size_t>(nf_));  // per detection
-    for (int k = 0; k < nf_; ++k) slot_at[k].assign(tracks_.frames[k].found.size(), -1);
+    // Each detection's particle: by its file id, the track of that id it falls in (they follow each other).
+    std::unordered_map<long, std::vector<std::pair<int, int>>>
+        slots;  // id -> (first frame, slot) of its tracks
     for (int g = 0; g < ng_; ++g)
-      for (const Point& p : grains_[g].points) slot_at[p.frame][p.index] = slot_of_[g];
-    pos_.resize(static_cast<size_t>(nf_));
-    angle_.resize(static_cast<size_t>(nf_));
-    present_.resize(static_cast<size_t>(nf_));
+      for (const auto& [id, start] : pieces_[static_cast<size_t>(g)])
+        slots[id].push_back({start, slot_of_[g]});
+    for (auto& [id, v] : slots) std::sort(v.begin(), v.end());
+    auto slot_at = [&](long id, int k) {
+      const auto& v = slots.find(id)->second;
+      return std::prev(
+                 std::upper_bound(v.begin(), v.end(), std::make_pair(k, std::numeric_limits<int>::max())))
+          ->second;
+    };
+    paths_ = Paths(opt_.spill_dir);
+    paths_.n = static_cast<size_t>(n_);
+    const size_t cells = static_cast<size_t>(nf_) * paths_.n;
+    paths_.pos.resize(cells);
+    paths_.angle.resize(cells);
+    paths_.present.resize(cells);
     for (int k = 0; k < nf_; ++k) {
-      pos_[k].assign(static_cast<size_t>(n_), {});
-      angle_[k].assign(static_cast<size_t>(n_), 0.f);
-      present_[k].assign(static_cast<size_t>(n_), false);
-      std::vector<Detection>& found = tracks_.frames[k].found;
-      for (size_t i = 0; i < found.size(); ++i) {
-        const int s = slot_at[k][i];
-        pos_[k][s] = {found[i].x, found[i].y};
-        angle_[k][s] = static_cast<float>(found[i].angle);
-        present_[k][s] = true;
+      const TrackFrame& f = tracks_.frames[k];
+      for (size_t i = 0; i < f.found.size(); ++i) {
+        const int s = slot_at(f.found[i].id, k);
+        pos(k, s) = {f.found[i].x, f.found[i].y};
+        ang(k, s) = static_cast<float>(f.found[i].angle);
+        seen(k, s) = 1;
       }
-      std::vector<int>().swap(slot_at[k]);
-      if (opt_.release_detections) std::vector<Detection>().swap(found);
+      breathe_frame(k);
     }
     for (int g = 0; g < ng_; ++g) {
       const auto& pts = grains_[g].points;
       for (size_t k = 0; k + 1 < pts.size(); ++k) fill_gap(slot_of_[g], pts[k], pts[k + 1]);
       if (grains_[g].start() > 0) ++rep_.entered;
+      breathe_grain(grains_[g]);
     }
+    breathe_out();
   }
 
   // The positions' noise, m: from the second differences across the grains' detections in three frames in a
@@ -293,18 +418,22 @@ class Importer {
   // sigma (two positions' difference is normal with deviation sqrt(2) sigma per axis, and each of some
   // hundred grains near the outlet must pass: 6 sigma is its 1 - 1e-4 quantile).
   void measure_noise() {
-    std::vector<double> dd;
-    size_t points = 0;
-    for (const Track& tr : grains_) points += tr.points.size();
-    dd.reserve(points);
-    for (const Track& tr : grains_)
+    io::Spill<double> dd(opt_.spill_dir);
+    for (int g = 0; g < ng_; ++g) {
+      const Track& tr = grains_[g];
       for (size_t k = 1; k + 1 < tr.points.size(); ++k) {
         const Point &a = tr.points[k - 1], &b = tr.points[k], &c = tr.points[k + 1];
         if (b.frame - a.frame == 1 && c.frame - b.frame == 1)
           dd.push_back(std::fabs(d(a).x - 2 * d(b).x + d(c).x));
       }
+      breathe_grain(grains_[g]);
+      if (g % 64 == 63) dd.release();
+    }
     if (dd.empty()) return;
-    rep_.noise = core::median(std::move(dd)) / (0.6745 * std::sqrt(6.0));
+    const size_t n = dd.size();
+    const double median =
+        n % 2 ? kth_smallest(dd, n / 2) : 0.5 * (kth_smallest(dd, n / 2 - 1) + kth_smallest(dd, n / 2));
+    rep_.noise = median / (0.6745 * std::sqrt(6.0));
     if (!opt_.arrest_shift_given) rep_.arrest_floor = 6 * rep_.noise;
   }
 
@@ -314,19 +443,21 @@ class Importer {
       ++rep_.long_gaps;
       return;
     }
+    if (missing > 0) breathe(kFaultAround * static_cast<size_t>(missing + 2));
     for (int f = p.frame + 1; f < q.frame; ++f) {
       const double w = (t_[f] - t_[p.frame]) / std::max(1e-12, t_[q.frame] - t_[p.frame]);
-      const core::Vec2 a = pos_[p.frame][g], b = pos_[q.frame][g];
-      pos_[f][g] = {a.x + w * (b.x - a.x), a.y + w * (b.y - a.y)};
-      angle_[f][g] = static_cast<float>(angle_[p.frame][g] + w * (angle_[q.frame][g] - angle_[p.frame][g]));
-      present_[f][g] = true;
+      const core::Vec2 a = pos(p.frame, g), b = pos(q.frame, g);
+      pos(f, g) = {a.x + w * (b.x - a.x), a.y + w * (b.y - a.y)};
+      ang(f, g) = static_cast<float>(ang(p.frame, g) + w * (ang(q.frame, g) - ang(p.frame, g)));
+      seen(f, g) = true;
       ++rep_.interpolated;
     }
   }
 
-  // Where a grain is not seen it is parked far below the container, apart from every other (no contact, and
-  // never between an arch and the outlet): a grid below the container, as wide as eight times its size
-  // (trajectory readers refuse positions farther than ten times the container's size away).
+  // The paths (grain_paths, once the run's particles are known to fit), and where a grain is not seen it is
+  // parked far below the container, apart from every other (no contact, and never between an arch and the
+  // outlet): a grid below the container, as wide as eight times its size (trajectory readers refuse
+  // positions farther than ten times the container's size away).
   void park_unseen() {
     const double size = std::max(geo_.total_height, geo_.x_right - geo_.x_left), pitch = 2.5 * rmax_;
     const long cols = std::max(1L, static_cast<long>((geo_.x_right - geo_.x_left + 8 * size) / pitch));
@@ -339,13 +470,17 @@ class Importer {
           std::to_string(cols * rows) +
           " for this container: join broken tracks (--join-distance, --max-gap) or import a "
           "shorter stretch");
+    grain_paths();
     auto park = [&](int g) {
       return core::Vec2{geo_.x_left - 4 * size + (static_cast<double>(g % cols) + 0.5) * pitch,
                         -(geo_.total_height + 1.0) - static_cast<double>(g / cols) * pitch};
     };
-    for (int k = 0; k < nf_; ++k)
+    for (int k = 0; k < nf_; ++k) {
       for (int g = 0; g < n_; ++g)
-        if (!present_[k][g]) pos_[k][g] = park(g);
+        if (!seen(k, g)) pos(k, g) = park(g);
+      breathe_frame(k);
+    }
+    breathe_out();
   }
 
   // Exits: the centre wholly below the outlet line, or a track that ends inside the outlet.
@@ -368,6 +503,7 @@ class Importer {
         }
       }
       if (exit_frame >= 0) exits_at_[static_cast<size_t>(exit_frame)].push_back(slot_of_[g]);
+      breathe_grain(grains_[g]);
     }
   }
 
@@ -381,11 +517,12 @@ class Importer {
     for (int k = 0; k < nf_; ++k) {
       const long leaving = static_cast<long>(exits_at_[k].size());
       if (leaving <= 10) continue;
-      long seen = 0;
-      for (int g = 0; g < n_; ++g) seen += present_[k][g];
-      if (leaving > seen / 4)
+      breathe_frame(k);
+      long shown = 0;
+      for (int g = 0; g < n_; ++g) shown += seen(k, g);
+      if (leaving > shown / 4)
         throw core::InputError(
-            tracks_.source + ": " + std::to_string(leaving) + " of " + std::to_string(seen) +
+            tracks_.source + ": " + std::to_string(leaving) + " of " + std::to_string(shown) +
             " grains leave through the outlet at once (at t = " + core::format_g(t_[k], 4) +
             " s); a discharge lets a few through a frame" + fix);
     }
@@ -402,15 +539,15 @@ class Importer {
     }
     std::vector<double> ratio;
     for (int k = 0; k < std::min(nf_, 5); ++k) {
-      std::vector<int> seen;  // the grains of this frame (a long film has many more grains than a frame)
+      std::vector<int> shown;  // the grains of this frame (a long film has many more grains than a frame)
       for (int g = 0; g < n_; ++g)
-        if (present_[k][g]) seen.push_back(g);
-      for (int g : seen) {
+        if (seen(k, g)) shown.push_back(g);
+      for (int g : shown) {
         double nearest = INFINITY;
-        for (int h : seen)
+        for (int h : shown)
           if (h != g)
             nearest =
-                std::min(nearest, core::length(pos_[k][g] - pos_[k][h]) / (out_.radius[g] + out_.radius[h]));
+                std::min(nearest, core::length(pos(k, g) - pos(k, h)) / (out_.radius[g] + out_.radius[h]));
         if (std::isfinite(nearest)) ratio.push_back(nearest);
       }
     }
@@ -426,7 +563,12 @@ class Importer {
   }
 
   // The grains' tracks are not needed past here: their memory goes before the frames are built.
-  void release() { std::vector<Track>().swap(grains_); }
+  void release() {
+    std::vector<Track>().swap(grains_);
+    track_points_ = io::Spill<Point>();
+    grain_points_ = io::Spill<Point>();
+    std::vector<std::vector<std::pair<long, int>>>().swap(pieces_);
+  }
 
   // At rest at frame k: the arch and the grains no farther from the outlet's centre held still over
   // arrest_hold.
@@ -436,11 +578,11 @@ class Importer {
     int j = k - 1;
     while (j > 0 && t_[k] - t_[j] < scene.arrest_hold) --j;
     double reach = 0;
-    for (int id : arch) reach = std::max(reach, core::length(pos_[k][id]) + out_.radius[id]);
+    for (int id : arch) reach = std::max(reach, core::length(pos(k, id)) + out_.radius[id]);
     for (int g = 0; g < n_; ++g) {
-      if (!present_[k][g] || core::length(pos_[k][g]) > reach) continue;
-      if (!present_[j][g]) return false;
-      const core::Vec2 d = pos_[k][g] - pos_[j][g];
+      if (!seen(k, g) || core::length(pos(k, g)) > reach) continue;
+      if (!seen(j, g)) return false;
+      const core::Vec2 d = pos(k, g) - pos(j, g);
       const double limit = std::max(scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
       if (core::dot(d, d) > limit * limit) return false;
     }
@@ -454,11 +596,18 @@ class Importer {
     for (int j = k - 1; j >= 0 && t_[j] >= st.formed - 1e-9; --j) {
       core::Frame& f = out_.frames[static_cast<size_t>(j)];
       if (f.clog_open) break;
-      if (!std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return present_[j][g]; })) continue;
+      if (!std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return seen(j, g); })) continue;
       f.arch = st.arch;
       f.arch_forming = true;
       f.clog_number = st.number;
     }
+  }
+
+  // Frame k's positions and which particles are seen.
+  void frame_at(int k, std::vector<core::Vec2>& p, std::vector<bool>& present) const {
+    p.assign(&pos(k, 0), &pos(k, 0) + n_);
+    present.resize(static_cast<size_t>(n_));
+    for (int g = 0; g < n_; ++g) present[static_cast<size_t>(g)] = seen(k, g);
   }
 
   // Clogs and arches, frame by frame, by the simulation's rules (no clog rule: nothing removes an arch here).
@@ -470,6 +619,8 @@ class Importer {
     out_.between.resize(static_cast<size_t>(nf_));
     std::vector<int> held_arch;  // the open clog's arch, and the frame it was last seen at
     int held_frame = -1;
+    std::vector<core::Vec2> frame_pos;
+    std::vector<bool> frame_present;
     auto close_arch = [&](const core::StepEvents& ev) {
       for (size_t c = 0; c < ev.clogs_closed.size(); ++c) {
         if (held_arch.empty() || held_frame < 0) continue;
@@ -478,7 +629,8 @@ class Importer {
         a.t = t_[held_frame];
         a.ids = held_arch;
         for (int id : held_arch) a.track_ids.push_back(track_at(id, held_frame));
-        a.descriptors = core::arch_descriptors(held_arch, pos_[held_frame], out_.radius);
+        frame_at(held_frame, frame_pos, frame_present);
+        a.descriptors = core::arch_descriptors(held_arch, frame_pos, out_.radius);
         out_.clog_arches.push_back(std::move(a));
         held_arch.clear();
         held_frame = -1;
@@ -494,8 +646,9 @@ class Importer {
         tracker.on_exit(t_[k], ev);
       }
       close_arch(ev);
+      frame_at(k, frame_pos, frame_present);
       std::vector<int> arch =
-          arch_by_distance(pos_[k], out_.radius, present_[k], model_, opt_.contact_tolerance);
+          arch_by_distance(frame_pos, out_.radius, frame_present, model_, opt_.contact_tolerance);
       if (!arch.empty()) ++rep_.frames_with_arch;
       tracker.on_rest_check(t_[k], at_rest(k, arch), arch);
       tracker.on_step_end(
@@ -509,7 +662,7 @@ class Importer {
       }
       // An arch is of grains in the frame: one whose member is not seen (its track ended without an exit,
       // or a gap) is neither drawn nor recorded at that frame; the clog keeps the arch as last seen whole.
-      const bool whole = std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return present_[k][g]; });
+      const bool whole = std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return seen(k, g); });
       if (st.open && !st.arch.empty() && whole) held_arch = st.arch, held_frame = k;
       if (!ev.clogs_opened.empty()) show_forming(k, st);
       core::Frame& f = out_.frames[k];
@@ -523,7 +676,9 @@ class Importer {
       f.rule_due_in = INFINITY;
       f.since_last_exit = tracker.since_last(t_[k]);
       f.exits = exits;
+      breathe_frame(k);
     }
+    breathe_out();
     tracker.finish(t_[nf_ - 1], out_.after);
     close_arch(out_.after);
     out_.events.clogs = tracker.clogs();
@@ -534,27 +689,28 @@ class Importer {
 
 void Imported::particles_at(size_t k, std::vector<core::Particle>& out) const {
   const size_t n = radius.size(), nf = paths.t.size();
-  const std::vector<core::Vec2>& pos = paths.pos[k];
   out.resize(n);
   for (size_t g = 0; g < n; ++g) {
     core::Particle& p = out[g];
+    const core::Vec2 at = paths.pos_at(k, g);
     p.radius = static_cast<float>(radius[g]);
     p.species = species[g];
     p.force = 0;
     p.vx = p.vy = 0;
-    p.x = static_cast<float>(pos[g].x);
-    p.y = static_cast<float>(pos[g].y);
+    p.x = static_cast<float>(at.x);
+    p.y = static_cast<float>(at.y);
     p.angle = 0;
-    if (!paths.present[k][g]) continue;
-    p.angle = paths.angle[k][g];
-    const size_t a = k > 0 && paths.present[k - 1][g] ? k - 1 : k;
-    const size_t b = k + 1 < nf && paths.present[k + 1][g] ? k + 1 : k;
+    if (!paths.seen_at(k, g)) continue;
+    p.angle = paths.angle_at(k, g);
+    const size_t a = k > 0 && paths.seen_at(k - 1, g) ? k - 1 : k;
+    const size_t b = k + 1 < nf && paths.seen_at(k + 1, g) ? k + 1 : k;
     if (b > a) {
       const double dt = paths.t[b] - paths.t[a];
-      p.vx = static_cast<float>((paths.pos[b][g].x - paths.pos[a][g].x) / dt);
-      p.vy = static_cast<float>((paths.pos[b][g].y - paths.pos[a][g].y) / dt);
+      p.vx = static_cast<float>((paths.pos_at(b, g).x - paths.pos_at(a, g).x) / dt);
+      p.vy = static_cast<float>((paths.pos_at(b, g).y - paths.pos_at(a, g).y) / dt);
     }
   }
+  if (k % 1024 == 1023) paths.release();
 }
 
 Imported import_tracks(Tracks& tracks, const core::Model& model, const ImportOptions& opt) {

@@ -40,9 +40,9 @@ struct ImportOptions {
   // The scene's arrest_shift as given (--set arrest_shift=...): taken as it is. Otherwise the tracks' own
   // noise sets a floor under it (ImportReport::arrest_floor).
   bool arrest_shift_given = false;
-  // The tracks' detections cleared once used (their frames' times and numbers stay): a long film's import
-  // then does not hold them and the run's frames at once.
-  bool release_detections = false;
+  // Where the run's paths are kept while it is written (a hidden file; empty: the system's temporary
+  // directory): the output's directory.
+  std::string spill_dir;
 };
 
 // What the import did with the file, for the metadata and the terminal.
@@ -77,12 +77,26 @@ struct ClogArch {
 };
 
 // Where each particle of the run is at every frame, as the import found it: detections, short gaps
-// interpolated, unseen particles parked (m, rad, in the container's frame).
+// interpolated, unseen particles parked (m, rad, in the container's frame). Kept on disk (io/spill.h): a
+// film's length costs disk, not memory.
 struct Paths {
-  std::vector<double> t;                     // s, per frame
-  std::vector<std::vector<core::Vec2>> pos;  // per frame, per particle
-  std::vector<std::vector<float>> angle;
-  std::vector<std::vector<bool>> present;  // seen (or interpolated) at that frame
+  explicit Paths(const std::string& spill_dir = "") : pos(spill_dir), angle(spill_dir), present(spill_dir) {}
+  std::vector<double> t;  // s, per frame
+  std::size_t n = 0;      // particles
+  // Frame k's particle g at k * n + g.
+  io::Spill<core::Vec2> pos;
+  io::Spill<float> angle;
+  io::Spill<std::uint8_t> present;  // seen (or interpolated) at that frame
+
+  core::Vec2 pos_at(std::size_t k, std::size_t g) const { return pos[k * n + g]; }
+  float angle_at(std::size_t k, std::size_t g) const { return angle[k * n + g]; }
+  bool seen_at(std::size_t k, std::size_t g) const { return present[k * n + g] != 0; }
+  // The pages read so far leave memory (they stay on disk).
+  void release() const {
+    pos.release();
+    angle.release();
+    present.release();
+  }
 };
 
 struct Imported {
@@ -100,7 +114,7 @@ struct Imported {
   ImportReport report;
 
   // Frame k's particles: positions and angles from the paths, velocities from the neighbouring frames (unseen
-  // particles parked, at rest).
+  // particles parked, at rest). Frames asked for in order release the paths' pages as they go.
   void particles_at(size_t k, std::vector<core::Particle>& out) const;
 };
 

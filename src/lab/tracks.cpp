@@ -352,15 +352,51 @@ std::vector<int> species_by_size(const std::vector<double>& sizes, const core::S
 }  // namespace
 
 namespace {
+
 constexpr size_t kSliceRows = 1 << 16;  // rows read at a time
+
+struct RowRead {
+  double time;
+  Detection d;
+};
+struct FrameTally {
+  long number = -1;
+  size_t count = 0, next = 0;
+};
+
+// Each frame's detections by id, no id twice in a frame; then the frames in time order over them.
+void frames_by_id(Tracks& out, const std::map<double, FrameTally>& frames, const std::string& path) {
+  size_t first = 0;
+  for (const auto& [time, f] : frames) {
+    TrackFrame tf;
+    tf.t = time;
+    tf.number = f.number;
+    tf.first = first;
+    tf.found = std::span<Detection>(out.detections.data() + first, f.count);
+    std::sort(tf.found.begin(), tf.found.end(),
+              [](const Detection& a, const Detection& b) { return a.id < b.id; });
+    for (size_t k = 1; k < tf.found.size(); ++k)
+      if (tf.found[k].id == tf.found[k - 1].id)
+        throw core::InputError(path + ":" + std::to_string(tf.found[k].line) + ": particle " +
+                               std::to_string(tf.found[k].id) +
+                               " appears twice at t = " + core::format_g(time, 6) + " s (also line " +
+                               std::to_string(tf.found[k - 1].line) + "): ids must be unique within a frame");
+    out.frames.push_back(tf);
+    first += f.count;
+    if (out.frames.size() % 1024 == 0) out.detections.release();
+  }
+  out.detections.release();
+}
+
 }  // namespace
 
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
-                   const core::Setup& setup, const core::Geometry& geo) {
-  // Read a slice of rows at a time, each row straight into its frame: memory grows with the detections
-  // (48 bytes each), not with the file's text. TrackMate's XML comes whole, as one slice.
+                   const core::Setup& setup, const core::Geometry& geo, const std::string& spill_dir) {
+  // Read a slice of rows at a time, each row kept on disk (io/spill.h) with its time; then put in frame order
+  // on disk: memory does not grow with the film. TrackMate's XML comes whole, as one slice.
   Tracks out;
   out.source = path;
+  out.detections = io::Spill<Detection>(spill_dir);
   std::optional<io::CsvStream> stream;
   io::CsvTable slice;
   if (core::lower_extension(path) == ".xml") {
@@ -373,10 +409,17 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
   const size_t first = description_rows(slice);
   RowReader reader(slice, path, map, units, setup, geo, first, out);
   const std::string size_column = reader.size_column();
-  std::map<double, TrackFrame> frames;  // by time
+  std::map<double, FrameTally> frames;  // by time
+  // Rows in frame order (detect's, trackpy's, siloscope's export) go straight into the detections; from the
+  // first row out of order on (TrackMate's spots, by track), each is kept with its time and put in place
+  // once all are read.
+  bool in_order = true;
+  io::Spill<RowRead> rows(spill_dir);
   for (size_t row = first;; ++row) {
     if (row >= slice.rows()) {
       core::throw_if_interrupted();
+      rows.release();
+      out.detections.release();
       if (!stream || !stream->next(slice, kSliceRows)) break;
       row = 0;
     }
@@ -389,37 +432,52 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
       continue;
     }
     if (!size_column.empty()) d.r = reader.size_of(row);  // the size, until the species are known
-    TrackFrame& f = frames[time];
-    f.t = time;
+    if (in_order && !frames.empty() && time < frames.rbegin()->first) {
+      in_order = false;
+      size_t i = 0;
+      for (const auto& [t, f] : frames)
+        for (size_t c = 0; c < f.count; ++c) rows.push_back({t, out.detections[i++]});
+      out.detections.resize(0);
+    }
+    FrameTally& f = frames[time];
     f.number = number;
-    f.found.push_back(d);
+    ++f.count;
+    if (in_order)
+      out.detections.push_back(d);
+    else
+      rows.push_back({time, d});
   }
+
   if (frames.empty()) throw core::InputError(path + ": no rows (a header and no particle)");
+  size_t at = 0;
+  for (auto& [time, f] : frames) f.next = at, at += f.count;
+  out.detections.resize(at);  // in order: as read
+  auto it = frames.end();
+  for (size_t i = 0; i < rows.size(); ++i) {  // each row into its frame's place
+    if (it == frames.end() || it->first != rows[i].time) it = frames.find(rows[i].time);
+    out.detections[it->second.next++] = rows[i].d;
+    if ((i + 1) % kSliceRows == 0) {
+      core::throw_if_interrupted();
+      rows.release();
+      out.detections.release();
+    }
+  }
+
+  rows = io::Spill<RowRead>();
   if (!size_column.empty()) {
     std::vector<double> sizes;
-    for (const auto& [time, f] : frames)
-      for (const Detection& d : f.found) sizes.push_back(d.r);
+    sizes.reserve(out.detections.size());
+    for (const Detection& d : out.detections) sizes.push_back(d.r);
     const std::vector<int> species = species_by_size(sizes, setup, path, size_column);
-    size_t i = 0;
-    for (auto& [time, f] : frames)
-      for (Detection& d : f.found) {
-        d.species = species[i++];
-        d.r = setup.species[static_cast<size_t>(d.species)].radius;
-      }
+    for (size_t i = 0; i < out.detections.size(); ++i) {
+      Detection& d = out.detections[i];
+      d.species = species[i];
+      d.r = setup.species[static_cast<size_t>(d.species)].radius;
+    }
     out.species_by_size = true;
   }
-  for (auto& [time, f] : frames) {
-    std::sort(f.found.begin(), f.found.end(),
-              [](const Detection& a, const Detection& b) { return a.id < b.id; });
-    for (size_t k = 1; k < f.found.size(); ++k)
-      if (f.found[k].id == f.found[k - 1].id)
-        throw core::InputError(path + ":" + std::to_string(f.found[k].line) + ": particle " +
-                               std::to_string(f.found[k].id) +
-                               " appears twice at t = " + core::format_g(time, 6) + " s (also line " +
-                               std::to_string(f.found[k - 1].line) + "): ids must be unique within a frame");
-    f.found.shrink_to_fit();
-    out.frames.push_back(std::move(f));
-  }
+  frames_by_id(out, frames, path);
+
   return out;
 }
 

@@ -14,10 +14,12 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "core/setup.h"
+#include "io/spill.h"
 
 namespace lab {
 
@@ -46,14 +48,18 @@ struct Detection {
 };
 
 struct TrackFrame {
-  double t = 0;      // s, as the file gives it (frame / fps for frame numbers)
-  long number = -1;  // the file's frame number (-1: none)
-  std::vector<Detection> found;
+  double t = 0;                // s, as the file gives it (frame / fps for frame numbers)
+  long number = -1;            // the file's frame number (-1: none)
+  std::span<Detection> found;  // by id, in Tracks::detections
+  std::size_t first = 0;       // index of found's first in Tracks::detections
 };
 
 struct Tracks {
   std::string source;              // the file read
   std::vector<TrackFrame> frames;  // in time order, one per distinct frame of the file
+  // Every frame's detections, one after another: kept in a hidden file beside the output (io/spill.h), so
+  // that a film's length costs disk, not memory. Release its pages (detections.release()) after a pass.
+  io::Spill<Detection> detections;
   bool has_radius = false, has_angle = false, has_species = false;
   std::vector<std::string> columns_used;  // "time=t", "id=particle", ... (for the metadata)
   long rows = 0;
@@ -65,15 +71,16 @@ struct Tracks {
 void parse_origin(const std::string& text, double& x, double& y);
 
 // The largest track file read: about 40 million rows (an hour and a half of a 30 fps film of 250 grains),
-// held in memory as 56 bytes a detection.
+// kept on disk as 48 bytes a detection (with 56 more for a moment while the rows are put in frame order).
 constexpr std::uintmax_t kMaxTrackBytes = std::uintmax_t{4} << 30;
 
 // Reads and checks `path`: the needed columns present (the error names what was looked for and how to map
 // it), numbers where numbers belong, no particle id twice in one frame, no position outside the container
 // (a centre beyond its walls or above its top by more than a grain's diameter: a wrong scale or origin; the
 // region below the outlet, where grains fall, is allowed). Throws core::InputError naming the file, its line,
-// the column and the value.
+// the column and the value. The detections are kept in a hidden file in `spill_dir` (empty: the system's
+// temporary directory).
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
-                   const core::Setup& setup, const core::Geometry& geo);
+                   const core::Setup& setup, const core::Geometry& geo, const std::string& spill_dir = "");
 
 }  // namespace lab

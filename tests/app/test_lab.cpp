@@ -3,10 +3,14 @@
 // arches within stated bounds.
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <vector>
 
 #include "app/services/lab.h"
 #include "app/services/roundtrip.h"
@@ -282,4 +286,70 @@ TEST_CASE(
   CHECK(r.recall >= 0.995);
   CHECK(r.precision >= 0.995);
   CHECK(r.error_median_d <= 0.01);
+}
+
+namespace {
+
+// A film of grains resting on a square lattice in the paper's silo, touching (2 r apart), each moved by up
+// to 1e-4 m each frame, as tracks "t,id,x,y,r" in metres: `frames` frames at 30 per second.
+void write_resting(const fs::path& csv, int frames) {
+  std::ofstream out(csv);
+  out << "t,id,x,y,r\n";
+  unsigned state = 12345;
+  auto jitter = [&] {
+    state = state * 1103515245u + 12345u;
+    return 1e-4 * (static_cast<double>(state >> 16 & 0x7fff) / 0x7fff - 0.5);
+  };
+  char line[96];
+  for (int k = 0; k < frames; ++k)
+    for (int row = 0; row < 20; ++row)
+      for (int col = 0; col < 7; ++col) {
+        std::snprintf(line, sizeof line, "%.6f,%d,%.6f,%.6f,0.065\n", k / 30.0, row * 7 + col,
+                      -0.39 + 0.13 * col + jitter(), 1.5 + 0.13 * row + jitter());
+        out << line;
+      }
+}
+
+// The peak resident memory of `siloscope ARGS`, kB (the child's own, from wait4); -1 when it failed.
+long peak_kb(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    std::vector<char*> argv{const_cast<char*>(test::kBin.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(test::kBin.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage use{};
+  wait4(pid, &status, 0, &use);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? use.ru_maxrss : -1;
+}
+
+}  // namespace
+
+// Issue 54: import's memory does not grow with the film: the detections, the tracks' points and the paths
+// are kept on disk (io/spill.h). Held in memory, 12 000 frames more of 140 grains took some 130 MB more.
+TEST_CASE("import: a film eight times as long takes no more memory", "[lab][heavy]") {
+  const fs::path d = temp_dir("lab_memory");
+  write_resting(d / "short.csv", 1800);  // 1 minute
+  write_resting(d / "long.csv", 14400);  // 8 minutes: 2 million rows
+  const long short_kb =
+      peak_kb({"import", (d / "short.csv").string(), "--geometry", kScene, "--out", (d / "short").string()});
+  const long long_kb =
+      peak_kb({"import", (d / "long.csv").string(), "--geometry", kScene, "--out", (d / "long").string()});
+  INFO("peak memory: 1 minute " << short_kb / 1024 << " MB, 8 minutes " << long_kb / 1024 << " MB");
+  REQUIRE(short_kb > 0);
+  REQUIRE(long_kb > 0);
+  CHECK(long_kb - short_kb < 40 * 1024);
+  CHECK(long_kb < 500 * 1024);
+  // The long film's run is whole: every frame, every grain.
+  io::Trajectory traj(d / "long" / "trajectory.sstraj");
+  CHECK(traj.size() == 14400);
+  CHECK(traj.frame(14399).particles.size() == 140);
+  // Nothing left beside the output: the files the detections were kept in had no names.
+  long entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d)) ++entries;
+  CHECK(entries == 4);  // the two films and the two runs
 }

@@ -240,6 +240,8 @@ int import_run(ImportCliOptions o) {
   core::check_input_file(o.tracks, "tracked particles", lab::kMaxTrackBytes, "");
   const fs::path out = io::output_path(o.out);
   io::check_not_input(out, {fs::absolute(o.tracks)}, "run");
+  // Before reading: the files a long film's detections are kept in go beside it.
+  io::check_destination(out, o.force, "output directory");
 
   std::string calibration;
   const lab::Units units = import_units(o, calibration);
@@ -260,10 +262,13 @@ int import_run(ImportCliOptions o) {
   const core::Model geometry = core::compile(scene);
   std::optional<Hdf5AsCsv> h5;
   if (is_hdf5(o.tracks)) h5.emplace(o.tracks);
+  // A long film's detections and paths are kept in hidden files on the output's disk, not in memory.
+  std::error_code ec;
+  const std::string spill_dir = fs::is_directory(out.parent_path(), ec) ? out.parent_path().string() : "";
   lab::Tracks tracks;
   try {
     tracks = lab::read_tracks(h5 ? h5->csv() : o.tracks, lab::parse_column_map(o.columns, "--columns"), units,
-                              geometry.setup, geometry.setup.geo);
+                              geometry.setup, geometry.setup.geo, spill_dir);
   } catch (const core::InputError& e) {
     if (!h5) throw;
     std::string what = e.what();  // the temporary CSV's name is the user's file's, its rows the tables'
@@ -278,7 +283,7 @@ int import_run(ImportCliOptions o) {
   how.arrest_shift_given = std::any_of(o.overrides.begin(), o.overrides.end(), [](const std::string& kv) {
     return kv.rfind("arrest_shift=", 0) == 0;
   });
-  how.release_detections = true;
+  how.spill_dir = spill_dir;
   lab::Imported im = lab::import_tracks(tracks, geometry, how);
   const lab::ImportReport& r = im.report;
   // The run's scene: the geometry's, lasting as long as the film (what every reader of the run takes as its
