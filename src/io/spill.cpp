@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <utility>
+#include <vector>
 
 #include "core/error.h"
 
@@ -99,6 +101,27 @@ void SpillFile::reserve(std::size_t bytes) {
 
 void SpillFile::release() const {
   if (data_) madvise(data_, capacity_, MADV_DONTNEED);
+}
+
+double kth_smallest(const Spill<double>& v, std::size_t k) {
+  std::uint64_t prefix = 0;
+  for (int shift = 48; shift >= 0; shift -= 16) {
+    const std::uint64_t above = shift == 48 ? 0 : ~std::uint64_t{0} << (shift + 16);  // the bits found
+    std::vector<std::size_t> count(std::size_t{1} << 16, 0);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      std::uint64_t b;
+      std::memcpy(&b, &v[i], sizeof b);
+      if ((b & above) == prefix) ++count[(b >> shift) & 0xffff];
+      if (i % (std::size_t{1} << 22) == (std::size_t{1} << 22) - 1) v.release();
+    }
+    v.release();
+    std::size_t digit = 0;
+    while (k >= count[digit]) k -= count[digit++];
+    prefix |= static_cast<std::uint64_t>(digit) << shift;
+  }
+  double out;
+  std::memcpy(&out, &prefix, sizeof out);
+  return out;
 }
 
 }  // namespace io

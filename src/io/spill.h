@@ -78,4 +78,8 @@ class Spill {
   std::size_t n_ = 0, cap_ = 0;
 };
 
+// The k-th smallest (from 0) of values >= 0, exactly as a sort would give it, without holding them in memory:
+// their bits order them as their values do, so four passes of a 16-bit histogram find it.
+double kth_smallest(const Spill<double>& v, std::size_t k);
+
 }  // namespace io

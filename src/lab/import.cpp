@@ -47,29 +47,6 @@ bool ends_at_outlet(const Detection& d, const core::Geometry& geo) {
   return d.y < -d.r || (d.y < 2 * d.r && std::fabs(d.x) < geo.half_aperture + 0.5 * d.r);
 }
 
-// The k-th smallest (from 0) of values >= 0, exactly, as a sort would give it, without holding them in
-// memory: their bits order them as their values do, so four passes of a 16-bit histogram each find it.
-double kth_smallest(const io::Spill<double>& v, size_t k) {
-  std::uint64_t prefix = 0;
-  for (int shift = 48; shift >= 0; shift -= 16) {
-    const std::uint64_t above = shift == 48 ? 0 : ~std::uint64_t{0} << (shift + 16);  // the bits found
-    std::vector<size_t> count(size_t{1} << 16, 0);
-    for (size_t i = 0; i < v.size(); ++i) {
-      std::uint64_t b;
-      std::memcpy(&b, &v[i], sizeof b);
-      if ((b & above) == prefix) ++count[(b >> shift) & 0xffff];
-      if (i % (size_t{1} << 22) == (size_t{1} << 22) - 1) v.release();
-    }
-    v.release();
-    size_t digit = 0;
-    while (k >= count[digit]) k -= count[digit++];
-    prefix |= static_cast<std::uint64_t>(digit) << shift;
-  }
-  double out;
-  std::memcpy(&out, &prefix, sizeof out);
-  return out;
-}
-
 // The import's steps over one track file, each a method: frame times, tracks joined into grains, each grain's
 // size and path, exits, then clogs and arches frame by frame.
 class Importer {
@@ -431,8 +408,8 @@ class Importer {
     }
     if (dd.empty()) return;
     const size_t n = dd.size();
-    const double median =
-        n % 2 ? kth_smallest(dd, n / 2) : 0.5 * (kth_smallest(dd, n / 2 - 1) + kth_smallest(dd, n / 2));
+    const double median = n % 2 ? io::kth_smallest(dd, n / 2)
+                                : 0.5 * (io::kth_smallest(dd, n / 2 - 1) + io::kth_smallest(dd, n / 2));
     rep_.noise = median / (0.6745 * std::sqrt(6.0));
     if (!opt_.arrest_shift_given) rep_.arrest_floor = 6 * rep_.noise;
   }

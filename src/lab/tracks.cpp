@@ -297,37 +297,47 @@ size_t description_rows(const io::CsvTable& t) {
   return k;
 }
 
-// Species from sizes alone (trackpy's `size` is a radius of gyration in pixels, not a radius): the sizes fall
-// into as many groups as the scene has species (k-means on log size), matched to the species in the order of
-// their radii. Throws core::InputError when the groups are not apart as the species' radii are.
-std::vector<int> species_by_size(const std::vector<double>& sizes, const core::Setup& setup,
-                                 const std::string& path, const std::string& column) {
-  const size_t k = setup.species.size();
+// Species from sizes alone (trackpy's `size` is a radius of gyration in pixels, not a radius): the sizes
+// (each detection's r until then) fall into as many groups as the scene has species (k-means on log size),
+// matched to the species in the order of their radii; each detection takes its group's species and radius.
+// The sizes are read in passes, not held. Throws core::InputError when the groups are not apart as the
+// species' radii are.
+void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const std::string& path,
+                     const std::string& column, const std::string& spill_dir) {
+  const size_t k = setup.species.size(), n = dets.size();
   std::vector<size_t> by_radius(k);
   for (size_t i = 0; i < k; ++i) by_radius[i] = i;
   std::sort(by_radius.begin(), by_radius.end(),
             [&](size_t a, size_t b) { return setup.species[a].radius < setup.species[b].radius; });
-  std::vector<double> logs(sizes.size());
-  for (size_t i = 0; i < sizes.size(); ++i) logs[i] = std::log(sizes[i]);
-  std::vector<double> sorted = logs;
-  std::sort(sorted.begin(), sorted.end());
   std::vector<double> centre(k);
-  for (size_t c = 0; c < k; ++c) centre[c] = sorted[(2 * c + 1) * (sorted.size() - 1) / (2 * k)];
-  std::vector<int> group(logs.size(), 0);
+  {
+    io::Spill<double> sizes(spill_dir);  // the log is monotonic: the sizes' quantiles give the logs'
+    for (const Detection& d : dets) sizes.push_back(d.r);
+    for (size_t c = 0; c < k; ++c)
+      centre[c] = std::log(io::kth_smallest(sizes, (2 * c + 1) * (n - 1) / (2 * k)));
+  }
+  auto nearest = [&](double log_size, const std::vector<double>& at) {
+    size_t best = 0;
+    for (size_t c = 1; c < k; ++c)
+      if (std::fabs(log_size - at[c]) < std::fabs(log_size - at[best])) best = c;
+    return best;
+  };
+  std::vector<double> used = centre;  // the centres the groups were last taken by
   for (int pass = 0; pass < 100; ++pass) {
+    used = centre;
     std::vector<double> sum(k, 0.0);
-    std::vector<long> n(k, 0);
-    for (size_t i = 0; i < logs.size(); ++i) {
-      size_t best = 0;
-      for (size_t c = 1; c < k; ++c)
-        if (std::fabs(logs[i] - centre[c]) < std::fabs(logs[i] - centre[best])) best = c;
-      group[i] = static_cast<int>(best);
-      sum[best] += logs[i];
-      ++n[best];
+    std::vector<long> count(k, 0);
+    for (size_t i = 0; i < n; ++i) {
+      const double l = std::log(dets[i].r);
+      const size_t best = nearest(l, used);
+      sum[best] += l;
+      ++count[best];
+      if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release();
     }
     bool moved = false;
     for (size_t c = 0; c < k; ++c)
-      if (n[c] > 0 && std::fabs(sum[c] / n[c] - centre[c]) > 1e-12) centre[c] = sum[c] / n[c], moved = true;
+      if (count[c] > 0 && std::fabs(sum[c] / count[c] - centre[c]) > 1e-12)
+        centre[c] = sum[c] / count[c], moved = true;
     if (!moved) break;
   }
   // Groups apart as the radii are: each pair of neighbouring groups at least half as far apart (in log size)
@@ -343,10 +353,13 @@ std::vector<int> species_by_size(const std::vector<double>& sizes, const core::S
           core::format_g(std::exp(want), 3) +
           "): give each grain's species or radius (--columns species=COLUMN or radius=COLUMN)");
   }
-  std::vector<int> out(logs.size());
-  for (size_t i = 0; i < logs.size(); ++i)
-    out[i] = static_cast<int>(by_radius[static_cast<size_t>(group[i])]);
-  return out;
+  for (size_t i = 0; i < n; ++i) {
+    Detection& d = dets[i];
+    d.species = static_cast<int>(by_radius[nearest(std::log(d.r), used)]);
+    d.r = setup.species[static_cast<size_t>(d.species)].radius;
+    if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release();
+  }
+  dets.release();
 }
 
 }  // namespace
@@ -465,15 +478,7 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
 
   rows = io::Spill<RowRead>();
   if (!size_column.empty()) {
-    std::vector<double> sizes;
-    sizes.reserve(out.detections.size());
-    for (const Detection& d : out.detections) sizes.push_back(d.r);
-    const std::vector<int> species = species_by_size(sizes, setup, path, size_column);
-    for (size_t i = 0; i < out.detections.size(); ++i) {
-      Detection& d = out.detections[i];
-      d.species = species[i];
-      d.r = setup.species[static_cast<size_t>(d.species)].radius;
-    }
+    species_by_size(out.detections, setup, path, size_column, spill_dir);
     out.species_by_size = true;
   }
   frames_by_id(out, frames, path);

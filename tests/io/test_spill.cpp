@@ -4,9 +4,11 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "helpers.h"
 #include "io/spill.h"
@@ -75,4 +77,19 @@ TEST_CASE("a spill whose directory takes no file goes to the system's temporary 
   v[99999] = 7;
   v.release();
   CHECK(v[99999] == 7);
+}
+
+TEST_CASE("the k-th smallest of a spilled array is the sorted array's, ties and zeros included", "[io]") {
+  io::Spill<double> v(test::temp_dir("spill_kth").string());
+  std::vector<double> copy;
+  unsigned state = 7;
+  for (int i = 0; i < 50000; ++i) {
+    state = state * 1664525u + 1013904223u;
+    const double x = i % 7 == 0 ? 0.0 : i % 5 == 0 ? 0.25 : (state >> 8) * 1e-9;
+    v.push_back(x);
+    copy.push_back(x);
+  }
+  std::sort(copy.begin(), copy.end());
+  for (size_t k : {size_t{0}, size_t{1}, size_t{7142}, size_t{7143}, size_t{25000}, size_t{49999}})
+    CHECK(io::kth_smallest(v, k) == copy[k]);
 }
