@@ -312,7 +312,10 @@ void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const
   std::vector<double> centre(k);
   {
     io::Spill<double> sizes(spill_dir);  // the log is monotonic: the sizes' quantiles give the logs'
-    for (const Detection& d : dets) sizes.push_back(d.r);
+    for (size_t i = 0; i < n; ++i) {
+      sizes.push_back(dets[i].r);
+      if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release(), sizes.release();
+    }
     for (size_t c = 0; c < k; ++c)
       centre[c] = std::log(io::kth_smallest(sizes, (2 * c + 1) * (n - 1) / (2 * k)));
   }
