@@ -98,7 +98,7 @@ class Importer {
   // The pages of the detections, the grains' points and the paths read so far leave memory (they stay on
   // disk) once about kTouched bytes of them were read: a pass over frames or over grains reads them one
   // after another; filling a grain's gap reaches into the paths a page a frame.
-  static constexpr size_t kTouched = size_t{32} << 20;
+  static constexpr size_t kTouched = size_t{16} << 20;
   static constexpr size_t kFaultAround = size_t{64} << 10;  // what one read brings in (Linux's fault-around)
   mutable size_t touched_ = 0;
   void breathe(size_t bytes) const {
