@@ -88,8 +88,11 @@ void SpillFile::reserve(std::size_t bytes) {
   int err = posix_fallocate(fd_, static_cast<off_t>(capacity_), static_cast<off_t>(bytes - capacity_));
   if (err == EOPNOTSUPP || err == EINVAL) err = ftruncate(fd_, static_cast<off_t>(bytes)) == 0 ? 0 : errno;
   if (err != 0)
-    throw core::RuntimeFault("cannot grow a temporary file in " + dir_ + " to " + std::to_string(bytes) +
-                             " bytes (" + std::strerror(err) + "): a long film's detections are kept there");
+    throw core::RuntimeFault(
+        "cannot grow a temporary file in " + dir_ + " to " + std::to_string((bytes >> 20) + 1) + " MB (" +
+        std::strerror(err) +
+        "): a long film's detections are kept beside the output while it is imported; free "
+        "some room there or write the output on another disk");
   void* m = data_ ? mremap(data_, capacity_, bytes, MREMAP_MAYMOVE)
                   : mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
   if (m == MAP_FAILED)
