@@ -40,8 +40,8 @@ struct ImportOptions {
   // The scene's arrest_shift as given (--set arrest_shift=...): taken as it is. Otherwise the tracks' own
   // noise sets a floor under it (ImportReport::arrest_floor).
   bool arrest_shift_given = false;
-  // Where the run's paths are kept while it is written (a hidden file; empty: the system's temporary
-  // directory): the output's directory.
+  // Where the tracks' points and the run's paths are kept while it is made (files without a name; empty: the
+  // system's temporary directory): the output's directory.
   std::string spill_dir;
 };
 

@@ -408,8 +408,8 @@ void frames_by_id(Tracks& out, const std::map<double, FrameTally>& frames, const
 
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo, const std::string& spill_dir) {
-  // Read a slice of rows at a time, each row kept on disk (io/spill.h) with its time; then put in frame order
-  // on disk: memory does not grow with the film. TrackMate's XML comes whole, as one slice.
+  // Read a slice of rows at a time, each row kept on disk (io/spill.h), in frame order: memory does not grow
+  // with the film. TrackMate's XML comes whole, as one slice.
   Tracks out;
   out.source = path;
   out.detections = io::Spill<Detection>(spill_dir);
@@ -463,7 +463,6 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
     else
       rows.push_back({time, d});
   }
-
   if (frames.empty()) throw core::InputError(path + ": no rows (a header and no particle)");
   size_t at = 0;
   for (auto& [time, f] : frames) f.next = at, at += f.count;
@@ -478,14 +477,12 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
       out.detections.release();
     }
   }
-
   rows = io::Spill<RowRead>();
   if (!size_column.empty()) {
     species_by_size(out.detections, setup, path, size_column, spill_dir);
     out.species_by_size = true;
   }
   frames_by_id(out, frames, path);
-
   return out;
 }
 

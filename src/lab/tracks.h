@@ -71,7 +71,7 @@ struct Tracks {
 void parse_origin(const std::string& text, double& x, double& y);
 
 // The largest track file read: about 40 million rows (an hour and a half of a 30 fps film of 250 grains),
-// kept on disk as 48 bytes a detection (with 56 more for a moment while the rows are put in frame order).
+// kept on disk as 48 bytes a detection (and 56 more while a file's rows not in frame order are put in place).
 constexpr std::uintmax_t kMaxTrackBytes = std::uintmax_t{4} << 30;
 
 // Reads and checks `path`: the needed columns present (the error names what was looked for and how to map
