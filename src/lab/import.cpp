@@ -594,8 +594,11 @@ class Importer {
     std::vector<std::int64_t> exits(model_.setup.species.size(), 0);
     out_.frames.resize(static_cast<size_t>(nf_));
     out_.between.resize(static_cast<size_t>(nf_));
-    std::vector<int> held_arch;  // the open clog's arch, and the frame it was last seen at
+    // The open clog's arch, the frame it was last seen at, and whether the grains around the outlet were at
+    // rest there: the arch a clog stood on is the one last seen at rest, not a chain of its breaking.
+    std::vector<int> held_arch;
     int held_frame = -1;
+    bool held_at_rest = false;
     std::vector<core::Vec2> frame_pos;
     std::vector<bool> frame_present;
     auto close_arch = [&](const core::StepEvents& ev) {
@@ -611,6 +614,7 @@ class Importer {
         out_.clog_arches.push_back(std::move(a));
         held_arch.clear();
         held_frame = -1;
+        held_at_rest = false;
       }
     };
     for (int k = 0; k < nf_; ++k) {
@@ -627,7 +631,8 @@ class Importer {
       std::vector<int> arch =
           arch_by_distance(frame_pos, out_.radius, frame_present, model_, opt_.contact_tolerance);
       if (!arch.empty()) ++rep_.frames_with_arch;
-      tracker.on_rest_check(t_[k], at_rest(k, arch), arch);
+      const bool rest = at_rest(k, arch);
+      tracker.on_rest_check(t_[k], rest, arch);
       tracker.on_step_end(
           t_[k], [&] { return arch; }, ev);
       const core::ClogState& st = tracker.state();
@@ -638,9 +643,11 @@ class Importer {
         rep_.frames_flowing_with_arch += !arch.empty();
       }
       // An arch is of grains in the frame: one whose member is not seen (its track ended without an exit,
-      // or a gap) is neither drawn nor recorded at that frame; the clog keeps the arch as last seen whole.
+      // or a gap) is neither drawn nor recorded at that frame; the clog keeps the arch as last seen whole (at
+      // rest if it ever was).
       const bool whole = std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return seen(k, g); });
-      if (st.open && !st.arch.empty() && whole) held_arch = st.arch, held_frame = k;
+      if (st.open && !st.arch.empty() && whole && (rest || !held_at_rest))
+        held_arch = st.arch, held_frame = k, held_at_rest = rest;
       if (!ev.clogs_opened.empty()) show_forming(k, st);
       core::Frame& f = out_.frames[k];
       f.t = t_[k];

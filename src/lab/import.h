@@ -70,7 +70,7 @@ struct ImportReport {
 
 struct ClogArch {
   int clog = 0;                 // row of clogs.csv
-  double t = 0;                 // s: the frame the arch was taken from (the clog's last frame)
+  double t = 0;                 // s: the frame the arch was taken from (the last at rest, else the last)
   std::vector<int> ids;         // grains, left to right
   std::vector<long> track_ids;  // the file's ids
   core::ArchDescriptors descriptors;
