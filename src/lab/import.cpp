@@ -566,6 +566,50 @@ class Importer {
     return true;
   }
 
+  // The arch at frame k on positions averaged over the frames before it at which the grains around the
+  // outlet stay where they are at k (at most kRestWindow): a position's noise shrinks with the square root
+  // of their number, so a noisy film's resting arch is found as a clean one's (a bond of a touching pair is
+  // otherwise lost in one frame of twelve at 0.05 d of noise, and an arch of ten grains takes a detour).
+  // Of grains seen at k; empty if none blocks the outlet there. `mean` gets the averaged positions.
+  std::vector<int> arch_at_rest(int k, const std::vector<int>& held, std::vector<core::Vec2>& mean) const {
+    constexpr double kRestWindow = 1.0;   // s
+    constexpr double kNoiseMargin = 2.5;  // standard deviations of the gap's noise
+    const core::Scene& scene = model_.scene;
+    double reach = 0;
+    for (int id : held) reach = std::max(reach, core::length(pos(k, id)) + out_.radius[id]);
+    int first = k;
+    for (int j = k - 1; j >= 0 && t_[k] - t_[j] <= kRestWindow; --j) {
+      bool still = true;
+      for (int g = 0; g < n_ && still; ++g) {
+        if (!seen(k, g) || core::length(pos(k, g)) > reach) continue;
+        const core::Vec2 d = pos(k, g) - pos(j, g);
+        const double limit = std::max(scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
+        still = seen(j, g) && core::dot(d, d) <= limit * limit;
+      }
+      if (!still) break;
+      first = j;
+    }
+    std::vector<bool> present(static_cast<size_t>(n_));
+    mean.assign(static_cast<size_t>(n_), core::Vec2{0, 0});
+    for (int g = 0; g < n_; ++g) {
+      present[static_cast<size_t>(g)] = seen(k, g);
+      mean[static_cast<size_t>(g)] = pos(k, g);  // a grain not seen keeps where the paths park it
+      if (!seen(k, g)) continue;
+      mean[static_cast<size_t>(g)] = core::Vec2{0, 0};
+      int count = 0;
+      for (int j = first; j <= k; ++j)
+        if (seen(j, g)) mean[static_cast<size_t>(g)] = mean[static_cast<size_t>(g)] + pos(j, g), ++count;
+      mean[static_cast<size_t>(g)] = (1.0 / count) * mean[static_cast<size_t>(g)];
+    }
+    // The gap between two averaged positions still carries sqrt(2 / frames) of the noise: a contact is
+    // lost to it less than once in a hundred bonds when the tolerance is 2.5 times that (as a fraction of
+    // the smallest diameter), if that is more than the tolerance asked for.
+    double smallest = INFINITY;
+    for (const core::SpeciesDef& s : model_.setup.species) smallest = std::min(smallest, s.radius_min);
+    const double margin = kNoiseMargin * std::sqrt(2.0 / (k - first + 1)) * rep_.noise / (2 * smallest);
+    return arch_by_distance(mean, out_.radius, present, model_, std::max(opt_.contact_tolerance, margin));
+  }
+
   // The frames before frame k, from the arch's formation on, show the clog confirmed at k as forming: the
   // arch from the instant it stood, as a simulated run's trajectory has it (app/services/hindsight.h).
   void show_forming(int k, const core::ClogState& st) {
@@ -594,11 +638,10 @@ class Importer {
     std::vector<std::int64_t> exits(model_.setup.species.size(), 0);
     out_.frames.resize(static_cast<size_t>(nf_));
     out_.between.resize(static_cast<size_t>(nf_));
-    // The open clog's arch, the frame it was last seen at, and whether the grains around the outlet were at
-    // rest there: the arch a clog stood on is the one last seen at rest, not a chain of its breaking.
+    // The open clog's arch and the frame it was taken at: the arch a clog stood on, not a chain of its
+    // breaking (below).
     std::vector<int> held_arch;
     int held_frame = -1;
-    bool held_at_rest = false;
     std::vector<core::Vec2> frame_pos;
     std::vector<bool> frame_present;
     auto close_arch = [&](const core::StepEvents& ev) {
@@ -607,14 +650,16 @@ class Importer {
         ClogArch a;
         a.clog = static_cast<int>(tracker.clogs().size() - ev.clogs_closed.size() + c + 1);
         a.t = t_[held_frame];
-        a.ids = held_arch;
-        for (int id : held_arch) a.track_ids.push_back(track_at(id, held_frame));
-        frame_at(held_frame, frame_pos, frame_present);
-        a.descriptors = core::arch_descriptors(held_arch, frame_pos, out_.radius);
+        a.ids = arch_at_rest(held_frame, held_arch, frame_pos);
+        if (a.ids.empty()) {
+          a.ids = held_arch;
+          frame_at(held_frame, frame_pos, frame_present);
+        }
+        for (int id : a.ids) a.track_ids.push_back(track_at(id, held_frame));
+        a.descriptors = core::arch_descriptors(a.ids, frame_pos, out_.radius);
         out_.clog_arches.push_back(std::move(a));
         held_arch.clear();
         held_frame = -1;
-        held_at_rest = false;
       }
     };
     for (int k = 0; k < nf_; ++k) {
@@ -643,11 +688,12 @@ class Importer {
         rep_.frames_flowing_with_arch += !arch.empty();
       }
       // An arch is of grains in the frame: one whose member is not seen (its track ended without an exit,
-      // or a gap) is neither drawn nor recorded at that frame; the clog keeps the arch as last seen whole (at
-      // rest if it ever was).
+      // or a gap) is neither drawn nor recorded at that frame. The clog keeps the arch last seen whole at
+      // rest; if it never was, the first seen whole (a clog a drive breaks within a few frames: its last
+      // frames' contacts are a chain of its breaking, one the simulation's forces do not carry).
       const bool whole = std::all_of(st.arch.begin(), st.arch.end(), [&](int g) { return seen(k, g); });
-      if (st.open && !st.arch.empty() && whole && (rest || !held_at_rest))
-        held_arch = st.arch, held_frame = k, held_at_rest = rest;
+      if (st.open && !st.arch.empty() && whole && (rest || held_frame < 0))
+        held_arch = st.arch, held_frame = k;
       if (!ev.clogs_opened.empty()) show_forming(k, st);
       core::Frame& f = out_.frames[k];
       f.t = t_[k];
