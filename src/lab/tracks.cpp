@@ -13,11 +13,16 @@
 #include "core/format.h"
 #include "core/interrupt.h"
 #include "io/csv_table.h"
+#include "lab/size_species.h"
 #include "lab/trackmate_xml.h"
 
 namespace lab {
 
 namespace {
+
+// The sizes' spread assumed when no species has one fixed size to measure it by (in log size), and the least
+// taken (exact sizes: a uniform law's edge is still not a cliff).
+constexpr double kAssumedSizeSpread = 0.02, kLeastSizeSpread = 0.005;
 
 struct Role {
   const char* key;                 // the map's name for it
@@ -138,6 +143,11 @@ class RowReader {
     out.has_radius = has_radius_ = !col_["radius"].empty() || !col_["diameter"].empty();
     out.has_angle = has_angle_ = !col_["angle"].empty();
     out.has_species = has_species_ = !col_["species"].empty();
+    if (has_radius_ && !has_species_ && setup.species.size() > 1) {  // species from radii: the likeliest
+      likeliest_.emplace(setup.species, 0, kAssumedSizeSpread);
+      out.size_spread = kAssumedSizeSpread;
+      out.size_error_rate = likeliest_->error_rate();
+    }
     scale_ = units.scale > 0 ? units.scale : 1.0;
     ysign_ = units.scale > 0 && !units.y_up ? -1.0 : 1.0;
   }
@@ -202,6 +212,7 @@ class RowReader {
   const std::vector<std::string> names_;
   std::map<std::string, std::string> col_;
   bool by_frame_ = false, has_radius_ = false, has_angle_ = false, has_species_ = false;
+  std::optional<SizeSpecies> likeliest_;  // a grain's species from its radius
   double scale_ = 1, ysign_ = 1;
 
   void need(const char* key) {
@@ -238,10 +249,9 @@ class RowReader {
     return static_cast<int>(k);
   }
 
-  // The grain's radius from a radius or diameter column (without a species column, the species whose mean
-  // radius is nearest); the species' radius without one.
+  // The grain's radius from a radius or diameter column (without a species column, the species likeliest to
+  // have it: lab/size_species.h); the species' radius without one.
   void size(size_t row, Detection& d) {
-    const int n_species = static_cast<int>(setup_.species.size());
     if (!has_radius_) {
       d.r = setup_.species[static_cast<size_t>(d.species)].radius;
       return;
@@ -253,12 +263,7 @@ class RowReader {
       throw core::InputError(line_of(row) + ": column " + c + " is '" + t_->text(row, c) +
                              "': a grain's size must be > 0");
     d.r = v;
-    if (has_species_ || n_species <= 1) return;
-    double best = INFINITY;
-    for (int k = 0; k < n_species; ++k) {
-      const double e = std::fabs(std::log(v / setup_.species[static_cast<size_t>(k)].radius));
-      if (e < best) best = e, d.species = k;
-    }
+    if (likeliest_) d.species = likeliest_->species(v);
   }
 
   // Inside the container, or below the outlet where grains fall: a centre beyond a wall or above the top by
@@ -299,11 +304,14 @@ size_t description_rows(const io::CsvTable& t) {
 
 // Species from sizes alone (trackpy's `size` is a radius of gyration in pixels, not a radius): the sizes
 // (each detection's r until then) fall into as many groups as the scene has species (k-means on log size),
-// matched to the species in the order of their radii; each detection takes its group's species and radius.
-// The sizes are read in passes, not held. Throws core::InputError when the groups are not apart as the
-// species' radii are.
+// matched to the species in the order of their radii, which gives the sizes' scale and spread; each
+// detection then takes the species likeliest to have its size (lab/size_species.h: a lognormal's tail that
+// reaches past a uniform interval's end is not cut at the midpoint between the groups) and that species'
+// radius. The sizes are read in passes, not held. Throws core::InputError when the groups are not apart as
+// the species' radii are.
 void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const std::string& path,
-                     const std::string& column, const std::string& spill_dir) {
+                     const std::string& column, const std::string& spill_dir, double& out_spread,
+                     double& out_error_rate) {
   const size_t k = setup.species.size(), n = dets.size();
   std::vector<size_t> by_radius(k);
   for (size_t i = 0; i < k; ++i) by_radius[i] = i;
@@ -356,9 +364,45 @@ void species_by_size(io::Spill<Detection>& dets, const core::Setup& setup, const
           core::format_g(std::exp(want), 3) +
           "): give each grain's species or radius (--columns species=COLUMN or radius=COLUMN)");
   }
+  // The groups give the size's scale (trackpy's size is a radius of gyration, in pixels) and the sizes'
+  // spread: from the species of one fixed size (the spread by the median deviation, which a neighbour's tail
+  // in the group hardly moves); from every group's mean otherwise (a group of a species whose law reaches
+  // into its neighbour's misses its tail: a slightly biased scale).
+  auto is_fixed = [&](size_t c) { return setup.species[by_radius[c]].law == core::SizeLaw::Fixed; };
+  std::vector<long> count(k, 0);
+  io::Spill<double> deviation(spill_dir);
+  for (size_t i = 0; i < n; ++i) {
+    const double l = std::log(dets[i].r);
+    const size_t c = nearest(l, used);
+    ++count[c];
+    if (is_fixed(c)) {
+      deviation.push_back(std::fabs(l - centre[c]));
+      deviation.release_after(deviation.size() - 1);
+    }
+    dets.release_after(i);
+  }
+  const SizeSpecies exact(setup.species, 0, kAssumedSizeSpread);
+  double scale = 0, weight = 0;
+  for (size_t c = 0; c < k; ++c)
+    if (is_fixed(c)) {
+      scale += static_cast<double>(count[c]) * (centre[c] - std::log(setup.species[by_radius[c]].radius));
+      weight += static_cast<double>(count[c]);
+    }
+  if (weight == 0)
+    for (size_t c = 0; c < k; ++c) {
+      scale +=
+          static_cast<double>(count[c]) * (centre[c] - exact.mean_log_radius(static_cast<int>(by_radius[c])));
+      weight += static_cast<double>(count[c]);
+    }
+  out_spread =
+      deviation.size() == 0
+          ? kAssumedSizeSpread
+          : std::max(kLeastSizeSpread, 1.4826 * io::kth_smallest(deviation, (deviation.size() - 1) / 2));
+  const SizeSpecies likeliest(setup.species, scale / weight, out_spread);
+  out_error_rate = likeliest.error_rate();
   for (size_t i = 0; i < n; ++i) {
     Detection& d = dets[i];
-    d.species = static_cast<int>(by_radius[nearest(std::log(d.r), used)]);
+    d.species = likeliest.species(d.r);
     d.r = setup.species[static_cast<size_t>(d.species)].radius;
     dets.release_after(i);
   }
@@ -479,7 +523,8 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
   }
   rows = io::Spill<RowRead>();
   if (!size_column.empty()) {
-    species_by_size(out.detections, setup, path, size_column, spill_dir);
+    species_by_size(out.detections, setup, path, size_column, spill_dir, out.size_spread,
+                    out.size_error_rate);
     out.species_by_size = true;
   }
   frames_by_id(out, frames, path);

@@ -65,6 +65,10 @@ struct Tracks {
   long rows = 0;
   long untracked = 0;            // rows without a track id (a tracker's spots it linked to no track), skipped
   bool species_by_size = false;  // species told apart by a size column (trackpy's), each row by itself
+  // Species from sizes or radii (0 when neither): the sizes' spread about their species' law (log size;
+  // measured on the fixed-size species, else assumed), and the share of grains that even the likeliest
+  // species gives another than their own (laws that overlap).
+  double size_spread = 0, size_error_rate = 0;
 };
 
 // --origin "X,Y" (the outlet centre, in the file's or the picture's units). Throws core::InputError.

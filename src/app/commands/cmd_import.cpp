@@ -116,6 +116,8 @@ io::Facts import_facts(const ImportCliOptions& o, const lab::Tracks& tracks, con
           {"columns", tracks.columns_used},
           {"untracked_spots_skipped", tracks.untracked},
           {"species_by_size", tracks.species_by_size},
+          {"size_spread", tracks.size_spread},
+          {"size_error_rate", tracks.size_error_rate},
           {"calibration", calibration},
           {"scale_m_per_px", units.scale},
           {"origin_x", units.origin_x},
@@ -160,7 +162,13 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
   if (tracks.untracked)
     std::printf("skipped     %ld spots without a track id (the tracker linked them to no track)\n",
                 tracks.untracked);
-  if (tracks.species_by_size) std::printf("species     told apart by the sizes in the file's size column\n");
+  if (tracks.size_spread > 0)
+    std::printf(
+        "species     the likeliest for each grain's %s (spread %.1f%%; the scene's size laws overlap for "
+        "%.2f%% of "
+        "grains, which no size tells apart)\n",
+        tracks.species_by_size ? "size in the file's size column" : "radius", 100 * tracks.size_spread,
+        100 * tracks.size_error_rate);
   std::printf(
       "grains      %ld (%ld ids joined where a track broke off, %ld split where one jumped; %ld positions "
       "filled in gaps of <= %d frames; %ld longer gaps left empty), as %ld particles in the run\n",
