@@ -100,8 +100,8 @@ SizeSpecies::SizeSpecies(const std::vector<core::SpeciesDef>& species, double lo
 
 int SizeSpecies::species(double size) const {
   const double l = std::log(size) - log_scale_;
-  const int i = static_cast<int>(std::floor((l - lo_) / step_));
-  return best_[static_cast<size_t>(std::clamp(i, 0, kCells - 1))];
+  const double cell = std::clamp(std::floor((l - lo_) / step_), 0.0, kCells - 1.0);  // NaN: not a size
+  return std::isnan(cell) ? best_.front() : best_[static_cast<size_t>(cell)];
 }
 
 double SizeSpecies::mean_log_radius(int k) const {

@@ -165,8 +165,7 @@ void print_import(const lab::Imported& im, const lab::Tracks& tracks, const Impo
   if (tracks.size_spread > 0)
     std::printf(
         "species     the likeliest for each grain's %s (spread %.1f%%; the scene's size laws overlap for "
-        "%.2f%% of "
-        "grains, which no size tells apart)\n",
+        "%.2f%% of grains, which no size tells apart)\n",
         tracks.species_by_size ? "size in the file's size column" : "radius", 100 * tracks.size_spread,
         100 * tracks.size_error_rate);
   std::printf(
