@@ -69,6 +69,13 @@ std::string tile_row(const std::string& name, const core::ArchEvent& a, const co
          core::format_g(ad.angle_sd_deg, 4) + "," + core::format_g(window_m, 6) + "\n";
 }
 
+// An imported sheet's caption: how the import found each clog's arch (lab/import.cpp).
+constexpr const char* kImportedCaption =
+    "members ringed, bonds dark; each clog's arch where it last stood at rest, found on the positions "
+    "averaged while it rested (contacts by distance: import's --contact-tolerance, or more for noisy "
+    "tracks), drawn at that frame; h/(s/2): rise over half the span; \u03b8max: the largest bead angle; "
+    "defects: bead angles above 180\u00b0";
+
 // An imported run's tiles: each clog's arch (clog_arches.csv) at the frame of its trajectory the import took
 // it from. Returns the frames' indices; the arches go into `recorded` in place of the rule's removals.
 std::vector<long> imported_arches(const io::Run& run, core::Events& recorded) {
@@ -216,16 +223,10 @@ int gallery(const GalleryOptions& o) {
   const std::string title = sheet_title(run, imported, n, recorded.arches.size(), style);
   fs::path partial = out;
   partial += ".partial" + ext;  // matplotlib picks the format from the extension
-  const int status = run_python(
-      script_path("gallery.py"),
-      {tmp.string(), partial.string(), title, io::version_string(), std::to_string(o.columns),
-       std::to_string(o.tile),
-       imported
-           ? "members ringed, bonds dark; each clog's arch at the last frame it stood, found from positions "
-             "(contacts by distance, import's --contact-tolerance); h/(s/2): rise over half the span; "
-             "\u03b8max: the largest bead angle; defects: bead angles above 180\u00b0"
-           : "",
-       look.figure_spec(width_pt)});
+  const int status =
+      run_python(script_path("gallery.py"),
+                 {tmp.string(), partial.string(), title, io::version_string(), std::to_string(o.columns),
+                  std::to_string(o.tile), imported ? kImportedCaption : "", look.figure_spec(width_pt)});
   if (status != 0) {
     std::error_code ec;
     fs::remove(partial, ec);
