@@ -551,16 +551,26 @@ class Importer {
   // arrest_hold.
   bool at_rest(int k, const std::vector<int>& arch) const {
     if (arch.empty() || k == 0) return false;
-    const core::Scene& scene = model_.scene;
     int j = k - 1;
-    while (j > 0 && t_[k] - t_[j] < scene.arrest_hold) --j;
+    while (j > 0 && t_[k] - t_[j] < model_.scene.arrest_hold) --j;
+    return still_between(k, j, reach_of(k, arch));
+  }
+
+  // How far from the outlet's centre the grains of `arch` reach at frame k.
+  double reach_of(int k, const std::vector<int>& arch) const {
     double reach = 0;
     for (int id : arch) reach = std::max(reach, core::length(pos(k, id)) + out_.radius[id]);
+    return reach;
+  }
+
+  // Every grain seen at frame k no farther than `reach` from the outlet's centre was seen at frame j and
+  // moved less than the arrest shift (or the noise's floor) between them.
+  bool still_between(int k, int j, double reach) const {
     for (int g = 0; g < n_; ++g) {
       if (!seen(k, g) || core::length(pos(k, g)) > reach) continue;
       if (!seen(j, g)) return false;
       const core::Vec2 d = pos(k, g) - pos(j, g);
-      const double limit = std::max(scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
+      const double limit = std::max(model_.scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
       if (core::dot(d, d) > limit * limit) return false;
     }
     return true;
@@ -574,21 +584,9 @@ class Importer {
   std::vector<int> arch_at_rest(int k, const std::vector<int>& held, std::vector<core::Vec2>& mean) const {
     constexpr double kRestWindow = 1.0;   // s
     constexpr double kNoiseMargin = 2.5;  // standard deviations of the gap's noise
-    const core::Scene& scene = model_.scene;
-    double reach = 0;
-    for (int id : held) reach = std::max(reach, core::length(pos(k, id)) + out_.radius[id]);
+    const double reach = reach_of(k, held);
     int first = k;
-    for (int j = k - 1; j >= 0 && t_[k] - t_[j] <= kRestWindow; --j) {
-      bool still = true;
-      for (int g = 0; g < n_ && still; ++g) {
-        if (!seen(k, g) || core::length(pos(k, g)) > reach) continue;
-        const core::Vec2 d = pos(k, g) - pos(j, g);
-        const double limit = std::max(scene.arrest_shift * out_.radius[g], rep_.arrest_floor);
-        still = seen(j, g) && core::dot(d, d) <= limit * limit;
-      }
-      if (!still) break;
-      first = j;
-    }
+    for (int j = k - 1; j >= 0 && t_[k] - t_[j] <= kRestWindow && still_between(k, j, reach); --j) first = j;
     std::vector<bool> present(static_cast<size_t>(n_));
     mean.assign(static_cast<size_t>(n_), core::Vec2{0, 0});
     for (int g = 0; g < n_; ++g) {
