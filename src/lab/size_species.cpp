@@ -108,4 +108,72 @@ double SizeSpecies::mean_log_radius(int k) const {
   return mean_log_[static_cast<size_t>(k)];
 }
 
+namespace {
+
+double median_of(std::vector<double>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>((v.size() - 1) / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+SizeSpecies fit_size_species(const std::vector<core::SpeciesDef>& species, std::vector<double> sizes,
+                             double log_scale, double* spread) {
+  const SizeSpecies nominal(species, log_scale, kAssumedSizeSpread);
+  // Each size's log ratio to the radius of the species nearest it (in log size), kept when that species has
+  // one fixed size.
+  std::vector<double> ratio;
+  for (double s : sizes) {
+    if (!(s > 0)) continue;
+    const double l = std::log(s);
+    size_t best = 0;
+    for (size_t k = 1; k < species.size(); ++k)
+      if (std::fabs(l - log_scale - nominal.mean_log_radius(static_cast<int>(k))) <
+          std::fabs(l - log_scale - nominal.mean_log_radius(static_cast<int>(best))))
+        best = k;
+    if (species[best].law == core::SizeLaw::Fixed) ratio.push_back(l - std::log(species[best].radius));
+  }
+  double scale = log_scale, sigma = kAssumedSizeSpread;
+  if (ratio.size() >= 5) {
+    scale = median_of(ratio);
+    for (double& r : ratio) r = std::fabs(r - scale);
+    sigma = std::max(kLeastSizeSpread, 1.4826 * median_of(ratio));
+  }
+  if (spread) *spread = sigma;
+  return SizeSpecies(species, scale, sigma);
+}
+
+void TrackSizes::add(long track, double size, bool measured) {
+  const size_t id = static_cast<size_t>(track);
+  if (sizes_.size() <= id) sizes_.resize(id + 1);
+  sizes_[id].push_back(static_cast<float>(measured ? size : -size));
+}
+
+std::vector<int> TrackSizes::species(const std::vector<core::SpeciesDef>& species, double log_scale,
+                                     double* spread, double* error_rate) {
+  std::vector<double> median(sizes_.size(), 0.0);
+  for (size_t id = 0; id < sizes_.size(); ++id) {
+    std::vector<float>& r = sizes_[id];
+    // The measured sizes (positive), or the stand-ins where there are none.
+    const auto measured = std::partition(r.begin(), r.end(), [](float v) { return v > 0; });
+    if (measured != r.begin())
+      r.erase(measured, r.end());
+    else
+      for (float& v : r) v = -v;
+    if (r.empty()) continue;
+    const auto mid = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
+    std::nth_element(r.begin(), mid, r.end());
+    median[id] = *mid;
+  }
+  sizes_.clear();
+  sizes_.shrink_to_fit();
+  const SizeSpecies likeliest = fit_size_species(species, median, log_scale, spread);
+  if (error_rate) *error_rate = likeliest.error_rate();
+  std::vector<int> out(median.size(), 0);
+  for (size_t id = 0; id < median.size(); ++id)
+    if (median[id] > 0) out[id] = likeliest.species(median[id]);
+  return out;
+}
+
 }  // namespace lab

@@ -10,6 +10,10 @@
 
 namespace lab {
 
+// The spread in log size assumed where nothing measures it (sizes within about 2%), and the least taken (a
+// measured spread of 0 would make every size a point).
+constexpr double kAssumedSizeSpread = 0.02, kLeastSizeSpread = 0.005;
+
 class SizeSpecies {
  public:
   // `sigma`: the measurement's spread in log size (0.01: sizes within about 1%); sizes are measured in the
@@ -31,6 +35,32 @@ class SizeSpecies {
   std::vector<double> mean_log_;
   std::vector<int> best_;  // per grid cell, the most likely species
   double error_rate_ = 0;
+};
+
+// A classifier for sizes measured at about `log_scale` (log size = log radius + log_scale, from a
+// calibration), refined on the sizes themselves: the sizes nearest a species of one fixed size give the scale
+// (the median of their log ratios to its radius: a blurred or outlined picture's bias) and the spread (1.4826
+// times their median deviation from it, at least kLeastSizeSpread). Without such a species, or with fewer
+// than 5 sizes near one, the scale as given and kAssumedSizeSpread. `spread` (if given) receives the spread
+// taken.
+SizeSpecies fit_size_species(const std::vector<core::SpeciesDef>& species, std::vector<double> sizes,
+                             double log_scale, double* spread = nullptr);
+
+// Tracks' species from their sizes: each track's median size over its frames (one frame's size of a disk
+// pressed among others can read a pixel or two off; a track's median does not, and a track keeps one
+// species), classified by fit_size_species.
+class TrackSizes {
+ public:
+  // A size of the track's; `measured` false: a stand-in (a band's radius where a rim was not fitted), taken
+  // only for a track with no measured size.
+  void add(long track, double size, bool measured = true);
+  // Each track's species, indexed by its id (an id never added: 0); `log_scale` as fit_size_species takes it.
+  // Frees the sizes kept.
+  std::vector<int> species(const std::vector<core::SpeciesDef>& species, double log_scale,
+                           double* spread = nullptr, double* error_rate = nullptr);
+
+ private:
+  std::vector<std::vector<float>> sizes_;  // per track id; a stand-in as its negative
 };
 
 }  // namespace lab

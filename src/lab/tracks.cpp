@@ -20,10 +20,6 @@ namespace lab {
 
 namespace {
 
-// The sizes' spread assumed when no species has one fixed size to measure it by (in log size), and the least
-// taken (exact sizes: a uniform law's edge is still not a cliff).
-constexpr double kAssumedSizeSpread = 0.02, kLeastSizeSpread = 0.005;
-
 struct Role {
   const char* key;                 // the map's name for it
   std::string ColumnMap::*field;   // where the map keeps it

@@ -96,6 +96,7 @@ void refine(Circle& c, const cv::Mat& edges, const cv::Mat& gx, const cv::Mat& g
     c = second;
   else
     c = first;
+  c.fitted = true;
 }
 
 // Grey levels (of the flattened picture's 230) below Otsu's threshold where the foreground starts.
@@ -166,55 +167,6 @@ std::vector<Circle> detect_disks(const cv::Mat& image, const DetectOptions& opt)
     out.push_back(c);
   }
   return out;
-}
-
-std::vector<long> Linker::link(const std::vector<Circle>& found) {
-  struct Pair {
-    double d;
-    size_t live, now;
-  };
-  std::vector<Pair> pairs;
-  double rmax = 0;
-  for (const Circle& c : found) rmax = std::max(rmax, c.r);
-  for (const Live& l : live_) rmax = std::max(rmax, l.r);
-  for (size_t a = 0; a < live_.size(); ++a) {
-    const Live& l = live_[a];
-    const double steps = l.missed + 1;
-    const double px = l.x + l.vx * steps, py = l.y + l.vy * steps;
-    // Within max_step of the largest radius of the prediction, and half the predicted move more (a falling
-    // grain gathers speed between frames).
-    const double reach = max_step_ * rmax + 0.5 * std::hypot(l.vx, l.vy) * steps;
-    for (size_t b = 0; b < found.size(); ++b) {
-      if (found[b].band != l.band) continue;
-      const double d = std::hypot(found[b].x - px, found[b].y - py);
-      if (d <= reach) pairs.push_back({d, a, b});
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& p, const Pair& q) { return p.d < q.d; });
-  std::vector<long> ids(found.size(), -1);
-  std::vector<bool> used(live_.size(), false);
-  for (const Pair& p : pairs) {
-    if (used[p.live] || ids[p.now] >= 0) continue;
-    used[p.live] = true;
-    Live& l = live_[p.live];
-    const Circle& c = found[p.now];
-    const double steps = l.missed + 1;
-    l.vx = (c.x - l.x) / steps, l.vy = (c.y - l.y) / steps;
-    l.x = c.x, l.y = c.y, l.r = c.r, l.missed = 0;
-    ids[p.now] = l.id;
-  }
-  std::vector<Live> next;
-  for (size_t a = 0; a < live_.size(); ++a) {
-    if (!used[a]) ++live_[a].missed;
-    if (live_[a].missed <= memory_) next.push_back(live_[a]);
-  }
-  for (size_t b = 0; b < found.size(); ++b)
-    if (ids[b] < 0) {
-      ids[b] = next_id_++;
-      next.push_back({ids[b], found[b].x, found[b].y, 0, 0, found[b].r, found[b].band, 0});
-    }
-  live_ = std::move(next);
-  return ids;
 }
 
 cv::Mat add_camera(const cv::Mat& clean, double level, std::uint64_t seed) {

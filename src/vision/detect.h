@@ -1,9 +1,9 @@
 // Disks in camera frames: located in each frame (on a background-flattened picture, the peaks of each disk
 // pixel's distance to the background, whose height is a species' radius; centres refined by a circle fitted
-// to the disk's edge) and linked frame to frame into tracks, so a film of a lab silo becomes the tracked
-// particles `siloscope import` reads. Pixels in, pixels out (x to the right, y down, as images and trackpy
-// have them); the calibration to metres is the caller's. OpenCV (Debian's libopencv-*-dev) does the image
-// work.
+// to the disk's edge) and linked frame to frame into tracks (vision/linker.h), so a film of a lab silo
+// becomes the tracked particles `siloscope import` reads. Pixels in, pixels out (x to the right, y down, as
+// images and trackpy have them); the calibration to metres is the caller's. OpenCV (Debian's libopencv-*-dev)
+// does the image work.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,9 @@ struct Circle {
   double x = 0, y = 0, r = 0;  // px
   int band = 0;                // the size band it was found in (a species)
   double score = 0;            // how strongly it was found (its distance-to-background peak, px)
+  // r measured by the fit to its rim; otherwise r is the band's radius (a blurred or crowded rim): the size
+  // is then only known to lie within the band.
+  bool fitted = false;
 };
 
 struct DetectOptions {
@@ -31,30 +34,6 @@ struct DetectOptions {
 
 // Every disk found in one frame (BGR or grey).
 std::vector<Circle> detect_disks(const cv::Mat& image, const DetectOptions& opt);
-
-// Frame-to-frame linking: each disk of the next frame takes the id of the nearest disk of the last frame
-// seen (its position predicted from its last velocity) within `max_step` times the largest radius plus half
-// the predicted move, nearest pairs first (one species to one species); a disk
-// unmatched for more than `memory` frames is forgotten; a new disk gets a new id.
-class Linker {
- public:
-  Linker(double max_step, int memory) : max_step_(max_step), memory_(memory) {}
-  // The ids of `found`, in its order.
-  std::vector<long> link(const std::vector<Circle>& found);
-  long tracks() const { return next_id_; }
-
- private:
-  struct Live {
-    long id;
-    double x, y, vx, vy, r;
-    int band;
-    int missed;
-  };
-  double max_step_;
-  int memory_;
-  long next_id_ = 0;
-  std::vector<Live> live_;
-};
 
 // What a camera adds to a clean picture, for the round trip (level 0: nothing): blur of 0.6 L px, Gaussian
 // noise of 6 L grey levels, light falling off by 12 L % across the picture, a perspective that moves the

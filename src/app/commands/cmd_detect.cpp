@@ -71,6 +71,11 @@ void print_detect(const DetectCliOptions& o, const vision::FrameSource& source, 
     std::printf(
         "disks       %s on a %s background (the first frame: %ld disks taken as dark, %ld as bright)\n",
         st.bright ? "bright" : "dark", st.bright ? "dark" : "light", st.first_as_dark, st.first_as_bright);
+  if (st.species > 1)
+    std::printf(
+        "species     each track's, the likeliest for the median of its radii (spread %.1f%%; the scene's "
+        "sizes leave %.2f%% of grains among another species' sizes)\n",
+        100 * st.size_spread, 100 * st.size_error_rate);
   std::printf(
       "%ld frames, %ld disks (%.1f a frame; %ld outside the container or inside the obstacle dropped), %ld "
       "tracks, "
@@ -278,7 +283,9 @@ int detect(const DetectCliOptions& o) {
                 {"max_step_radii", o.max_step},
                 {"memory_frames", static_cast<long>(o.memory)},
                 {"bright", st.bright},
-                {"bright_found_from_first_frame", !o.bright}};
+                {"bright_found_from_first_frame", !o.bright},
+                {"size_spread", st.size_spread},
+                {"size_error_rate", st.size_error_rate}};
   if (film) info.facts.push_back({"rectified_film", o.rectified});
   std::string meta = io::metadata_toml(model, info);
   meta += calibration_toml("calibration", job.cal, job.lens);
@@ -327,7 +334,8 @@ void define_detect_command(CLI::App& command, Action& action) {
                   "frames per second (default: the video's, or a siloscope movie's simulated rate)");
   cmd->add_option("--frames", o->frames, "K or A:B: only these frames (from 0)");
   cmd->add_option("--radius-band", o->band,
-                  "a species' disks are searched from r(1 - B) to r(1 + B) (default 0.25)");
+                  "a species' disks are searched from r(1 - B) to r(1 + B), and a track links disks within "
+                  "a factor 1 + B of its size (default 0.25)");
   cmd->add_option("--edge", o->edge,
                   "edge strength for the sub-pixel circle fit, on the flattened picture (default 60)");
   cmd->add_option("--max-step", o->max_step,

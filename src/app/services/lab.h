@@ -54,6 +54,9 @@ struct DetectStats {
   long first_as_dark = 0,
        first_as_bright = 0;  // the first frame's disks either way, when the polarity was found
   double seconds = 0;        // wall time of the whole pass: decoding, detection (on several threads), linking
+  long species = 0;          // the scene's species
+  double size_spread = 0;    // the spread of the tracks' median radii, in log size (lab::fit_size_species)
+  double size_error_rate = 0;  // the share of grains the scene's size laws leave in another species' sizes
 };
 
 struct DetectJob {
