@@ -449,19 +449,22 @@ void frames_by_id(Tracks& out, const std::map<double, FrameTally>& frames, const
 Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& units,
                    const core::Setup& setup, const core::Geometry& geo, const std::string& spill_dir) {
   // Read a slice of rows at a time, each row kept on disk (io/spill.h), in frame order: memory does not grow
-  // with the film. TrackMate's XML comes whole, as one slice.
+  // with the film. TrackMate's XML too (its spots as the rows of its spots table).
   Tracks out;
   out.source = path;
   out.detections = io::Spill<Detection>(spill_dir);
   std::optional<io::CsvStream> stream;
+  std::optional<TrackMateXml> xml;
   io::CsvTable slice;
   if (core::lower_extension(path) == ".xml") {
-    slice = trackmate_xml(path, out.untracked);
-    out.rows = out.untracked;  // the spots in no track are no rows of the table: counted here
+    xml.emplace(path);
+    if (!xml->next(slice, kSliceRows))
+      throw core::InputError(path + ": a TrackMate file without spots (<AllSpots> is empty)");
   } else {
     stream.emplace(path, "tracked particles");
     stream->next(slice, kSliceRows);
   }
+  auto next_slice = [&] { return xml ? xml->next(slice, kSliceRows) : stream->next(slice, kSliceRows); };
   const size_t first = description_rows(slice);
   RowReader reader(slice, path, map, units, setup, geo, first, out);
   const std::string size_column = reader.size_column();
@@ -476,7 +479,7 @@ Tracks read_tracks(const std::string& path, const ColumnMap& map, const Units& u
       core::throw_if_interrupted();
       rows.release();
       out.detections.release();
-      if (!stream || !stream->next(slice, kSliceRows)) break;
+      if (!next_slice()) break;
       row = 0;
     }
     ++out.rows;
