@@ -29,7 +29,7 @@ std::vector<long> Linker::link(const std::vector<Circle>& found) {
       const double size = l.size();
       for (size_t b = 0; b < found.size(); ++b) {
         if (ids[b] >= 0) continue;
-        if (!same_size(found[b], size, l.seen > 0)) continue;
+        if (found[b].band != l.band && !same_size(found[b], size, l.seen > 0)) continue;
         const double d = std::hypot(found[b].x - px, found[b].y - py);
         if (d <= reach) pairs.push_back({d, a, b});
       }
@@ -42,7 +42,7 @@ std::vector<long> Linker::link(const std::vector<Circle>& found) {
       const Circle& c = found[p.now];
       const double steps = l.missed + 1;
       l.vx = (c.x - l.x) / steps, l.vy = (c.y - l.y) / steps;
-      l.x = c.x, l.y = c.y, l.r = c.r, l.missed = 0;
+      l.x = c.x, l.y = c.y, l.r = c.r, l.band = c.band, l.missed = 0;
       if (c.fitted) l.add_size(c.r);
       ids[p.now] = l.id;
     }
@@ -59,7 +59,7 @@ std::vector<long> Linker::link(const std::vector<Circle>& found) {
   for (size_t b = 0; b < found.size(); ++b)
     if (ids[b] < 0) {
       ids[b] = next_id_++;
-      next.push_back({ids[b], found[b].x, found[b].y, 0, 0, found[b].r, 0});
+      next.push_back({ids[b], found[b].x, found[b].y, 0, 0, found[b].r, found[b].band, 0});
       if (found[b].fitted) next.back().add_size(found[b].r);
     }
   live_ = std::move(next);

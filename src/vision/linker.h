@@ -10,11 +10,12 @@ namespace vision {
 
 // Frame-to-frame linking: each disk of the next frame takes the id of the nearest disk of the last frame
 // seen (its position predicted from its last velocity) within `max_step` times the largest radius plus half
-// the predicted move (twice as far for the disks and tracks left over), and of a radius within `size_band` of
-// the median of its last five fitted to their rims (a fraction: 0.25 links 10 px to 8 to
-// 12.5 px), nearest pairs first; a disk unmatched for more than `memory` frames is forgotten; a new disk gets
-// a new id. Sizes, not size bands, are compared: a grain whose size lies between two species' (a lognormal's
-// tail) is found in either band from frame to frame and is still one grain.
+// the predicted move (twice as far for the disks and tracks left over), and found in the same size band as
+// the disk it was last or of a radius within `size_band` of the median of its last five fitted to their rims
+// (a fraction: 0.25 links 10 px to 8 to 12.5 px), nearest pairs first; a disk unmatched for more than
+// `memory` frames is forgotten; a new disk gets a new id. The band keeps a blurred disk, whose rim fit wavers
+// by a third, in its track; the size keeps a grain whose size lies between two species' (a lognormal's tail,
+// found in either band from frame to frame) in its.
 class Linker {
  public:
   Linker(double max_step, int memory, double size_band = 0.25)
@@ -27,6 +28,7 @@ class Linker {
   struct Live {
     long id;
     double x, y, vx, vy, r;
+    int band;
     int missed;
     // Its last radii fitted to its rim (a disk's radius wavers by a pixel or two from frame to frame where it
     // touches others): the guard compares with their median; with none, with its last band's radius.

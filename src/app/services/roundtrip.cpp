@@ -140,7 +140,8 @@ void score_arch(const io::Trajectory& truth, const Trip& trip, size_t best, Arch
   }
 }
 
-// Clogs: each true clog matched to the found clog whose start is nearest, within 0.25 s, and its arch.
+// Clogs: each true clog matched to the found clog whose start is nearest, within 0.25 s, and its arch; the
+// exits per species.
 void score_clogs(const io::Trajectory& truth, const Trip& trip, RoundTripRow& row) {
   const auto& tc = truth.events().clogs;
   const auto& fc = trip.im.events.clogs;
@@ -158,10 +159,27 @@ void score_clogs(const io::Trajectory& truth, const Trip& trip, RoundTripRow& ro
     if (best == fc.size()) continue;
     used.insert(best);
     ++row.matched_clogs;
+    row.arrested_agree += fc[best].arrested == c.arrested;
     dstart.push_back(std::fabs(fc[best].start - c.start));
     dend.push_back(std::fabs(fc[best].end - c.end));
     score_arch(truth, trip, best, sc, row);
   }
+  // Exits until three frames before the film's last, both ways: a grain last seen near the outlet in the last
+  // frames may leave after the film ends (the recording has its exit, the film none), or be counted as gone
+  // at the last frame before the recording's exit line.
+  const auto& frames = trip.im.frames;
+  const double until =
+      frames.size() < 5 ? -INFINITY : frames.back().t - 3 * (frames.back().t - frames[frames.size() - 2].t);
+  auto per_species = [&](const std::vector<core::ExitEvent>& exits, std::vector<long>& out) {
+    for (const core::ExitEvent& e : exits) {
+      if (e.t > until + 1e-9) continue;
+      const size_t k = static_cast<size_t>(core::species_index(e.species));
+      if (out.size() <= k) out.resize(k + 1, 0);
+      ++out[k];
+    }
+  };
+  per_species(truth.events().exits, row.true_exits);
+  per_species(trip.im.events.exits, row.found_exits);
   row.start_error_s = core::median(dstart);
   row.end_error_s = core::median(dend);
   row.member_recall = sc.members_true > 0 ? static_cast<double>(sc.members_both) / sc.members_true : NAN;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace app {
 
@@ -21,6 +22,9 @@ struct RoundTripRow {
   // Clogs: the recording's clogs found again (start within 0.25 s), clogs found that are none, and the
   // median error of their start and end (s).
   long true_clogs = 0, found_clogs = 0, matched_clogs = 0;
+  long arrested_agree = 0;  // matched clogs whose arrested flag is the recording's
+  // Exits per species (by index), the recording's and the import's, until three frames before the last.
+  std::vector<long> true_exits, found_exits;
   double start_error_s = 0, end_error_s = 0;
   // Arches of the matched clogs at the import's arch frame: members found (recall) and members that are
   // members (precision), pooled; span and rise errors (median |difference|, diameters), largest bead angle
