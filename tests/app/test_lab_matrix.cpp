@@ -34,14 +34,17 @@ std::string preset(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("film matrix: four presets, three camera levels, two compressions give the grains back",
-          "[lab][app][heavy]") {
+TEST_CASE(
+    "film matrix: four presets, three camera levels, two compressions give the grains, exits and clogs back",
+    "[lab][app][heavy]") {
+  // No clog rule, as in a lab: the rule takes an arch's grains out of the picture, which a film shows as
+  // exits (the obstacle's rule falls due after 1 s).
   const fs::path d = test::temp_dir("lab_film_matrix");
   for (const std::string& name : kPresets)
     for (int crf : {20, 35}) {
       const fs::path rec = d / (name + "_crf" + std::to_string(crf));
       REQUIRE(cli("record " + preset(name) +
-                  " --seed 3 --duration 2 --camera window:-1.4,-0.4,1.4,1.6 --size "
+                  " --seed 3 --duration 2 --set clog_timeout=0 --camera window:-1.4,-0.4,1.4,1.6 --size "
                   "1280x720 --overlay none --arch-halo off --quiet --crf " +
                   std::to_string(crf) + " --out " + rec.string())
                   .code == 0);
@@ -56,6 +59,17 @@ TEST_CASE("film matrix: four presets, three camera levels, two compressions give
         // (docs/lab.md).
         CHECK(r.recall >= 0.99);
         CHECK(r.precision >= 0.99);
+        // The exits per species within 2% (one grain), and the clogs with their arrested flags.
+        for (size_t k = 0; k < r.true_exits.size(); ++k) {
+          const long found = k < r.found_exits.size() ? r.found_exits[k] : 0;
+          INFO("species " << k << ": " << r.true_exits[k] << " exits, found " << found);
+          CHECK(std::abs(found - r.true_exits[k]) <=
+                std::max(1.0, 0.02 * static_cast<double>(r.true_exits[k])));
+        }
+        CHECK(r.found_exits.size() <= r.true_exits.size());
+        CHECK(r.matched_clogs == r.true_clogs);
+        CHECK(r.found_clogs == r.true_clogs);
+        CHECK(r.arrested_agree == r.matched_clogs);
       }
     }
 }
