@@ -159,6 +159,10 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
   refused("import " + tracks + geo, "give the frame rate with --fps");
   std::ofstream(tracks) << "t,particle,x,y\n0,1,0.1,nan\n";
   refused("import " + tracks + geo, ":2: column y is 'nan', not a finite number");
+  // The geometry as a preset's name, as run and record take a scene (the file's own error comes next).
+  refused("import " + tracks + " --geometry paper --out " + (d / "out").string(), ":2: column y is 'nan'");
+  refused("import " + tracks + " --geometry nosuch --out " + (d / "out").string(),
+          "nosuch: no such scene file, and no preset scene of that name (presets: ");
   refused("import " + tracks + geo + " --columns id=TrackID",
           "--columns id=TrackID: the file has no column 'TrackID'");
   std::ofstream(d / "movie.mp4") << "not a movie\n";
@@ -174,6 +178,9 @@ TEST_CASE("import and detect: bad input gets one line naming the problem and exi
   refused("detect " + (d / "frames").string() + " --scale 0.004 --origin 400,600 --geometry " +
               std::string(SILOSCOPE_SOURCE_DIR) + "/assets/scenes/pentagons.toml --out " +
               (d / "out" / "t.csv").string(),
+          "species.pentagons.sides = 5: detect finds disks only");
+  refused("detect " + (d / "frames").string() +
+              " --scale 0.004 --origin 400,600 --geometry pentagons --out " + (d / "out" / "t.csv").string(),
           "species.pentagons.sides = 5: detect finds disks only");
 }
 

@@ -176,7 +176,7 @@ core::Model detect_geometry(const DetectCliOptions& o, DetectJob& job) {
   core::Model model;
   bool have_model = calibrate(o, job, model);
   if (!o.geometry.empty()) {
-    core::Scene s = core::load_scene(o.geometry);
+    core::Scene s = core::load_scene(scene_file(o.geometry));  // a file, or a preset's name
     core::apply_overrides(s, o.overrides);
     model = core::compile(s);
     have_model = true;
@@ -312,7 +312,8 @@ void define_detect_command(CLI::App& command, Action& action) {
   cmd->add_option("--out", o->out, "the tracks CSV to write (TRACKS.meta.toml beside it)")->required();
   cmd->add_option(
       "--geometry", o->geometry,
-      "a scene file: the container and the species' sizes (default: a siloscope movie's own scene)");
+      "a scene file or a preset's name: the container and the species' sizes (default: a siloscope "
+      "movie's own scene)");
   cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
   cmd->add_option("--scale", o->scale, "metres per pixel");
   cmd->add_option("--origin", o->origin, "X,Y: the pixel of the outlet's centre");

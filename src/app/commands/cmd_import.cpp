@@ -255,7 +255,7 @@ int import_run(ImportCliOptions o) {
   const fs::path meta = detect_metadata(o.tracks);
 
   // The container: --geometry, or the scene detect wrote beside the tracks (a siloscope movie's own).
-  std::string geometry_file = o.geometry;
+  std::string geometry_file = scene_file(o.geometry);  // a file, or a preset's name
   if (geometry_file.empty()) {
     if (!fs::exists(meta))
       throw core::InputError(
@@ -359,8 +359,8 @@ void define_import_command(CLI::App& command, Action& action) {
          "XML, or trackpy's HDF5 (.h5, read through pandas)")
       ->required();
   cmd->add_option("--geometry", o->geometry,
-                  "a scene file: the container (walls, outlet, obstacle) and species (default: the scene in "
-                  "TRACKS.meta.toml, which detect writes)");
+                  "a scene file or a preset's name: the container (walls, outlet, obstacle) and species "
+                  "(default: the scene in TRACKS.meta.toml, which detect writes)");
   cmd->add_option("--set", o->overrides, "KEY=VALUE: change a key of the geometry scene (repeatable)");
   cmd->add_option("--out", o->out, "the run directory to write")->required();
   cmd->add_option("--columns", o->columns,
